@@ -1,0 +1,120 @@
+#include "lodforge/core/file_io.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+
+#include "lodforge/core/error.h"
+
+namespace lodforge {
+
+bool is_gzip(std::string_view data) {
+  return data.size() >= 2 && static_cast<unsigned char>(data[0]) == 0x1f &&
+         static_cast<unsigned char>(data[1]) == 0x8b;
+}
+
+std::string gunzip(std::string_view data, const std::string& what) {
+  z_stream zs{};
+  if (inflateInit2(&zs, 15 + 32) != Z_OK) throw DataError(what + ": cannot start zlib");
+  std::string out;
+  out.resize(std::max<std::size_t>(data.size() * 4, 1 << 16));
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  std::size_t produced = 0;
+  int rc = Z_OK;
+  while (true) {
+    if (produced == out.size()) out.resize(out.size() * 2);
+    zs.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
+    zs.avail_out = static_cast<uInt>(out.size() - produced);
+    rc = inflate(&zs, Z_NO_FLUSH);
+    produced = out.size() - zs.avail_out;
+    if (rc == Z_STREAM_END) {
+      // Concatenated gzip members are legal; continue with the next one.
+      if (zs.avail_in > 0 && is_gzip({reinterpret_cast<const char*>(zs.next_in), zs.avail_in})) {
+        inflateReset(&zs);
+        continue;
+      }
+      break;
+    }
+    if (rc != Z_OK && rc != Z_BUF_ERROR) break;
+    if (rc == Z_BUF_ERROR && zs.avail_in == 0) break;
+  }
+  inflateEnd(&zs);
+  if (rc != Z_STREAM_END)
+    throw DataError(fmt::format("{}: corrupt or truncated gzip data ({})", what,
+                                zs.msg ? zs.msg : "unexpected end of stream"));
+  out.resize(produced);
+  return out;
+}
+
+std::string read_file(const std::string& path) {
+  std::string data;
+  if (path == "-") {
+    data.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  } else {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+      throw DataError(fmt::format("{}: is a directory, expected a file", path));
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw DataError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+    std::fseek(f, 0, SEEK_END);
+    long size = std::ftell(f);
+    std::fseek(f, 0, SEEK_SET);
+    if (size > 0) {
+      data.resize(static_cast<std::size_t>(size));
+      std::size_t got = std::fread(data.data(), 1, data.size(), f);
+      data.resize(got);
+    }
+    bool failed = std::ferror(f);
+    std::fclose(f);
+    if (failed) throw DataError(fmt::format("{}: read error", path));
+  }
+  if (is_gzip(data)) return gunzip(data, path == "-" ? "<stdin>" : path);
+  return data;
+}
+
+void write_file_atomic(const std::string& path, std::string_view content) {
+  if (path == "-") {
+    std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));
+    std::cout.flush();
+    if (!std::cout) throw DataError("cannot write to standard output");
+    return;
+  }
+  namespace fs = std::filesystem;
+  fs::path target(path);
+  fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  int fd = mkstemp(tmpl.data());
+  if (fd < 0) throw DataError(fmt::format("{}: cannot create: {}", path, std::strerror(errno)));
+  std::size_t done = 0;
+  while (done < content.size()) {
+    ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      int err = errno;
+      ::close(fd);
+      ::unlink(tmpl.c_str());
+      throw DataError(fmt::format("{}: write failed: {}", path, std::strerror(err)));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  // Keep the usual permissions of a new file (mkstemp makes it 0600).
+  mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
+  if (::close(fd) != 0 || std::rename(tmpl.c_str(), path.c_str()) != 0) {
+    int err = errno;
+    ::unlink(tmpl.c_str());
+    throw DataError(fmt::format("{}: cannot write: {}", path, std::strerror(err)));
+  }
+}
+
+}  // namespace lodforge

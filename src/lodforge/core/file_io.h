@@ -1,0 +1,27 @@
+#pragma once
+/// Reading whole files (gzip-compressed ones transparently) and writing files
+/// atomically: output goes to a temporary file beside the target, which is
+/// renamed into place only when complete, so a failure never leaves a
+/// half-written file.
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace lodforge {
+
+/// Reads a whole file, or standard input for "-". Data that starts with the
+/// gzip magic bytes is decompressed. Throws DataError if it cannot be read or
+/// the compressed stream is corrupt.
+std::string read_file(const std::string& path);
+
+/// True if `data` starts with the gzip magic bytes.
+bool is_gzip(std::string_view data);
+
+/// Decompresses gzip data. Throws DataError naming `what` on a corrupt stream.
+std::string gunzip(std::string_view data, const std::string& what);
+
+/// Writes `content` to `path` atomically ("-" writes to standard output).
+/// Throws DataError if the file cannot be written.
+void write_file_atomic(const std::string& path, std::string_view content);
+
+}  // namespace lodforge

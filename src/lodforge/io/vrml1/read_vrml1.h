@@ -1,0 +1,50 @@
+#pragma once
+/// VRML 1.0 reader: a hand-written lexer and recursive-descent parser for the
+/// whole VRML 1.0 specification (and the Open Inventor 2.x ASCII files that
+/// share its grammar).
+///
+/// Grammar (after Coin's SoBase/SoFieldData, without their registries):
+///   file    := header node*
+///   node    := "DEF" NAME node-body | "USE" NAME | node-body
+///   body    := TYPE "{" ["fields" "[" decl ("," decl)* "]"] ["isA" "[" STRING* "]"]
+///              (FIELD value | node)* "}"
+///
+/// Unknown node types are kept: with a `fields [...]` declaration they are
+/// parsed like any node; without one, their body is kept verbatim. Unknown
+/// fields of known nodes are kept verbatim too. Both produce a warning naming
+/// the node and its line range.
+#include <string>
+#include <string_view>
+
+#include "lodforge/core/log.h"
+#include "lodforge/scene/node.h"
+
+namespace lodforge::vrml1 {
+
+struct ReadOptions {
+  /// Name used in messages ("file:line:col: ...").
+  std::string source_name = "<input>";
+  /// Read the local files of WWWInline nodes (relative to `base_dir`) and put
+  /// their scenes under the WWWInline as children. Never reads over a network;
+  /// refuses paths that leave `base_dir`.
+  bool read_inlines = false;
+  std::string base_dir = ".";
+  /// Deeper nesting than this is an error (the parser's stack is bounded).
+  int max_depth = 1000;
+};
+
+struct ReadResult {
+  scene::Scene scene;
+  Log log;  ///< warnings: unknown nodes and fields, inlines, suspicious values
+};
+
+/// Parses VRML 1.0 text. Throws ParseError ("file:line:col: expected X, got Y")
+/// on any syntax error, an unknown USE name, a wrong value for a field, or
+/// nesting deeper than max_depth.
+ReadResult read_vrml1(std::string_view text, const ReadOptions& options = {});
+
+/// Reads a file ("-" = standard input; gzip-compressed data is decompressed),
+/// setting source_name and base_dir from the path. Throws DataError/ParseError.
+ReadResult read_vrml1_file(const std::string& path, ReadOptions options = {});
+
+}  // namespace lodforge::vrml1

@@ -1,0 +1,1 @@
+#include "lodforge/mesh/triangle_mesh.h"

@@ -1,0 +1,125 @@
+#pragma once
+/// The format-neutral scene graph: nodes with typed fields and children, shared
+/// through DEF/USE. Its vocabulary is VRML 1.0's (the product's scene format);
+/// nodes of other types are kept as they were read.
+///
+/// A node is shared when several parents hold the same NodePtr (a USE). The
+/// graph is a DAG: cycles are rejected by the reader.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lodforge::scene {
+
+/// The base types of VRML 1.0 fields; a field is single (SF) or multiple (MF).
+enum class FieldKind : std::uint8_t {
+  kBitMask,
+  kBool,
+  kColor,
+  kEnum,
+  kFloat,
+  kImage,
+  kLong,
+  kMatrix,
+  kRotation,
+  kString,
+  kVec2f,
+  kVec3f,
+};
+
+struct FieldType {
+  FieldKind kind = FieldKind::kFloat;
+  bool multi = false;
+  friend bool operator==(const FieldType&, const FieldType&) = default;
+};
+
+/// "SFFloat", "MFVec3f", ...
+std::string type_name(FieldType type);
+/// Parses a type name such as "MFVec3f"; returns false if it is none.
+bool parse_type_name(std::string_view name, FieldType& out);
+/// Floats per value for float kinds (Color 3, Float 1, Matrix 16, Rotation 4,
+/// Vec2f 2, Vec3f 3), 0 for the others.
+int float_components(FieldKind kind);
+
+/// The value of a field. Which vector holds it depends on the kind:
+///  - floats:  Color, Float, Matrix, Rotation, Vec2f, Vec3f (components x count, flat)
+///  - ints:    Bool (0/1), Long, Image (width, height, components, then pixels)
+///  - strings: String (one per value), Enum (one name per value),
+///             BitMask (the flag names of the one value, e.g. {"SIDES","BOTTOM"})
+struct FieldValue {
+  FieldType type;
+  std::vector<float> floats;
+  std::vector<std::int32_t> ints;
+  std::vector<std::string> strings;
+
+  /// Number of values (1 for any SF field, except an empty SFImage still counts 1).
+  std::size_t count() const;
+  friend bool operator==(const FieldValue&, const FieldValue&) = default;
+};
+
+/// A field as read. A field the schema does not know (an unknown field of a
+/// known node) has no type: its verbatim text is kept in `raw` and written back.
+struct Field {
+  std::string name;
+  FieldValue value;
+  std::string raw;
+  bool is_raw = false;
+  friend bool operator==(const Field&, const Field&) = default;
+};
+
+/// One entry of the extension syntax `fields [ SFFloat a, MFVec3f b ]`.
+struct FieldDecl {
+  FieldType type;
+  std::string name;
+  friend bool operator==(const FieldDecl&, const FieldDecl&) = default;
+};
+
+struct Node;
+using NodePtr = std::shared_ptr<Node>;
+
+struct Node {
+  std::string type;                ///< "Separator", or any name for other nodes
+  std::string name;                ///< DEF name, empty if none
+  std::vector<Field> fields;       ///< fields given in the file, in order
+  std::vector<NodePtr> children;   ///< for group nodes
+  std::vector<FieldDecl> declared; ///< the `fields [...]` declaration, if any
+  bool has_declaration = false;    ///< true if `fields [...]` was given
+  std::vector<std::string> is_a;   ///< `isA [...]`, for extension nodes
+  /// A node whose type is unknown and that declares no fields cannot be parsed:
+  /// its body (the text between its braces) is kept verbatim and written back.
+  bool is_raw = false;
+  std::string raw_body;
+  int first_line = 0;              ///< where the node was read (0 if built in code)
+  int last_line = 0;
+
+  Field* find(std::string_view field_name);
+  const Field* find(std::string_view field_name) const;
+  /// The value of a typed field given in the file, or nullptr.
+  const FieldValue* value(std::string_view field_name) const;
+  /// Sets (or replaces) a typed field.
+  void set(std::string_view field_name, FieldValue v);
+};
+
+/// A parsed file: its top-level nodes (VRML 1.0 has one; real files may have
+/// several) and the header it had.
+struct Scene {
+  std::string header = "#VRML V1.0 ascii";
+  std::vector<NodePtr> roots;
+};
+
+/// Deep structural equality: types, names, fields, children and the sharing
+/// pattern (a node shared in one graph must be shared the same way in the other).
+bool equal(const Scene& a, const Scene& b);
+
+/// Convenience builders for typed values.
+FieldValue make_float(float v);
+FieldValue make_floats(FieldKind kind, bool multi, std::vector<float> v);
+FieldValue make_long(std::int32_t v);
+FieldValue make_longs(std::vector<std::int32_t> v);
+FieldValue make_bool(bool v);
+FieldValue make_enum(std::string v);
+FieldValue make_string(std::string v);
+
+}  // namespace lodforge::scene

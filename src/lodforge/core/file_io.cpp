@@ -1,6 +1,7 @@
 #include "lodforge/core/file_io.h"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 

@@ -1,0 +1,494 @@
+// VRML 1.0 reader: recursive descent over the grammar of the VRML 1.0
+// specification (1995), the way Coin's SoBase::read / SoFieldData::read read
+// it (header, DEF/USE, node, fields, values), without global registries.
+//
+// Decisions for real-world files:
+//  | input                                  | what the reader does                          |
+//  |----------------------------------------|-----------------------------------------------|
+//  | unknown node with `fields [...]`        | parsed with the declared types, warning       |
+//  | unknown node without declaration        | body kept verbatim, warning with line range   |
+//  | unknown field of a known node           | value kept verbatim, warning                  |
+//  | USE of a name never DEFined             | error                                         |
+//  | DEF name reused                         | later USEs take the newest (as the spec says) |
+//  | several top-level nodes                 | all kept (Coin's readAll does the same)       |
+//  | nesting deeper than max_depth           | error (the parser's stack stays bounded)      |
+#include "lodforge/io/vrml1/read_vrml1.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
+#include "lodforge/io/vrml1/lexer.h"
+#include "lodforge/scene/schema.h"
+
+namespace lodforge::vrml1 {
+namespace {
+
+using detail::Lexer;
+using detail::Token;
+using detail::TokenKind;
+using scene::FieldKind;
+using scene::FieldType;
+using scene::FieldValue;
+using scene::Node;
+using scene::NodePtr;
+
+bool is_number_start(std::string_view w) {
+  if (w.empty()) return false;
+  char c = w[0];
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+}
+
+class Parser {
+ public:
+  Parser(std::string_view text, const ReadOptions& options, ReadResult& result,
+         std::unordered_set<std::string>* inline_stack)
+      : lex_(text, options.source_name),
+        options_(options),
+        result_(result),
+        inline_stack_(inline_stack) {}
+
+  void parse_file() {
+    parse_header();
+    while (lex_.peek().kind != TokenKind::kEnd) result_.scene.roots.push_back(parse_node(0));
+  }
+
+ private:
+  void parse_header() {
+    std::string_view all = lex_.slice_from(lex_.cursor());
+    std::string_view first = all.substr(0, all.find('\n'));
+    if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
+    Token at{TokenKind::kWord, first.substr(0, 40), 1, 1};
+    if (first.starts_with("#VRML V1.0 ascii") || first.starts_with("#Inventor V2.") ||
+        first.starts_with("#Inventor V1.")) {
+      if (first.starts_with("#Inventor") && first.find("binary") != std::string_view::npos)
+        lex_.fail(at, "binary Open Inventor files are not supported; expected an ASCII file");
+      result_.scene.header = std::string(first);
+      return;
+    }
+    if (first.starts_with("#VRML V2.0") || first.starts_with("#X3D"))
+      lex_.fail(at, fmt::format("this is a {} file; lodforge reads VRML 1.0 "
+                                "(expected header '#VRML V1.0 ascii')",
+                                first.starts_with("#X3D") ? "X3D" : "VRML 2.0 (VRML97)"));
+    lex_.fail(at, fmt::format("expected header '#VRML V1.0 ascii', got '{}'", first.substr(0, 40)));
+  }
+
+  NodePtr parse_node(int depth) { return parse_node_from(lex_.next(), depth); }
+
+  // A node whose first token (type, DEF or USE) has been read already.
+  NodePtr parse_node_from(Token t, int depth) {
+    if (depth >= options_.max_depth)
+      lex_.fail(t, fmt::format("nodes nested deeper than {} levels", options_.max_depth));
+    if (t.kind != TokenKind::kWord) lex_.expected(t, "a node type, DEF or USE");
+    if (t.text == "USE") {
+      Token name = lex_.next();
+      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after USE");
+      auto it = defs_.find(std::string(name.text));
+      if (it == defs_.end())
+        lex_.fail(name, fmt::format("USE of undefined node name '{}'", name.text));
+      return it->second;
+    }
+    std::string def_name;
+    if (t.text == "DEF") {
+      Token name = lex_.next();
+      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after DEF");
+      def_name = std::string(name.text);
+      t = lex_.next();
+      if (t.kind != TokenKind::kWord) lex_.expected(t, "a node type after DEF " + def_name);
+      if (t.text == "USE" || t.text == "DEF") lex_.expected(t, "a node type after DEF " + def_name);
+    }
+    NodePtr node = parse_body(t, depth);
+    if (!def_name.empty()) {
+      node->name = def_name;
+      // Bound after the body: a USE inside its own DEF cannot make a cycle.
+      defs_[def_name] = node;
+    }
+    return node;
+  }
+
+  NodePtr parse_body(const Token& type, int depth) {
+    auto node = std::make_shared<Node>();
+    node->type = std::string(type.text);
+    node->first_line = type.line;
+    Token open = lex_.next();
+    if (open.kind != TokenKind::kLBrace)
+      lex_.expected(open, fmt::format("'{{' after node type {}", type.text));
+    const scene::NodeSpec* spec = scene::find_node_spec(node->type);
+
+    const Token& first = lex_.peek();
+    if (first.kind == TokenKind::kWord && first.text == "fields") {
+      lex_.next();
+      parse_declaration(*node);
+    }
+    const Token& second = lex_.peek();
+    if (node->has_declaration && second.kind == TokenKind::kWord && second.text == "isA") {
+      lex_.next();
+      parse_is_a(*node);
+    }
+    if (!spec && !node->has_declaration) {
+      node->is_raw = true;
+      node->raw_body = std::string(lex_.skip_balanced_body(open));
+      lex_.next();  // the closing brace
+      node->last_line = lex_.line();
+      result_.log.warn(LogCategory::kParse,
+                       fmt::format("{}:{}-{}: unknown node type >{}< kept as it is",
+                                   options_.source_name, node->first_line, node->last_line,
+                                   node->type));
+      return node;
+    }
+    if (!spec) {
+      result_.log.warn(LogCategory::kParse,
+                       fmt::format("{}:{}: extension node type >{}< read from its field "
+                                   "declaration",
+                                   options_.source_name, node->first_line, node->type));
+    }
+    bool may_have_children = spec ? spec->group : true;
+    while (true) {
+      const Token& t = lex_.peek();
+      if (t.kind == TokenKind::kRBrace) {
+        lex_.next();
+        break;
+      }
+      if (t.kind != TokenKind::kWord)
+        lex_.expected(t, fmt::format("a field name, a child node or '}}' in {}", node->type));
+      Token word = lex_.next();
+      FieldType ftype;
+      const std::vector<std::string>* enum_names = nullptr;
+      if (find_field(*node, spec, word.text, ftype, enum_names)) {
+        if (node->find(word.text))
+          lex_.fail(word, fmt::format("field '{}' of {} given twice", word.text, node->type));
+        scene::Field f;
+        f.name = std::string(word.text);
+        f.value = parse_value(ftype, word, enum_names);
+        node->fields.push_back(std::move(f));
+        continue;
+      }
+      if (word.text == "DEF" || word.text == "USE" || lex_.peek().kind == TokenKind::kLBrace) {
+        if (!may_have_children)
+          lex_.fail(word, fmt::format("{} cannot have children; expected a field of {} or '}}', "
+                                      "got {}",
+                                      node->type, node->type, Lexer::describe(word)));
+        node->children.push_back(parse_node_from(word, depth + 1));
+        continue;
+      }
+      // An unknown field of a known node: keep its text as it is.
+      scene::Field f;
+      f.name = std::string(word.text);
+      f.is_raw = true;
+      f.raw = std::string(parse_raw_value(word));
+      result_.log.warn(LogCategory::kParse,
+                       fmt::format("{}:{}:{}: unknown field >{}< of {} kept as it is",
+                                   options_.source_name, word.line, word.col, word.text,
+                                   node->type));
+      node->fields.push_back(std::move(f));
+    }
+    node->last_line = lex_.line();
+    if (node->type == "WWWInline" && options_.read_inlines) read_inline(*node);
+    return node;
+  }
+
+  bool find_field(const Node& node, const scene::NodeSpec* spec, std::string_view name,
+                  FieldType& type, const std::vector<std::string>*& enum_names) {
+    if (spec) {
+      if (const scene::FieldSpec* fs = spec->field(name)) {
+        type = fs->type;
+        enum_names = &fs->enum_names;
+        return true;
+      }
+    }
+    for (const auto& d : node.declared) {
+      if (d.name == name) {
+        type = d.type;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void parse_declaration(Node& node) {
+    Token open = lex_.next();
+    if (open.kind != TokenKind::kLBracket) lex_.expected(open, "'[' after 'fields'");
+    node.has_declaration = true;
+    while (true) {
+      Token t = lex_.next();
+      if (t.kind == TokenKind::kComma) continue;
+      if (t.kind == TokenKind::kRBracket) break;
+      scene::FieldDecl d;
+      if (t.kind != TokenKind::kWord || !scene::parse_type_name(t.text, d.type))
+        lex_.expected(t, "a field type such as SFFloat or MFVec3f, or ']'");
+      Token name = lex_.next();
+      if (name.kind != TokenKind::kWord) lex_.expected(name, "a field name");
+      d.name = std::string(name.text);
+      node.declared.push_back(std::move(d));
+    }
+  }
+
+  void parse_is_a(Node& node) {
+    Token t = lex_.peek();
+    if (t.kind == TokenKind::kString) {
+      node.is_a.push_back(detail::unquote(lex_.next().text));
+      return;
+    }
+    Token open = lex_.next();
+    if (open.kind != TokenKind::kLBracket) lex_.expected(open, "'[' or a string after 'isA'");
+    while (true) {
+      Token s = lex_.next();
+      if (s.kind == TokenKind::kComma) continue;
+      if (s.kind == TokenKind::kRBracket) break;
+      if (s.kind == TokenKind::kString) node.is_a.push_back(detail::unquote(s.text));
+      else if (s.kind == TokenKind::kWord) node.is_a.push_back(std::string(s.text));
+      else lex_.expected(s, "a node type name or ']'");
+    }
+  }
+
+  // The text of a value whose type is unknown: a bracketed list, a
+  // parenthesised bit mask, or one token followed by any numbers.
+  std::string_view parse_raw_value(const Token& field) {
+    const Token& first = lex_.peek();
+    const char* begin = first.text.data();
+    if (first.kind == TokenKind::kEnd || first.kind == TokenKind::kRBrace)
+      lex_.expected(first, fmt::format("a value for field '{}'", field.text));
+    Token t = lex_.next();
+    if (t.kind == TokenKind::kLBracket || t.kind == TokenKind::kLParen) {
+      TokenKind close = t.kind == TokenKind::kLBracket ? TokenKind::kRBracket : TokenKind::kRParen;
+      int depth = 1;
+      while (depth > 0) {
+        Token u = lex_.next();
+        if (u.kind == TokenKind::kEnd)
+          lex_.fail(t, fmt::format("unterminated value of field '{}'", field.text));
+        if (u.kind == t.kind) ++depth;
+        if (u.kind == close) --depth;
+      }
+    } else {
+      while (lex_.peek().kind == TokenKind::kWord && is_number_start(lex_.peek().text)) lex_.next();
+    }
+    const Token& after = lex_.peek();
+    const char* end = after.kind == TokenKind::kEnd ? begin : after.text.data();
+    // Trim the white space and comments between the value and the next token.
+    std::string_view raw(begin, after.kind == TokenKind::kEnd
+                                    ? std::string_view(begin).size()
+                                    : static_cast<std::size_t>(end - begin));
+    while (!raw.empty() && (raw.back() == ' ' || raw.back() == '\n' || raw.back() == '\t' ||
+                            raw.back() == '\r'))
+      raw.remove_suffix(1);
+    return raw;
+  }
+
+  [[noreturn]] void bad_value(const Token& field, FieldType type, std::string_view what) {
+    lex_.fail_here(fmt::format("expected {} for {} field '{}', got {}", what,
+                               scene::type_name(type), field.text, Lexer::describe(lex_.peek())));
+  }
+
+  float read_float(const Token& field, FieldType type, bool commas) {
+    float v;
+    if (!lex_.read_float(v, commas)) bad_value(field, type, "a number");
+    return v;
+  }
+
+  std::int32_t read_int(const Token& field, FieldType type, bool commas) {
+    std::int32_t v;
+    if (!lex_.read_int(v, commas)) bad_value(field, type, "an integer");
+    return v;
+  }
+
+  // One value of the field's base kind, appended to `out`.
+  void parse_one(FieldValue& out, const Token& field, bool in_list,
+                 const std::vector<std::string>* enum_names) {
+    FieldType type = out.type;
+    switch (type.kind) {
+      case FieldKind::kColor:
+      case FieldKind::kFloat:
+      case FieldKind::kMatrix:
+      case FieldKind::kRotation:
+      case FieldKind::kVec2f:
+      case FieldKind::kVec3f: {
+        int n = scene::float_components(type.kind);
+        for (int i = 0; i < n; ++i) out.floats.push_back(read_float(field, type, in_list && i == 0));
+        return;
+      }
+      case FieldKind::kLong: out.ints.push_back(read_int(field, type, in_list)); return;
+      case FieldKind::kBool: {
+        if (in_list) lex_.skip_space(true);
+        Token t = lex_.next();
+        if (t.text == "TRUE" || t.text == "1") out.ints.push_back(1);
+        else if (t.text == "FALSE" || t.text == "0") out.ints.push_back(0);
+        else lex_.fail(t, fmt::format("expected TRUE or FALSE for field '{}', got {}", field.text,
+                                      Lexer::describe(t)));
+        return;
+      }
+      case FieldKind::kString: {
+        if (in_list) lex_.skip_space(true);
+        Token t = lex_.next();
+        if (t.kind == TokenKind::kString) out.strings.push_back(detail::unquote(t.text));
+        else if (t.kind == TokenKind::kWord) out.strings.emplace_back(t.text);
+        else lex_.expected(t, fmt::format("a string for field '{}'", field.text));
+        return;
+      }
+      case FieldKind::kEnum: {
+        if (in_list) lex_.skip_space(true);
+        Token t = lex_.next();
+        if (t.kind != TokenKind::kWord) lex_.expected(t, fmt::format("a name for field '{}'", field.text));
+        check_enum(t, field, enum_names);
+        out.strings.emplace_back(t.text);
+        return;
+      }
+      case FieldKind::kBitMask: {
+        Token t = lex_.next();
+        if (t.kind == TokenKind::kWord) {
+          check_enum(t, field, enum_names);
+          out.strings.emplace_back(t.text);
+          return;
+        }
+        if (t.kind != TokenKind::kLParen)
+          lex_.expected(t, fmt::format("a flag name or '(' for field '{}'", field.text));
+        while (true) {
+          Token f = lex_.next();
+          if (f.kind == TokenKind::kRParen) break;
+          if (f.kind == TokenKind::kBar) continue;
+          if (f.kind != TokenKind::kWord)
+            lex_.expected(f, fmt::format("a flag name, '|' or ')' for field '{}'", field.text));
+          check_enum(f, field, enum_names);
+          out.strings.emplace_back(f.text);
+        }
+        return;
+      }
+      case FieldKind::kImage: {
+        std::int32_t w = read_int(field, type, in_list);
+        std::int32_t h = read_int(field, type, false);
+        std::int32_t nc = read_int(field, type, false);
+        if (w < 0 || h < 0 || nc < 0 || nc > 4 || std::int64_t(w) * h > (1 << 26))
+          lex_.fail_here(fmt::format("bad image size {} x {} x {} in field '{}'", w, h, nc,
+                                     field.text));
+        out.ints.insert(out.ints.end(), {w, h, nc});
+        for (std::int64_t i = 0, n = std::int64_t(w) * h; i < n; ++i)
+          out.ints.push_back(read_int(field, type, false));
+        return;
+      }
+    }
+  }
+
+  void check_enum(const Token& t, const Token& field, const std::vector<std::string>* names) {
+    if (!names || names->empty()) return;
+    for (const auto& n : *names)
+      if (n == t.text) return;
+    std::string all;
+    for (const auto& n : *names) all += (all.empty() ? "" : ", ") + n;
+    lex_.fail(t, fmt::format("expected one of {} for field '{}', got {}", all, field.text,
+                             Lexer::describe(t)));
+  }
+
+  FieldValue parse_value(FieldType type, const Token& field,
+                         const std::vector<std::string>* enum_names) {
+    FieldValue v;
+    v.type = type;
+    if (!type.multi) {
+      parse_one(v, field, false, enum_names);
+      return v;
+    }
+    if (!lex_.accept_char('[')) {
+      parse_one(v, field, false, enum_names);
+      return v;
+    }
+    // The hot loops of big files: numbers straight into the vectors.
+    if (scene::float_components(type.kind) > 0) {
+      int n = scene::float_components(type.kind);
+      float f;
+      std::size_t count = 0;
+      while (lex_.read_float(f, true)) {
+        v.floats.push_back(f);
+        ++count;
+      }
+      if (!lex_.accept_char(']', true)) bad_value(field, type, "a number or ']'");
+      if (count % static_cast<std::size_t>(n) != 0)
+        lex_.fail(field, fmt::format("{} field '{}' needs a multiple of {} numbers, got {}",
+                                     scene::type_name(type), field.text, n, count));
+      return v;
+    }
+    if (type.kind == FieldKind::kLong) {
+      std::int32_t i;
+      while (lex_.read_int(i, true)) v.ints.push_back(i);
+      if (!lex_.accept_char(']', true)) bad_value(field, type, "an integer or ']'");
+      return v;
+    }
+    while (!lex_.accept_char(']', true)) {
+      if (lex_.peek().kind == TokenKind::kEnd) bad_value(field, type, "a value or ']'");
+      parse_one(v, field, true, enum_names);
+    }
+    return v;
+  }
+
+  void read_inline(Node& node) {
+    const FieldValue* name = node.value("name");
+    if (!name || name->strings.empty() || name->strings[0].empty()) return;
+    const std::string& url = name->strings[0];
+    auto warn = [&](const std::string& why) {
+      result_.log.warn(LogCategory::kParse, fmt::format("{}:{}: WWWInline '{}' not read: {}",
+                                                        options_.source_name, node.first_line,
+                                                        url, why));
+    };
+    if (url.find("://") != std::string::npos && !url.starts_with("file://")) {
+      warn("lodforge never reads over a network");
+      return;
+    }
+    namespace fs = std::filesystem;
+    std::string rel = url.starts_with("file://") ? url.substr(7) : url;
+    fs::path base = fs::weakly_canonical(fs::path(options_.base_dir));
+    fs::path target = fs::weakly_canonical(base / rel);
+    auto [b, t] = std::mismatch(base.begin(), base.end(), target.begin(), target.end());
+    if (b != base.end())
+      throw DataError(fmt::format("{}:{}: WWWInline '{}' leaves the scene's folder {}; refused",
+                                  options_.source_name, node.first_line, url, base.string()));
+    std::error_code ec;
+    if (!fs::exists(target, ec)) {
+      warn("file not found");
+      return;
+    }
+    if (inline_stack_->count(target.string())) {
+      warn("it includes itself (inline cycle)");
+      return;
+    }
+    inline_stack_->insert(target.string());
+    ReadOptions sub = options_;
+    sub.source_name = target.string();
+    sub.base_dir = target.parent_path().string();
+    ReadResult r;
+    std::string text = read_file(target.string());
+    Parser p(text, sub, r, inline_stack_);
+    p.parse_file();
+    inline_stack_->erase(target.string());
+    result_.log.merge(r.log);
+    for (auto& root : r.scene.roots) node.children.push_back(std::move(root));
+  }
+
+  Lexer lex_;
+  const ReadOptions& options_;
+  ReadResult& result_;
+  std::unordered_set<std::string>* inline_stack_;
+  std::unordered_map<std::string, NodePtr> defs_;
+};
+
+}  // namespace
+
+ReadResult read_vrml1(std::string_view text, const ReadOptions& options) {
+  ReadResult result;
+  std::unordered_set<std::string> inline_stack;
+  Parser parser(text, options, result, &inline_stack);
+  parser.parse_file();
+  return result;
+}
+
+ReadResult read_vrml1_file(const std::string& path, ReadOptions options) {
+  options.source_name = path == "-" ? "<stdin>" : path;
+  if (path != "-") {
+    std::filesystem::path p(path);
+    options.base_dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  }
+  std::string text = read_file(path);
+  return read_vrml1(text, options);
+}
+
+}  // namespace lodforge::vrml1

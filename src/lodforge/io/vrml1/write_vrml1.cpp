@@ -1,0 +1,254 @@
+// VRML 1.0 writer. Numbers are written in their shortest round-trip form
+// (fmt's Dragonbox), so reading the output gives the same floats bit for bit.
+// DEF/USE: a node met a second time is written as USE; names are kept, shared
+// nodes without a name get one, and a name that a later USE could not reach
+// (rebound in between) is made unique.
+#include "lodforge/io/vrml1/write_vrml1.h"
+
+#include <fmt/format.h>
+
+#include <iterator>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "lodforge/core/file_io.h"
+
+namespace lodforge::vrml1 {
+namespace {
+
+using scene::FieldKind;
+using scene::FieldValue;
+using scene::Node;
+using scene::NodePtr;
+
+class Writer {
+ public:
+  Writer(const WriteOptions& options, std::string& out) : opt_(options), out_(out) {}
+
+  void write(const scene::Scene& s) {
+    for (const auto& r : s.roots) count_refs(r);
+    for (const auto& [node, refs] : refs_)
+      if (!node->name.empty()) used_names_.insert(node->name);
+    out_ += s.header.empty() ? "#VRML V1.0 ascii" : s.header;
+    out_ += "\n\n";
+    for (const auto& r : s.roots) {
+      write_node(r, 0);
+      out_ += '\n';
+    }
+  }
+
+ private:
+  void count_refs(const NodePtr& n) {
+    if (++refs_[n.get()] > 1) return;
+    for (const auto& c : n->children) count_refs(c);
+  }
+
+  void newline(int depth) {
+    if (opt_.minimize) {
+      out_ += ' ';
+      return;
+    }
+    out_ += '\n';
+    if (!opt_.no_tabs) out_.append(static_cast<std::size_t>(depth), '\t');
+  }
+
+  std::string unique_name(const std::string& base) {
+    for (int i = 1;; ++i) {
+      std::string n = fmt::format("{}_{}", base.empty() ? "lf" : base, i);
+      if (used_names_.insert(n).second) return n;
+    }
+  }
+
+  void write_node(const NodePtr& n, int depth) {
+    auto written = names_.find(n.get());
+    if (written != names_.end()) {
+      out_ += "USE ";
+      out_ += written->second;
+      --pending_[n.get()];
+      return;
+    }
+    std::size_t refs = refs_[n.get()];
+    std::string name = n->name;
+    if (refs > 1) {
+      // A later USE must reach this node: the name must not be bound to
+      // another node that is still to be USEd.
+      auto bound = bound_.find(name);
+      if (name.empty() || (bound != bound_.end() && bound->second != n.get() &&
+                           pending_[bound->second] > 0))
+        name = unique_name(name);
+      names_[n.get()] = name;
+      pending_[n.get()] = refs - 1;
+    }
+    if (!name.empty()) {
+      out_ += "DEF ";
+      out_ += name;
+      out_ += ' ';
+      bound_[name] = n.get();
+    }
+    out_ += n->type;
+    out_ += " {";
+    if (n->is_raw) {
+      out_ += n->raw_body;
+      out_ += '}';
+      return;
+    }
+    if (n->has_declaration) {
+      newline(depth + 1);
+      out_ += "fields [";
+      for (std::size_t i = 0; i < n->declared.size(); ++i) {
+        out_ += i ? ", " : " ";
+        out_ += scene::type_name(n->declared[i].type);
+        out_ += ' ';
+        out_ += n->declared[i].name;
+      }
+      out_ += " ]";
+      if (!n->is_a.empty()) {
+        newline(depth + 1);
+        out_ += "isA [";
+        for (std::size_t i = 0; i < n->is_a.size(); ++i) {
+          out_ += i ? ", " : " ";
+          write_string(n->is_a[i]);
+        }
+        out_ += " ]";
+      }
+    }
+    for (const auto& f : n->fields) {
+      newline(depth + 1);
+      out_ += f.name;
+      out_ += ' ';
+      if (f.is_raw) out_ += f.raw;
+      else write_value(f.value, depth + 1);
+    }
+    for (const auto& c : n->children) {
+      newline(depth + 1);
+      write_node(c, depth + 1);
+    }
+    newline(depth);
+    out_ += '}';
+  }
+
+  void write_string(const std::string& s) {
+    out_ += '"';
+    for (char c : s) {
+      if (c == '"' || c == '\\') out_ += '\\';
+      out_ += c;
+    }
+    out_ += '"';
+  }
+
+  void write_float(float f) {
+    fmt::format_to(std::back_inserter(out_), "{}", f);
+  }
+
+  // Values of one kind, `per_value` numbers each, wrapped after `per_line`.
+  template <typename T, typename Emit>
+  void write_list(const std::vector<T>& v, std::size_t per_value, int per_line, int depth,
+                  Emit emit) {
+    std::size_t count = per_value ? v.size() / per_value : 0;
+    if (count == 1) {
+      for (std::size_t k = 0; k < per_value; ++k) {
+        if (k) out_ += ' ';
+        emit(v[k]);
+      }
+      return;
+    }
+    std::size_t values_per_line =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::max(per_line, 1)) / per_value);
+    out_ += '[';
+    for (std::size_t i = 0; i < count; ++i) {
+      if (i) out_ += ',';
+      if (!opt_.minimize && i % values_per_line == 0) newline(depth + 1);
+      else if (i || !opt_.minimize) out_ += ' ';
+      for (std::size_t k = 0; k < per_value; ++k) {
+        if (k) out_ += ' ';
+        emit(v[i * per_value + k]);
+      }
+    }
+    if (!opt_.minimize && count > 0) newline(depth);
+    out_ += ']';
+  }
+
+  void write_value(const FieldValue& v, int depth) {
+    auto emit_float = [this](float f) { write_float(f); };
+    auto emit_int = [this](std::int32_t i) { fmt::format_to(std::back_inserter(out_), "{}", i); };
+    switch (v.type.kind) {
+      case FieldKind::kColor:
+      case FieldKind::kFloat:
+      case FieldKind::kMatrix:
+      case FieldKind::kRotation:
+      case FieldKind::kVec2f:
+      case FieldKind::kVec3f: {
+        std::size_t per = static_cast<std::size_t>(scene::float_components(v.type.kind));
+        if (v.type.multi) write_list(v.floats, per, opt_.floats_per_line, depth, emit_float);
+        else write_list(v.floats, v.floats.size(), opt_.floats_per_line, depth, emit_float);
+        return;
+      }
+      case FieldKind::kLong:
+        if (v.type.multi) write_list(v.ints, 1, opt_.ints_per_line, depth, emit_int);
+        else write_list(v.ints, v.ints.size(), opt_.ints_per_line, depth, emit_int);
+        return;
+      case FieldKind::kBool: {
+        auto emit_bool = [this](std::int32_t b) { out_ += b ? "TRUE" : "FALSE"; };
+        write_list(v.ints, 1, opt_.ints_per_line, depth, emit_bool);
+        return;
+      }
+      case FieldKind::kString: {
+        auto emit = [this](const std::string& s) { write_string(s); };
+        write_list(v.strings, 1, 1, depth, emit);
+        return;
+      }
+      case FieldKind::kEnum: {
+        auto emit = [this](const std::string& s) { out_ += s; };
+        write_list(v.strings, 1, opt_.ints_per_line, depth, emit);
+        return;
+      }
+      case FieldKind::kBitMask:
+        if (v.strings.size() == 1) {
+          out_ += v.strings[0];
+        } else {
+          out_ += '(';
+          for (std::size_t i = 0; i < v.strings.size(); ++i) {
+            out_ += i ? " | " : " ";
+            out_ += v.strings[i];
+          }
+          out_ += " )";
+        }
+        return;
+      case FieldKind::kImage: {
+        // width height components, then the pixels as hexadecimal numbers.
+        for (std::size_t i = 0; i < v.ints.size(); ++i) {
+          if (i >= 3 && opt_.ints_per_line > 0 && (i - 3) % std::size_t(opt_.ints_per_line) == 0 &&
+              !opt_.minimize)
+            newline(depth + 1);
+          else if (i) out_ += ' ';
+          if (i < 3) fmt::format_to(std::back_inserter(out_), "{}", v.ints[i]);
+          else fmt::format_to(std::back_inserter(out_), "{:#x}", static_cast<std::uint32_t>(v.ints[i]));
+        }
+        return;
+      }
+    }
+  }
+
+  const WriteOptions& opt_;
+  std::string& out_;
+  std::unordered_map<const Node*, std::size_t> refs_;
+  std::unordered_map<const Node*, std::string> names_;   // shared nodes already written
+  std::unordered_map<const Node*, std::size_t> pending_; // USEs still to write
+  std::unordered_map<std::string, const Node*> bound_;   // what each name means now
+  std::unordered_set<std::string> used_names_;
+};
+
+}  // namespace
+
+std::string write_vrml1(const scene::Scene& scene, const WriteOptions& options) {
+  std::string out;
+  Writer(options, out).write(scene);
+  return out;
+}
+
+void write_vrml1_file(const scene::Scene& scene, const std::string& path,
+                      const WriteOptions& options) {
+  write_file_atomic(path, write_vrml1(scene, options));
+}
+
+}  // namespace lodforge::vrml1

@@ -1,0 +1,103 @@
+#pragma once
+/// Internal: the VRML 1.0 lexer used by the parser. It works on the whole text
+/// in memory and hands out views into it: no allocation per token. Positions
+/// are tracked as it goes (line, and the start of the line for columns).
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lodforge::vrml1::detail {
+
+enum class TokenKind : std::uint8_t {
+  kEnd,
+  kWord,    ///< identifiers and numbers: anything up to a delimiter
+  kString,  ///< "quoted" (text holds the quoted source, escapes not resolved)
+  kLBrace,
+  kRBrace,
+  kLBracket,
+  kRBracket,
+  kLParen,
+  kRParen,
+  kComma,
+  kBar,
+};
+
+struct Token {
+  TokenKind kind = TokenKind::kEnd;
+  std::string_view text;
+  int line = 0;
+  int col = 0;
+};
+
+class Lexer {
+ public:
+  Lexer(std::string_view text, std::string source_name);
+
+  /// The next token without consuming it.
+  const Token& peek();
+  /// Consumes and returns the next token.
+  Token next();
+  /// Skips white space and comments (and commas when `commas`).
+  void skip_space(bool commas = false);
+
+  /// Fast paths for values: skip space (and commas), then read a number at the
+  /// cursor. Return false if no number starts there (nothing is consumed).
+  bool read_float(float& out, bool commas);
+  bool read_int(std::int32_t& out, bool commas);
+  /// True if the next character (after space) is `c`; consumes it if so.
+  bool accept_char(char c, bool commas = false);
+
+  /// The raw text from `begin` (a pointer into the input) to the cursor.
+  std::string_view slice_from(const char* begin) const {
+    return {begin, static_cast<std::size_t>(cursor_ - begin)};
+  }
+  const char* cursor() { return cursor_; }
+  /// Skips a balanced body up to (not including) the '}' closing the current
+  /// brace level, honouring strings and comments. Throws on end of input.
+  std::string_view skip_balanced_body(const Token& open);
+
+  int line() const { return line_; }
+  int column() const { return static_cast<int>(cursor_ - line_start_) + 1; }
+  const std::string& source_name() const { return source_name_; }
+
+  /// Throws ParseError at `at` with "expected `expected`, got <token>".
+  [[noreturn]] void expected(const Token& at, std::string_view expected) const;
+  /// Throws ParseError at `at` with `message`.
+  [[noreturn]] void fail(const Token& at, const std::string& message) const;
+  /// Throws ParseError at the cursor.
+  [[noreturn]] void fail_here(const std::string& message);
+
+  /// A short printable description of a token for messages.
+  static std::string describe(const Token& t);
+
+ private:
+  Token scan();
+  /// Puts a peeked token back, so that the cursor is at its start again.
+  void unpeek();
+  std::string_view text_;
+  std::string source_name_;
+  const char* cursor_;
+  const char* end_;
+  const char* line_start_;
+  int line_ = 1;
+  Token peeked_;
+  bool has_peeked_ = false;
+};
+
+/// True if `c` ends a word.
+inline bool is_delimiter(char c) {
+  switch (c) {
+    case ' ': case '\t': case '\r': case '\n': case '\f': case '\v':
+    case '{': case '}': case '[': case ']': case '(': case ')':
+    case ',': case '|': case '"': case '#': case '\0':
+      return true;
+    default:
+      return false;
+  }
+}
+
+/// Resolves the escapes of a quoted string token ("a \"b\"" -> a "b").
+std::string unquote(std::string_view quoted);
+
+}  // namespace lodforge::vrml1::detail

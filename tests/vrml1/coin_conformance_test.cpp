@@ -1,0 +1,381 @@
+// Coin3D, an independent VRML 1.0 reader, is the oracle: for every file of the
+// corpus and every example, Coin must accept what lodforge writes whenever it
+// accepted the original, and Coin (on the original and on our output) and
+// lodforge must agree on the node counts per type and on the number of
+// IndexedFaceSet triangles a renderer draws. Primitives are compared by node
+// count only: Coin tessellates them by its complexity setting.
+//
+// Coin runs in a child process (tests/tools/coin_probe): it crashes on some
+// broken inputs, and a crash or a timeout counts as "Coin rejected".
+//
+// How Coin counts IndexedFaceSet triangles (Coin 4.0 sources,
+// SoIndexedFaceSet::generatePrimitives and SoShape.cpp, checked by experiment
+// with small files):
+//   - faceType CONVEX (the default): a face of n >= 3 indices gives n - 2
+//     triangles (3 as a triangle, 4 as two, more as a fan), whether or not
+//     indices repeat or the face is degenerate;
+//   - faceType UNKNOWN_FACE_TYPE and some face with more than 3 indices: the
+//     faces go through SbTesselator (ear cutting in the face's plane); it
+//     still gives n - 2 triangles per face, zero-area ones included;
+//   - a face of fewer than 3 indices (e.g. "0 1 -1", or "-1 -1") ends the
+//     whole shape: the faces after it give no triangles (no message in a
+//     release build);
+//   - a missing final -1 is supplied; an IndexedFaceSet of fewer than 3
+//     indices gives nothing; out-of-range indices are not checked.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "lodforge/core/file_io.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/scene/statistics.h"
+#include "vrml1/corpus.h"
+
+namespace lodforge::vrml1 {
+namespace {
+
+/// Corpus files Coin rejects, with the reason it gives (a substring of its
+/// read errors). A file Coin rejects that is not listed fails the test, and so
+/// does a listed file Coin accepts or rejects for another reason: the list
+/// cannot silently grow or go stale.
+const std::map<std::string, std::string>& coin_rejections() {
+  static const std::map<std::string, std::string> kList = {
+      // castle-engine's VRML 2.0 nodes used in VRML 1.0 files.
+      {"castle-engine__demo-models/3ds/include_3ds_from_vrml_1.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/background_alpha_tex.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/background_colors.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/background_one_color.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/background_texture1.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/background_texture2.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/empty_with_background.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/background/vrml_1/empty_with_background_ortho.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/fog/vrml_1/fog_exponential.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/fog/vrml_1/fog_linear.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/fog/vrml_1/fog_linear_locally_disabled.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/fog/vrml_1/fog_points.wrl", "Node type ``Fog'' not recognized."},
+      {"castle-engine__demo-models/lights_materials/raytracer/raytracer_simple_shadow.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/lights_materials/vrml_1/forest-fog/forest-final.wrl",
+       "Node type ``Fog'' not recognized."},
+      {"castle-engine__demo-models/lights_materials/vrml_1/lights.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/speed_2.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/type_examine.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/type_fly.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/type_walk.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/type_walk_no_headlight.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/visibility_limit_1.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/navigation/vrml_1/visibility_limit_2.wrl",
+       "Node type ``NavigationInfo'' not recognized."},
+      {"castle-engine__demo-models/vrml_1/castle_extensions/inline_not_separate.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__demo-models/vrml_1/flat_triangles_octree_test.wrl",
+       "Node type ``KambiNavigationInfo'' not recognized."},
+      {"castle-engine__malfunction/data/vrmls/lake.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__malfunction/data/vrmls/mobius.wrl",
+       "Node type ``Background'' not recognized."},
+      {"castle-engine__malfunction/data/vrmls/wawoz.wrl",
+       "Node type ``Background'' not recognized."},
+      // castle-engine's extra fields of standard nodes.
+      {"castle-engine__demo-models/lights_materials/raytracer/office.wrl",
+       "Unknown field \"reflSpecular\" in \"Material\""},
+      {"castle-engine__demo-models/lights_materials/vrml_1/forest-fog/forest.wrl",
+       "Unknown field \"mirror\" in \"Material\""},
+      {"castle-engine__demo-models/navigation/vrml_1/camera_orthographic_nonstandard.wrl",
+       "Unknown field \"direction\" in \"OrthographicCamera\""},
+      {"castle-engine__demo-models/navigation/vrml_1/camera_perspective_nonstandard.wrl",
+       "Unknown field \"direction\" in \"PerspectiveCamera\""},
+      {"castle-engine__demo-models/vrml_1/kings_head.wrl",
+       "Unknown field \"alphaChannel\" in \"Texture2\""},
+      // Not an extension: a Coin bug. Coin's string reader ends a string at an
+      // escaped quote that is the last character of a line (`\"` + newline),
+      // so the rest of Info's multi-line string is read as fields ("in").
+      {"castle-engine__demo-models/vrml_1/cones.wrl", "Unknown field \"in\" in \"Info\""},
+      {"castle-engine__demo-models/vrml_1/cones_gzip_compressed.wrl.gz",
+       "Unknown field \"in\" in \"Info\""},
+  };
+  return kList;
+}
+
+struct CoinResult {
+  bool ran = false;     ///< the probe finished normally
+  std::string failure;  ///< why it did not (signal, timeout, bad output)
+  bool ok = false;      ///< Coin accepted the file
+  std::string error;    ///< Coin's read errors
+  std::map<std::string, std::size_t> node_counts;
+  std::size_t ifs_triangles = 0;
+  std::map<std::string, std::size_t> primitive_counts;
+
+  bool accepted() const { return ran && ok; }
+  std::string why_rejected() const { return ran ? error : failure; }
+};
+
+/// Runs coin_probe on `path` in a child process, killing it after `timeout`.
+CoinResult run_coin_probe(const std::string& path,
+                          std::chrono::seconds timeout = std::chrono::seconds(120)) {
+  CoinResult result;
+#ifdef LODFORGE_COIN_PROBE
+  int fds[2];
+  if (pipe(fds) != 0) {
+    result.failure = "pipe() failed";
+    return result;
+  }
+  const pid_t pid = fork();
+  if (pid < 0) {
+    result.failure = "fork() failed";
+    return result;
+  }
+  if (pid == 0) {
+    dup2(fds[1], STDOUT_FILENO);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+    close(fds[0]);
+    close(fds[1]);
+    execl(LODFORGE_COIN_PROBE, "coin_probe", path.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  std::string out;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  bool timed_out = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+    char buf[65536];
+    const ssize_t n = read(fds[0], buf, sizeof buf);
+    if (n <= 0) break;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  if (timed_out) kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (timed_out) {
+    result.failure = "Coin timed out";
+  } else if (WIFSIGNALED(status)) {
+    result.failure = "Coin crashed (signal " + std::to_string(WTERMSIG(status)) + ")";
+  } else if (WEXITSTATUS(status) != 0) {
+    result.failure = "coin_probe exited with " + std::to_string(WEXITSTATUS(status));
+  } else {
+    const nlohmann::json j = nlohmann::json::parse(out, nullptr, false);
+    if (j.is_discarded()) {
+      result.failure = "coin_probe printed no JSON: " + out;
+      return result;
+    }
+    result.ran = true;
+    result.ok = j.at("ok").get<bool>();
+    result.error = j.at("error").get<std::string>();
+    result.node_counts = j.at("node_counts").get<std::map<std::string, std::size_t>>();
+    result.ifs_triangles = j.at("ifs_triangles").get<std::size_t>();
+    result.primitive_counts = j.at("primitive_counts").get<std::map<std::string, std::size_t>>();
+  }
+#else
+  (void)path;
+  (void)timeout;
+  result.failure = "coin_probe not built";
+#endif
+  return result;
+}
+
+std::string corpus_key(const std::string& path) {
+  const std::string shared = std::string(LODFORGE_SHARED_DATA) + "/vrml1/";
+  return path.starts_with(shared) ? path.substr(shared.size()) : path;
+}
+
+/// "Node type ``Fog'' ..." -> Fog; "Unknown field \"mirror\" in ..." -> mirror.
+std::string extension_name(const std::string& reason) {
+  std::size_t begin = reason.find("``");
+  std::size_t end = std::string::npos;
+  if (begin != std::string::npos) {
+    begin += 2;
+    end = reason.find("''", begin);
+  } else if ((begin = reason.find('"')) != std::string::npos) {
+    ++begin;
+    end = reason.find('"', begin);
+  }
+  return end == std::string::npos ? std::string() : reason.substr(begin, end - begin);
+}
+
+/// Differences between two count maps, as "Type: a vs b" lines.
+std::string count_differences(const std::map<std::string, std::size_t>& a,
+                              const std::map<std::string, std::size_t>& b) {
+  std::set<std::string> types;
+  for (const auto& [type, n] : a) types.insert(type);
+  for (const auto& [type, n] : b) types.insert(type);
+  std::string out;
+  for (const std::string& type : types) {
+    const std::size_t na = a.contains(type) ? a.at(type) : 0;
+    const std::size_t nb = b.contains(type) ? b.at(type) : 0;
+    if (na != nb)
+      out += "  " + type + ": " + std::to_string(na) + " vs " + std::to_string(nb) + "\n";
+  }
+  return out;
+}
+
+/// The verbatim pieces lodforge kept: bodies of unknown nodes and unknown fields.
+std::vector<std::string> verbatim_texts(const scene::Scene& scene) {
+  std::vector<std::string> out;
+  std::set<const scene::Node*> seen;
+  std::vector<const scene::Node*> stack;
+  for (const auto& root : scene.roots) stack.push_back(root.get());
+  while (!stack.empty()) {
+    const scene::Node* node = stack.back();
+    stack.pop_back();
+    if (node == nullptr || !seen.insert(node).second) continue;
+    if (node->is_raw) out.push_back(node->raw_body);
+    for (const scene::Field& field : node->fields) {
+      if (field.is_raw) out.push_back(field.raw);
+    }
+    for (const auto& child : node->children) stack.push_back(child.get());
+  }
+  return out;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return {};
+  return s.substr(begin, s.find_last_not_of(" \t\r\n") - begin + 1);
+}
+
+class CoinConformance : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+#ifndef LODFORGE_COIN_PROBE
+    GTEST_SKIP() << "Coin3D (libcoin-dev) not found: no oracle";
+#endif
+    output_ = (std::filesystem::temp_directory_path() /
+               ("lodforge_coin_" + std::to_string(getpid()) + "_" +
+                testing::test_name_for(GetParam()) + ".wrl"))
+                  .string();
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!output_.empty()) std::filesystem::remove(output_, ec);
+  }
+  std::string output_;
+};
+
+TEST_P(CoinConformance, CoinAcceptsOurOutputAndAgreesOnCounts) {
+  const std::string& path = GetParam();
+  const auto& rejections = coin_rejections();
+  const auto listed = rejections.find(corpus_key(path));
+
+  const CoinResult original = run_coin_probe(path);
+  if (listed == rejections.end()) {
+    ASSERT_TRUE(original.accepted())
+        << "Coin rejects " << path << " and the file is not listed in coin_rejections():\n"
+        << original.why_rejected();
+  } else {
+    ASSERT_FALSE(original.accepted()) << "listed as rejected by Coin, but Coin accepts it";
+    ASSERT_NE(original.why_rejected().find(listed->second), std::string::npos)
+        << "Coin rejects it for another reason than the listed \"" << listed->second << "\":\n"
+        << original.why_rejected();
+  }
+
+  ReadResult ours;
+  ASSERT_NO_THROW(ours = read_vrml1_file(path)) << path;
+  ASSERT_NO_THROW(write_vrml1_file(ours.scene, output_));
+  const CoinResult written = run_coin_probe(output_);
+
+  if (listed != rejections.end()) {
+    // An extension Coin does not know: lodforge reads it with a warning and
+    // writes the unknown node or field back unchanged, so Coin rejects our
+    // output for the same reason.
+    EXPECT_GT(ours.log.count(LogLevel::kWarning), 0u) << "no warning for " << listed->second;
+    const std::string name = extension_name(listed->second);
+    const std::string source = read_file(path);
+    const std::string text = read_file(output_);
+    EXPECT_NE(text.find(name), std::string::npos) << name << " missing from our output";
+    for (const std::string& verbatim : verbatim_texts(ours.scene)) {
+      const std::string piece = trimmed(verbatim);
+      EXPECT_NE(source.find(piece), std::string::npos) << "kept text is not the original's:\n"
+                                                       << piece;
+      EXPECT_NE(text.find(piece), std::string::npos) << "kept text missing from our output:\n"
+                                                     << piece;
+    }
+    EXPECT_FALSE(written.accepted()) << "Coin accepts our output: the extension was lost";
+    EXPECT_NE(written.why_rejected().find(listed->second), std::string::npos)
+        << "Coin rejects our output for another reason:\n"
+        << written.why_rejected();
+    return;
+  }
+
+  // (a) Coin accepts what we write.
+  ASSERT_TRUE(written.accepted()) << "Coin rejects our output of " << path << ":\n"
+                                  << written.why_rejected();
+  // (b) Node counts per type: Coin on the original, Coin on ours, lodforge.
+  const scene::SceneStatistics stats = scene::scene_statistics(ours.scene);
+  EXPECT_EQ(original.node_counts, written.node_counts)
+      << "node counts, Coin on the original vs Coin on our output:\n"
+      << count_differences(original.node_counts, written.node_counts);
+  EXPECT_EQ(original.node_counts, stats.node_counts)
+      << "node counts, Coin vs lodforge:\n"
+      << count_differences(original.node_counts, stats.node_counts);
+  // Shapes met by a rendering traversal, per type: Coin against itself.
+  EXPECT_EQ(original.primitive_counts, written.primitive_counts)
+      << "shapes traversed, Coin on the original vs Coin on our output:\n"
+      << count_differences(original.primitive_counts, written.primitive_counts);
+  // (c) IndexedFaceSet triangles.
+  EXPECT_EQ(original.ifs_triangles, written.ifs_triangles)
+      << "IndexedFaceSet triangles, Coin on the original vs Coin on our output";
+  EXPECT_EQ(original.ifs_triangles, stats.ifs_triangles)
+      << "IndexedFaceSet triangles, Coin vs lodforge";
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, CoinConformance,
+                         ::testing::ValuesIn(testing::all_vrml_test_files()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return testing::test_name_for(info.param);
+                         });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(CoinConformance);
+
+// Every listed rejection names a file of the corpus (when the corpus is there).
+TEST(CoinConformanceList, ListedFilesExist) {
+  const std::string root = std::string(LODFORGE_SHARED_DATA) + "/vrml1/";
+  if (!std::filesystem::is_directory(root)) GTEST_SKIP() << "no corpus at " << root;
+  for (const auto& [file, reason] : coin_rejections()) {
+    EXPECT_TRUE(std::filesystem::exists(root + file)) << file;
+    EXPECT_FALSE(extension_name(reason).empty()) << reason;
+  }
+}
+
+}  // namespace
+}  // namespace lodforge::vrml1

@@ -1,0 +1,77 @@
+#pragma once
+/// Headless pictures of a triangle mesh: a small software rasteriser (z-buffer,
+/// Gouraud or flat Lambert shading, per-vertex colours, lines, wireframe),
+/// needing no display, no GPU and no GL library.
+///
+/// Camera: Y is up (as in VRML). The camera looks at the centre of a bounding
+/// sphere from outside it, with a perspective projection whose field of view
+/// just contains the sphere, so the whole mesh is in view and centred for any
+/// azimuth and elevation. Azimuth 0, elevation 0 is the VRML default view
+/// (camera on +Z looking towards -Z); positive azimuth orbits the camera
+/// towards +X, positive elevation raises it (looking down).
+#include <cstddef>
+
+#include "lodforge/core/math.h"
+#include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/render/image.h"
+
+namespace lodforge {
+
+enum class Shading {
+  /// Per-vertex normals, Gouraud shaded. The mesh's own normals if it has
+  /// them; else angle-weighted face normals summed over all vertices at the
+  /// same position, except at corners more than 45 degrees from their face's
+  /// normal, which keep the face normal (so cubes keep sharp edges).
+  kSmooth,
+  kFlat,  ///< one face normal per triangle
+};
+
+/// The sphere a camera frames. A radius <= 0 means "fit the mesh itself".
+struct FrameSphere {
+  Vec3 center;
+  float radius = 0;
+};
+
+struct RenderOptions {
+  int width = 640;                          ///< pixels, 1..16384
+  int height = 480;                         ///< pixels, 1..16384
+  float azimuth = 30;                       ///< degrees about +Y
+  float elevation = 20;                     ///< degrees above the horizontal plane, -90..90
+  Vec3 background{1, 1, 1};                 ///< RGB in [0,1]
+  bool use_colors = true;                   ///< use the mesh's vertex colours when it has them
+  Vec3 surface_color{0.72f, 0.74f, 0.80f};  ///< RGB of meshes without (or ignoring) colours
+  Shading shading = Shading::kSmooth;
+  bool wireframe = false;              ///< draw triangle edges over the surface
+  Vec3 wire_color{0.1f, 0.1f, 0.15f};  ///< RGB of wireframe edges
+  Vec3 line_color{0.1f, 0.1f, 0.1f};   ///< RGB of the mesh's line segments without vertex colours
+  float field_of_view = 30;            ///< degrees, the narrower of the two image angles
+  /// Sphere to frame; radius <= 0 (the default) frames the mesh's own bounding
+  /// sphere. Pictures that must compare in size (a contact sheet) share one.
+  FrameSphere frame;
+  /// Anti-aliasing: the picture is rendered at supersample x the size and
+  /// averaged down. 1 = off; 2 (the default) is smooth enough for documents.
+  int supersample = 2;
+};
+
+struct RenderResult {
+  Image image;                      ///< width x height, opaque
+  std::size_t triangles_drawn = 0;  ///< triangles in front of the camera and not degenerate
+  std::size_t lines_drawn = 0;      ///< line segments (not wireframe edges) drawn
+  FrameSphere frame;                ///< the sphere the camera framed
+};
+
+/// The bounding sphere used to frame `mesh`: centre of the bounding box of the
+/// vertices used by triangles and lines, radius the largest distance from it
+/// (radius 0 when the mesh has nothing to draw). Non-finite points are ignored.
+FrameSphere bounding_sphere(const TriangleMesh& mesh);
+
+/// Renders `mesh` (triangles and line segments) into a new image. An empty
+/// mesh gives a picture of only the background. Lighting is a head light
+/// (slightly above and left of the camera) plus ambient, two-sided, so
+/// inconsistently oriented faces are lit too. Triangles with a non-finite
+/// vertex are skipped.
+/// Throws DataError if an index is out of range or an attribute array has the
+/// wrong length (bad data); sizes outside 1..16384 are caller bugs (assert).
+RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options = {});
+
+}  // namespace lodforge

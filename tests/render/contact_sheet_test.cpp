@@ -1,0 +1,80 @@
+#include "lodforge/render/contact_sheet.h"
+
+#include <gtest/gtest.h>
+
+#include "lodforge/render/write_png.h"
+#include "render/test_meshes.h"
+
+namespace lodforge {
+namespace {
+
+using test::cube;
+using test::pixel_stats;
+using test::sphere;
+
+TEST(ContactSheet, ThreePanelsSideBySideEachWithContentAndLabels) {
+  const TriangleMesh levels[3] = {sphere(1, 24, 48), sphere(1, 8, 16), sphere(1, 3, 6)};
+  std::vector<ContactSheetPanel> panels;
+  for (std::size_t k = 0; k < 3; ++k)
+    panels.push_back(
+        {.mesh = &levels[k], .labels = lod_level_labels(k, levels[k].triangle_count(), 2.83 * k)});
+  const ContactSheetResult r =
+      render_contact_sheet(panels, {.panel = {.width = 200, .height = 180}, .gap = 8});
+  write_png(r.image, test::output_dir() + "/contact_sheet.png");
+
+  ASSERT_EQ(r.panel_x.size(), 3u);
+  EXPECT_EQ(r.image.width, 3 * 200 + 4 * 8);
+  EXPECT_NEAR(static_cast<double>(r.image.width) / 200, 3, 0.2);
+  EXPECT_GT(r.image.height, 180);  // room for the labels
+  for (int k = 0; k < 3; ++k) {
+    const auto picture = pixel_stats(r.image, r.panel_x[k], r.panel_top, 200, 180);
+    EXPECT_GT(picture.covered_fraction, 0.3) << "panel " << k;
+    const int label_top = r.panel_top + 180;
+    const auto labels =
+        pixel_stats(r.image, r.panel_x[k], label_top, 200, r.image.height - label_top);
+    EXPECT_GT(labels.covered_fraction, 0.005) << "labels of panel " << k;
+    EXPECT_LT(labels.mean_r, 100) << "labels are dark text";
+  }
+  // The levels differ, so the panels do.
+  Image p0(200, 180), p2(200, 180);
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 200; ++x) {
+      std::copy_n(r.image.at(r.panel_x[0] + x, r.panel_top + y), 4, p0.at(x, y));
+      std::copy_n(r.image.at(r.panel_x[2] + x, r.panel_top + y), 4, p2.at(x, y));
+    }
+  EXPECT_GT(test::difference_fraction(p0, p2), 0.05);
+}
+
+TEST(ContactSheet, PanelsShareOneCameraSoSizesCompare) {
+  const TriangleMesh big = cube(1), small = cube(0.5f);
+  const ContactSheetPanel panels[2] = {{.mesh = &big}, {.mesh = &small}};
+  const ContactSheetResult r =
+      render_contact_sheet(panels, {.panel = {.width = 120, .height = 120}});
+  EXPECT_NEAR(r.frame.radius, std::sqrt(3.f), 1e-4);
+  const double a = pixel_stats(r.image, r.panel_x[0], r.panel_top, 120, 120).covered_fraction;
+  const double b = pixel_stats(r.image, r.panel_x[1], r.panel_top, 120, 120).covered_fraction;
+  EXPECT_NEAR(b / a, 0.25, 0.05);
+}
+
+TEST(ContactSheet, EmptyPanelsKeepTheirPlace) {
+  const TriangleMesh m = cube();
+  const TriangleMesh empty;
+  const ContactSheetPanel panels[3] = {
+      {.mesh = &m, .labels = {"level 0"}}, {.mesh = &empty, .labels = {"empty"}}, {}};
+  const ContactSheetResult r = render_contact_sheet(panels, {.panel = {.width = 64, .height = 64}});
+  EXPECT_EQ(r.image.width, 3 * 64 + 4 * 8);
+  EXPECT_GT(pixel_stats(r.image, r.panel_x[0], r.panel_top, 64, 64).covered_fraction, 0.1);
+  EXPECT_EQ(pixel_stats(r.image, r.panel_x[1], r.panel_top, 64, 64).covered_fraction, 0);
+  EXPECT_EQ(pixel_stats(r.image, r.panel_x[2], 0, 64, r.image.height).covered_fraction, 0);
+  EXPECT_TRUE(render_contact_sheet({}).image.empty());
+}
+
+TEST(ContactSheet, LodLevelLabels) {
+  EXPECT_EQ(lod_level_labels(0, 69451, 0),
+            (std::vector<std::string>{"level 0", "69451 triangles"}));
+  EXPECT_EQ(lod_level_labels(2, 120, 2.8312),
+            (std::vector<std::string>{"level 2", "120 triangles", "from 2.83"}));
+}
+
+}  // namespace
+}  // namespace lodforge

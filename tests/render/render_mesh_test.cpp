@@ -1,0 +1,217 @@
+#include "lodforge/render/render_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "lodforge/core/error.h"
+#include "lodforge/render/write_png.h"
+#include "render/test_meshes.h"
+
+namespace lodforge {
+namespace {
+
+using test::colored;
+using test::cube;
+using test::pixel_stats;
+using test::sphere;
+
+TEST(RenderMesh, CubeIsLitAndNotBlank) {
+  const RenderResult r = render_mesh(cube(), {.width = 200, .height = 150});
+  write_png(r.image, test::output_dir() + "/cube.png");
+  ASSERT_EQ(r.image.width, 200);
+  ASSERT_EQ(r.image.height, 150);
+  EXPECT_EQ(r.triangles_drawn, 12u);
+  const auto s = pixel_stats(r.image);
+  EXPECT_GT(s.covered_fraction, 0.15);
+  EXPECT_LT(s.covered_fraction, 0.8);
+  // Three visible faces lit differently, plus antialiased edges.
+  EXPECT_GE(s.distinct_colors, 4u);
+}
+
+TEST(RenderMesh, SphereIsCentredAndFillsTheView) {
+  const RenderResult r = render_mesh(sphere(), {.width = 160, .height = 160});
+  write_png(r.image, test::output_dir() + "/sphere.png");
+  const auto s = pixel_stats(r.image);
+  // The framed sphere (4 % margin) is a disc of diameter ~0.96 of the picture.
+  EXPECT_GT(s.covered_fraction, 0.55);
+  EXPECT_LT(s.covered_fraction, 0.78);
+  EXPECT_NEAR(s.center_x, 80, 2);
+  EXPECT_NEAR(s.center_y, 80, 2);
+  EXPECT_GE(s.distinct_colors, 20u);  // smooth shading gives a gradient
+}
+
+TEST(RenderMesh, LightComesFromAboveSoTopIsBrighter) {
+  const Image img = render_mesh(sphere(), {.width = 100, .height = 100, .elevation = 0}).image;
+  const auto top = pixel_stats(img, 0, 0, 100, 50);
+  const auto bottom = pixel_stats(img, 0, 50, 100, 50);
+  EXPECT_GT(top.mean_r + top.mean_g + top.mean_b, bottom.mean_r + bottom.mean_g + bottom.mean_b);
+}
+
+TEST(RenderMesh, PictureIsNotUpsideDownNorMirrored) {
+  // +Y red, -Y blue; at azimuth 0 also +X must appear on the right.
+  TriangleMesh m = sphere();
+  for (const auto& p : m.positions)
+    m.colors.push_back(p.y > 0 ? Vec3{1, 0, 0} : (p.x > 0 ? Vec3{0, 1, 0} : Vec3{0, 0, 1}));
+  const Image img =
+      render_mesh(m, {.width = 100, .height = 100, .azimuth = 0, .elevation = 0}).image;
+  write_png(img, test::output_dir() + "/orientation.png");
+  const auto top = pixel_stats(img, 0, 0, 100, 40);
+  EXPECT_GT(top.mean_r, 3 * (top.mean_g + top.mean_b) / 2);
+  const auto bottom_right = pixel_stats(img, 55, 60, 45, 40);
+  EXPECT_GT(bottom_right.mean_g, 2 * bottom_right.mean_b);
+  const auto bottom_left = pixel_stats(img, 0, 60, 45, 40);
+  EXPECT_GT(bottom_left.mean_b, 2 * bottom_left.mean_g);
+
+  // Azimuth 90: the camera is on +X, so -Z is on the right.
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    m.colors[i] = m.positions[i].z < 0 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+  const Image side =
+      render_mesh(m, {.width = 100, .height = 100, .azimuth = 90, .elevation = 0}).image;
+  const auto right = pixel_stats(side, 60, 0, 40, 100);
+  EXPECT_GT(right.mean_r, 2 * right.mean_b);
+}
+
+TEST(RenderMesh, VertexColoursShow) {
+  const Image img = render_mesh(colored(cube(), {1, 0, 0}), {.width = 120, .height = 120}).image;
+  write_png(img, test::output_dir() + "/red_cube.png");
+  const auto s = pixel_stats(img);
+  EXPECT_GT(s.covered_fraction, 0.1);
+  EXPECT_GT(s.mean_r, 2 * s.mean_g);
+  EXPECT_GT(s.mean_r, 2 * s.mean_b);
+}
+
+TEST(RenderMesh, NoColoursIgnoresVertexColours) {
+  const Image img =
+      render_mesh(colored(cube(), {1, 0, 0}), {.width = 120, .height = 120, .use_colors = false})
+          .image;
+  const auto s = pixel_stats(img);
+  EXPECT_NEAR(s.mean_r, s.mean_b, 30);
+}
+
+TEST(RenderMesh, DifferentMeshesAndViewsGiveDifferentPictures) {
+  const RenderOptions o{.width = 120, .height = 90};
+  const Image a = render_mesh(cube(), o).image;
+  const Image b = render_mesh(sphere(), o).image;
+  RenderOptions other_view = o;
+  other_view.azimuth = 75;
+  other_view.elevation = -30;
+  const Image c = render_mesh(cube(), other_view).image;
+  EXPECT_GT(test::difference_fraction(a, b), 0.05);
+  EXPECT_GT(test::difference_fraction(a, c), 0.05);
+  // Deterministic: the same input gives the same picture.
+  EXPECT_EQ(render_mesh(cube(), o).image.pixels, a.pixels);
+}
+
+TEST(RenderMesh, FlatAndSmoothShadingDiffer) {
+  const TriangleMesh coarse = sphere(1, 6, 12);
+  const Image smooth = render_mesh(coarse, {.width = 100, .height = 100}).image;
+  const Image flat =
+      render_mesh(coarse, {.width = 100, .height = 100, .shading = Shading::kFlat}).image;
+  write_png(flat, test::output_dir() + "/flat_sphere.png");
+  EXPECT_GT(test::difference_fraction(smooth, flat), 0.1);
+  // Flat shading: few distinct colours inside the faces, far more when smooth.
+  EXPECT_LT(pixel_stats(flat).distinct_colors, pixel_stats(smooth).distinct_colors);
+}
+
+TEST(RenderMesh, GivenNormalsAreUsed) {
+  TriangleMesh m = sphere(1, 8, 16);
+  const Image computed = render_mesh(m, {.width = 80, .height = 80}).image;
+  m.normals.assign(m.positions.size(), Vec3{0, 0, 1});  // all facing the default camera
+  const Image given = render_mesh(m, {.width = 80, .height = 80}).image;
+  EXPECT_GT(test::difference_fraction(computed, given), 0.1);
+}
+
+TEST(RenderMesh, ComputedNormalsAreSmoothAcrossRepeatedVertices) {
+  const RenderOptions o{.width = 100, .height = 100};
+  const Image indexed = render_mesh(sphere(), o).image;
+  const Image triangle_soup = render_mesh(test::soup(sphere()), o).image;
+  EXPECT_LT(test::difference_fraction(indexed, triangle_soup), 0.01);
+  // ... while a cube keeps its sharp edges: each visible face is one colour.
+  const Image box =
+      render_mesh(cube(), {.width = 100, .height = 100, .azimuth = 0, .elevation = 0}).image;
+  EXPECT_EQ(pixel_stats(box, 35, 35, 30, 30).distinct_colors, 1u);
+}
+
+TEST(RenderMesh, WireframeAddsDarkEdges) {
+  const RenderOptions o{.width = 150, .height = 150};
+  RenderOptions wire = o;
+  wire.wireframe = true;
+  const Image plain = render_mesh(sphere(1, 8, 16), o).image;
+  const Image edges = render_mesh(sphere(1, 8, 16), wire).image;
+  write_png(edges, test::output_dir() + "/wireframe.png");
+  EXPECT_GT(test::difference_fraction(plain, edges), 0.03);
+  EXPECT_LT(pixel_stats(edges).mean_r, pixel_stats(plain).mean_r);
+}
+
+TEST(RenderMesh, LineSegmentsAreDrawn) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 1}};
+  m.lines = {{0, 1}, {1, 2}, {2, 3}};
+  const RenderResult r = render_mesh(m, {.width = 100, .height = 100});
+  EXPECT_EQ(r.lines_drawn, 3u);
+  EXPECT_EQ(r.triangles_drawn, 0u);
+  const auto s = pixel_stats(r.image);
+  EXPECT_GT(s.covered_fraction, 0.01);
+  EXPECT_LT(s.covered_fraction, 0.2);
+}
+
+TEST(RenderMesh, EmptyMeshGivesTheBackground) {
+  const RenderResult r =
+      render_mesh(TriangleMesh{}, {.width = 30, .height = 20, .background = {0, 0, 1}});
+  ASSERT_EQ(r.image.pixels.size(), 30u * 20 * 4);
+  EXPECT_EQ(pixel_stats(r.image).distinct_colors, 1u);
+  EXPECT_EQ(r.image.at(5, 5)[2], 255);
+  EXPECT_EQ(r.image.at(5, 5)[0], 0);
+}
+
+TEST(RenderMesh, DegenerateInputDoesNotCrash) {
+  TriangleMesh m = cube();
+  m.positions.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});
+  m.triangles.push_back({0, 1, 8});  // uses the NaN vertex: skipped
+  m.triangles.push_back({0, 0, 0});  // zero area
+  const RenderResult r = render_mesh(m, {.width = 64, .height = 64});
+  EXPECT_EQ(r.triangles_drawn, 12u);
+  EXPECT_GT(pixel_stats(r.image).covered_fraction, 0.1);
+
+  TriangleMesh point;
+  point.positions = {{5, 5, 5}, {5, 5, 5}, {5, 5, 5}};
+  point.triangles = {{0, 1, 2}};
+  EXPECT_NO_THROW(render_mesh(point, {.width = 16, .height = 16}));
+}
+
+TEST(RenderMesh, LookingStraightDownWorks) {
+  const auto s =
+      pixel_stats(render_mesh(cube(), {.width = 64, .height = 64, .elevation = 90}).image);
+  EXPECT_GT(s.covered_fraction, 0.2);
+}
+
+TEST(RenderMesh, BadDataThrowsDataError) {
+  TriangleMesh m = cube();
+  m.triangles.push_back({0, 1, 99});
+  EXPECT_THROW(render_mesh(m), DataError);
+  TriangleMesh c = cube();
+  c.colors.assign(3, Vec3{1, 0, 0});
+  EXPECT_THROW(render_mesh(c), DataError);
+  TriangleMesh l = cube();
+  l.lines.push_back({0, 8});
+  try {
+    render_mesh(l);
+    FAIL() << "no exception";
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "render: line segment 0 uses vertex 8, the mesh has 8 vertices");
+  }
+}
+
+TEST(RenderMesh, BoundingSphereOfUsedVertices) {
+  TriangleMesh m = cube(1, {10, 0, 0});
+  m.positions.push_back({1000, 1000, 1000});  // unused: ignored
+  const FrameSphere s = bounding_sphere(m);
+  EXPECT_NEAR(s.center.x, 10, 1e-5);
+  EXPECT_NEAR(s.radius, std::sqrt(3.f), 1e-5);
+  EXPECT_EQ(bounding_sphere(TriangleMesh{}).radius, 0);
+}
+
+}  // namespace
+}  // namespace lodforge

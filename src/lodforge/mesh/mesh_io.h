@@ -22,8 +22,12 @@ struct MeshWriteOptions {
   bool binary = true;                     ///< PLY and STL: binary (default) or ASCII
 };
 
-/// Reads a mesh file ("-" = standard input, format then required). Throws
-/// ParseError (file:line:col for text formats) or DataError on bad input.
+/// Reads a mesh file ("-" = standard input; without an extension the format
+/// is told from the content). Gzip-compressed files are read transparently.
+/// Polygons are triangulated (triangulate_polygon), normals made unit length.
+/// Throws ParseError ("file:line:col: expected X, got Y") for text formats,
+/// DataError ("file: byte N: ...") for binary ones, and DataError for an
+/// unreadable file. Out-of-range indices and non-finite numbers are errors.
 TriangleMesh read_mesh(const std::string& path, const MeshReadOptions& options = {});
 
 /// Parses mesh data held in memory; `source_name` is used in messages.
@@ -33,6 +37,18 @@ TriangleMesh read_mesh_data(std::string_view data, MeshFormat format,
 /// Writes a mesh atomically (temporary file, then rename). Throws DataError.
 void write_mesh(const TriangleMesh& mesh, const std::string& path,
                 const MeshWriteOptions& options = {});
+
+/// Serialises a mesh to the bytes of a file; `options.format` must not be
+/// kAuto (DataError). What each format keeps:
+///   PLY: positions, normals, colours (as uchar), texcoords (s t), materials
+///        (face property material_index), lines (element edge)
+///   OBJ: positions, colours (v x y z r g b), texcoords, normals, materials
+///        (usemtl material_<i>), lines (l)
+///   OFF: positions, normals, colours, texcoords ([ST][C][N]OFF), lines (2-gons)
+///   STL: positions only (each triangle with its own corners)
+/// Throws DataError if an attribute array does not match the vertex count or
+/// an index is out of range.
+std::string write_mesh_data(const TriangleMesh& mesh, const MeshWriteOptions& options);
 
 /// The format a path's extension names (kAuto if none matches).
 MeshFormat format_from_path(std::string_view path);

@@ -1,0 +1,257 @@
+// Polygon triangulation by ear clipping on the best-fit plane.
+//
+// The plane normal is Newell's (Sutherland, Sproull & Schumacker, "A
+// Characterization of Ten Hidden-Surface Algorithms", 1974), which is exact for
+// planar polygons and a least-squares-like average for bent ones, and always
+// points so that the polygon winds counter-clockwise around it. The polygon is
+// projected onto that plane and cut into ears (Meisters, "Polygons have ears",
+// 1975). Among all current ears the best-shaped one is clipped, which avoids
+// the slivers of first-ear clipping; ear flags are updated only for the two
+// neighbours of a clipped corner, so the whole run is O(n^2).
+//
+// Quads follow SPEC §2 (the original LODCreator rule):
+//
+//   quad is ...                         | result
+//   ------------------------------------+----------------------------------------
+//   convex, bent <= quad_split_angle    | kept (keep_as_quad), triangles along
+//                                       | the diagonal of smaller bend
+//   convex, bent more                   | split along the diagonal of smaller bend
+//   concave                             | split along the only valid diagonal
+//   neither diagonal valid (bow-tie...) | general ear clipping, flagged
+//
+// "Bent" is the larger of the two dihedral angles (one per diagonal), because a
+// renderer given a quad may split it along either.
+#include "lodforge/mesh/triangulate_polygon.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace lodforge {
+namespace {
+
+struct P2 {
+  double x, y;
+};
+
+double orient(const P2& a, const P2& b, const P2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+struct D3 {
+  double x = 0, y = 0, z = 0;
+};
+
+D3 to_d3(const Vec3& v) {
+  return {v.x, v.y, v.z};
+}
+D3 sub(const D3& a, const D3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+D3 cross3(const D3& a, const D3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot3(const D3& a, const D3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+double len3(const D3& a) {
+  return std::sqrt(dot3(a, a));
+}
+
+/// Angle between the normals of triangles (a,b,c) and (a,c,d) in 3D.
+double dihedral(const D3& a, const D3& b, const D3& c, const D3& d) {
+  D3 n1 = cross3(sub(b, a), sub(c, a));
+  D3 n2 = cross3(sub(c, a), sub(d, a));
+  double l = len3(n1) * len3(n2);
+  if (l <= 0) return kPi;
+  return std::acos(std::clamp(dot3(n1, n2) / l, -1.0, 1.0));
+}
+
+/// Shape quality of a 2D triangle: 1 for equilateral, 0 for degenerate.
+double quality(const P2& a, const P2& b, const P2& c) {
+  double area2 = orient(a, b, c);
+  double s = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y) + (c.x - b.x) * (c.x - b.x) +
+             (c.y - b.y) * (c.y - b.y) + (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y);
+  return s > 0 ? 2.0 * std::sqrt(3.0) * area2 / s : 0.0;
+}
+
+class EarClipper {
+ public:
+  EarClipper(std::vector<P2> pts, double eps) : p_(std::move(pts)), eps_(eps) {
+    std::size_t n = p_.size();
+    prev_.resize(n);
+    next_.resize(n);
+    ear_.assign(n, false);
+    score_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      prev_[i] = static_cast<std::uint32_t>((i + n - 1) % n);
+      next_[i] = static_cast<std::uint32_t>((i + 1) % n);
+    }
+    for (std::uint32_t i = 0; i < n; ++i) update(i);
+  }
+
+  void run(TriangulateResult& out) {
+    std::size_t remaining = p_.size();
+    std::uint32_t start = 0;
+    while (remaining > 3) {
+      std::uint32_t best = pick(start, out);
+      std::uint32_t a = prev_[best], c = next_[best];
+      emit(a, best, c, out);
+      next_[a] = c;
+      prev_[c] = a;
+      start = a;
+      --remaining;
+      update(a);
+      update(c);
+    }
+    emit(prev_[start], start, next_[start], out);
+  }
+
+ private:
+  bool convex(std::uint32_t i) const { return orient(p_[prev_[i]], p_[i], p_[next_[i]]) > eps_; }
+
+  void update(std::uint32_t i) {
+    std::uint32_t a = prev_[i], c = next_[i];
+    ear_[i] = convex(i);
+    score_[i] = quality(p_[a], p_[i], p_[c]);
+    if (!ear_[i]) return;
+    const P2 &pa = p_[a], &pb = p_[i], &pc = p_[c];
+    for (std::uint32_t j = next_[c]; j != a; j = next_[j]) {
+      const P2& q = p_[j];
+      // Corners coinciding with the ear's corners (bridged holes) do not block it.
+      auto same = [](const P2& u, const P2& v) { return u.x == v.x && u.y == v.y; };
+      if (same(q, pa) || same(q, pb) || same(q, pc)) continue;
+      if (orient(pa, pb, q) >= -eps_ && orient(pb, pc, q) >= -eps_ && orient(pc, pa, q) >= -eps_) {
+        ear_[i] = false;
+        return;
+      }
+    }
+  }
+
+  /// The corner to clip: the best ear, else (not simple) the best convex
+  /// corner, else (degenerate) the corner with the largest turn.
+  std::uint32_t pick(std::uint32_t start, TriangulateResult& out) const {
+    std::uint32_t best_ear = kNone, best_convex = kNone, best_any = start;
+    double ear_score = -1, convex_score = -1, any_score = -std::numeric_limits<double>::max();
+    std::uint32_t i = start;
+    do {
+      double o = orient(p_[prev_[i]], p_[i], p_[next_[i]]);
+      if (ear_[i] && score_[i] > ear_score) ear_score = score_[i], best_ear = i;
+      if (o > eps_ && score_[i] > convex_score) convex_score = score_[i], best_convex = i;
+      if (o > any_score) any_score = o, best_any = i;
+      i = next_[i];
+    } while (i != start);
+    if (best_ear != kNone) return best_ear;
+    out.not_simple = true;
+    if (best_convex != kNone) return best_convex;
+    out.degenerate = true;
+    return best_any;
+  }
+
+  void emit(std::uint32_t a, std::uint32_t b, std::uint32_t c, TriangulateResult& out) const {
+    if (orient(p_[a], p_[b], p_[c]) <= eps_) out.degenerate = true;
+    out.triangles.push_back({a, b, c});
+  }
+
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<P2> p_;
+  double eps_;
+  std::vector<std::uint32_t> prev_, next_;
+  std::vector<bool> ear_;
+  std::vector<double> score_;
+};
+
+void fan(std::size_t n, TriangulateResult& out) {
+  for (std::uint32_t i = 1; i + 1 < n; ++i) out.triangles.push_back({0, i, i + 1});
+}
+
+}  // namespace
+
+TriangulateResult triangulate_polygon(std::span<const Vec3> points,
+                                      const TriangulateOptions& options) {
+  TriangulateResult out;
+  std::size_t n = points.size();
+  if (n < 3) {
+    out.degenerate = true;
+    return out;
+  }
+  out.triangles.reserve(n - 2);
+
+  // Newell normal, in double, about the first corner to limit cancellation.
+  std::vector<D3> q(n);
+  D3 origin = to_d3(points[0]);
+  double extent = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = sub(to_d3(points[i]), origin);
+    extent = std::max({extent, std::abs(q[i].x), std::abs(q[i].y), std::abs(q[i].z)});
+  }
+  D3 normal;
+  for (std::size_t i = 0; i < n; ++i) {
+    const D3& a = q[i];
+    const D3& b = q[(i + 1) % n];
+    normal.x += (a.y - b.y) * (a.z + b.z);
+    normal.y += (a.z - b.z) * (a.x + b.x);
+    normal.z += (a.x - b.x) * (a.y + b.y);
+  }
+  double nl = len3(normal);
+  // Twice the polygon's area is nl; below this it is noise of float input.
+  if (!(extent > 0) || !(nl > extent * extent * 1e-12) || !std::isfinite(nl)) {
+    out.degenerate = true;
+    fan(n, out);
+    return out;
+  }
+  normal = {normal.x / nl, normal.y / nl, normal.z / nl};
+  out.normal = {static_cast<float>(normal.x), static_cast<float>(normal.y),
+                static_cast<float>(normal.z)};
+
+  // Orthonormal basis (u, v) of the plane with u x v = normal, so that the
+  // projected polygon is counter-clockwise.
+  D3 axis = std::abs(normal.x) < 0.6 ? D3{1, 0, 0} : D3{0, 1, 0};
+  D3 u = cross3(axis, normal);
+  double ul = len3(u);
+  u = {u.x / ul, u.y / ul, u.z / ul};
+  D3 v = cross3(normal, u);
+  std::vector<P2> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = {dot3(q[i], u), dot3(q[i], v)};
+  double eps = extent * extent * 1e-12;
+
+  if (n == 3) {
+    out.triangles.push_back({0, 1, 2});
+    if (orient(p[0], p[1], p[2]) <= eps) out.degenerate = true;
+    return out;
+  }
+  if (n == 4) {
+    bool valid_a = orient(p[0], p[1], p[2]) > eps && orient(p[0], p[2], p[3]) > eps;
+    bool valid_b = orient(p[1], p[2], p[3]) > eps && orient(p[1], p[3], p[0]) > eps;
+    double bend_a = dihedral(q[0], q[1], q[2], q[3]);
+    double bend_b = dihedral(q[1], q[2], q[3], q[0]);
+    if (valid_a || valid_b) {
+      bool use_a = valid_a && (!valid_b || bend_a <= bend_b);
+      if (use_a) {
+        out.triangles = {{0, 1, 2}, {0, 2, 3}};
+      } else {
+        out.triangles = {{1, 2, 3}, {1, 3, 0}};
+      }
+      out.keep_as_quad = options.keep_quads && valid_a && valid_b &&
+                         std::max(bend_a, bend_b) <= options.quad_split_angle;
+      return out;
+    }
+  }
+  EarClipper(std::move(p), eps).run(out);
+  return out;
+}
+
+TriangulateResult triangulate_polygon(std::span<const Vec3> positions,
+                                      std::span<const std::uint32_t> indices,
+                                      const TriangulateOptions& options) {
+  std::vector<Vec3> points;
+  points.reserve(indices.size());
+  for (std::uint32_t i : indices) {
+    assert(i < positions.size());
+    points.push_back(positions[i]);
+  }
+  return triangulate_polygon(points, options);
+}
+
+}  // namespace lodforge

@@ -1,0 +1,277 @@
+// Bounding volume hierarchy for closest-point queries on triangle meshes.
+//
+// Construction is the binned surface-area heuristic of I. Wald, "On fast
+// Construction of SAH-based Bounding Volume Hierarchies", IEEE Symposium on
+// Interactive Ray Tracing 2007: triangle centroids are binned along each axis
+// and the split plane minimising
+//     cost = area(left box) * #left + area(right box) * #right
+// is taken. SAH is derived for ray casting, but it also suits nearest-point
+// queries: it keeps boxes tight around the surface, which is what makes the
+// box-distance lower bound prune well.
+//
+// Queries follow the branch-and-bound nearest-neighbour search of Larsen,
+// Gottschalk, Lin, Manocha, "Fast proximity queries with swept sphere volumes"
+// (UNC TR99-018, 1999): visit the nearer child first, keep the farther one on
+// an explicit stack with its box distance, and drop every subtree whose box is
+// farther than the best triangle found so far. The exact distance to a
+// triangle comes from closest_point_on_triangle (Ericson's region method).
+//
+// Decision table for a node with n triangles:
+//   n <= leaf_size                         -> leaf
+//   centroids all equal / depth > kMaxSah  -> split at the median index / coordinate
+//   otherwise                              -> best SAH plane over all axes and bins
+#include "lodforge/metrics/triangle_bvh.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "lodforge/metrics/closest_point_on_triangle.h"
+
+namespace lodforge {
+namespace {
+
+// Beyond this depth splits are median splits, which bounds the total depth by
+// kMaxSah + log2(#F) and so the traversal stack below.
+constexpr int kMaxSah = 48;
+constexpr int kStackSize = 128;
+// Two triangles count as equally close (for the normal tie rule) when their
+// squared distances differ by at most kTie relative plus the square of
+// kTieUlps float steps at the mesh's largest coordinate: a point on a shared
+// edge is 0 from one triangle and rounding noise from the other.
+constexpr float kTie = 1e-5f;
+constexpr float kTieUlps = 16;
+
+float half_area(const Vec3& lo, const Vec3& hi) {
+  Vec3 d = hi - lo;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+float box_distance_squared(const Vec3& lo, const Vec3& hi, const Vec3& p) {
+  float dx = std::max({lo.x - p.x, 0.f, p.x - hi.x});
+  float dy = std::max({lo.y - p.y, 0.f, p.y - hi.y});
+  float dz = std::max({lo.z - p.z, 0.f, p.z - hi.z});
+  return dx * dx + dy * dy + dz * dz;
+}
+
+}  // namespace
+
+TriangleBvh::TriangleBvh(const TriangleMesh& mesh, const BvhOptions& options)
+    : mesh_(&mesh), options_(options) {
+  options_.leaf_size = std::clamp(options_.leaf_size, 1, 32);
+  options_.bins = std::clamp(options_.bins, 2, 64);
+  const auto& p = mesh.positions;
+  std::size_t n = mesh.triangles.size();
+  face_normals_.resize(n);
+  std::vector<Vec3> centroid(n), lo(n), hi(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    const auto& t = mesh.triangles[f];
+    assert(t[0] < p.size() && t[1] < p.size() && t[2] < p.size());
+    const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+    face_normals_[f] = normalized(cross(b - a, c - a));
+    lo[f] = min(a, min(b, c));
+    hi[f] = max(a, max(b, c));
+    centroid[f] = (a + b + c) * (1.f / 3);
+  }
+  if (n == 0) return;
+  float extent = 0;
+  for (std::size_t f = 0; f < n; ++f) {
+    for (int k = 0; k < 3; ++k) extent = std::max({extent, std::abs(lo[f][k]), std::abs(hi[f][k])});
+  }
+  tie_floor_ = kTieUlps * std::numeric_limits<float>::epsilon() * extent;
+  tie_floor_ *= tie_floor_;
+  order_.resize(n);
+  for (std::uint32_t f = 0; f < n; ++f) order_[f] = f;
+  nodes_.reserve(2 * n / options_.leaf_size + 1);
+  build(0, std::uint32_t(n), 1, centroid, lo, hi);
+  corners_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& t = mesh.triangles[order_[i]];
+    corners_[i] = {p[t[0]], p[t[1]], p[t[2]]};
+  }
+}
+
+std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int depth,
+                                 std::vector<Vec3>& centroid, std::vector<Vec3>& lo,
+                                 std::vector<Vec3>& hi) {
+  depth_ = std::max(depth_, depth);
+  auto index = std::uint32_t(nodes_.size());
+  nodes_.push_back({});
+  Box3 box, cbox;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    std::uint32_t f = order_[i];
+    box.add(lo[f]);
+    box.add(hi[f]);
+    cbox.add(centroid[f]);
+  }
+  nodes_[index].lo = box.lo;
+  nodes_[index].hi = box.hi;
+  std::uint32_t count = end - begin;
+  if (count <= std::uint32_t(options_.leaf_size)) {
+    nodes_[index].index = begin;
+    nodes_[index].count = count;
+    return index;
+  }
+
+  std::uint32_t mid = begin + count / 2;
+  Vec3 extent = cbox.size();
+  int wide = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  bool split = false;
+  if (depth <= kMaxSah && extent[wide] > 0) {
+    // Binned SAH over the three axes.
+    const int bins = options_.bins;
+    struct Bin {
+      Box3 box;
+      std::uint32_t count = 0;
+    };
+    float best_cost = std::numeric_limits<float>::infinity();
+    int best_axis = -1, best_plane = 0;
+    std::vector<Bin> bin(bins);
+    std::vector<float> right_cost(bins);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(extent[axis] > 0)) continue;
+      std::fill(bin.begin(), bin.end(), Bin{});
+      float scale = bins / extent[axis];
+      for (std::uint32_t i = begin; i < end; ++i) {
+        std::uint32_t f = order_[i];
+        int b = std::min(bins - 1, int((centroid[f][axis] - cbox.lo[axis]) * scale));
+        bin[b].box.add(lo[f]);
+        bin[b].box.add(hi[f]);
+        ++bin[b].count;
+      }
+      // right_cost[k]: cost of bins k..bins-1 as one child.
+      Box3 acc;
+      std::uint32_t n = 0;
+      for (int k = bins - 1; k > 0; --k) {
+        acc.add(bin[k].box);
+        n += bin[k].count;
+        right_cost[k] = n ? half_area(acc.lo, acc.hi) * float(n) : 0.f;
+      }
+      acc = Box3{};
+      n = 0;
+      for (int k = 0; k < bins - 1; ++k) {
+        acc.add(bin[k].box);
+        n += bin[k].count;
+        float cost = (n ? half_area(acc.lo, acc.hi) * float(n) : 0.f) + right_cost[k + 1];
+        if (n > 0 && n < count && cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_plane = k + 1;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      float scale = bins / extent[best_axis];
+      float origin = cbox.lo[best_axis];
+      auto it = std::partition(order_.begin() + begin, order_.begin() + end, [&](std::uint32_t f) {
+        return std::min(bins - 1, int((centroid[f][best_axis] - origin) * scale)) < best_plane;
+      });
+      mid = std::uint32_t(it - order_.begin());
+      split = mid > begin && mid < end;
+    }
+  }
+  if (!split) {
+    mid = begin + count / 2;
+    std::nth_element(
+        order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+        [&](std::uint32_t x, std::uint32_t y) { return centroid[x][wide] < centroid[y][wide]; });
+  }
+  build(begin, mid, depth + 1, centroid, lo, hi);
+  nodes_[index].index = build(mid, end, depth + 1, centroid, lo, hi);
+  nodes_[index].count = 0;
+  return index;
+}
+
+template <bool kPreferNormal>
+ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal) const {
+  ClosestPoint best;
+  if (nodes_.empty()) return best;
+  float best_score = 0;
+  bool score_known = false;
+  // With the tie rule, `best` may be a tied triangle slightly farther than the
+  // nearest one seen; `nearest` keeps the exact minimum distance.
+  float nearest = std::numeric_limits<float>::infinity();
+  auto limit = [&] {
+    return kPreferNormal ? nearest + kTie * nearest + tie_floor_ : best.distance_squared;
+  };
+
+  struct Entry {
+    std::uint32_t node;
+    float distance_squared;
+  };
+  Entry stack[kStackSize];
+  int top = 0;
+  stack[top++] = {0, box_distance_squared(nodes_[0].lo, nodes_[0].hi, p)};
+  while (top > 0) {
+    Entry e = stack[--top];
+    if (e.distance_squared > limit()) continue;
+    std::uint32_t ni = e.node;
+    for (;;) {
+      const Node& node = nodes_[ni];
+      if (node.count) {
+        for (std::uint32_t i = node.index, last = node.index + node.count; i < last; ++i) {
+          const Corners& t = corners_[i];
+          TrianglePoint tp = closest_point_on_triangle(p, t.a, t.b, t.c);
+          if constexpr (kPreferNormal) {
+            float tolerance = kTie * nearest + tie_floor_;
+            if (!best.found() || tp.distance_squared < nearest - tolerance) {
+              best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
+              score_known = false;
+            } else if (tp.distance_squared <= nearest + tolerance) {
+              ClosestPoint candidate{tp.point, order_[i], tp.barycentric, tp.distance_squared};
+              if (!score_known) best_score = dot(normal_at(best), normal);
+              score_known = true;
+              float score = dot(normal_at(candidate), normal);
+              if (score > best_score) {
+                best = candidate;
+                best_score = score;
+              }
+            }
+            nearest = std::min(nearest, tp.distance_squared);
+          } else if (tp.distance_squared < best.distance_squared) {
+            best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
+          }
+        }
+        break;
+      }
+      std::uint32_t near = ni + 1, far = node.index;
+      float dn = box_distance_squared(nodes_[near].lo, nodes_[near].hi, p);
+      float df = box_distance_squared(nodes_[far].lo, nodes_[far].hi, p);
+      if (df < dn) {
+        std::swap(near, far);
+        std::swap(dn, df);
+      }
+      float bound = limit();
+      if (dn > bound) break;
+      if (df <= bound) {
+        assert(top < kStackSize);
+        stack[top++] = {far, df};
+      }
+      ni = near;
+    }
+  }
+  if constexpr (kPreferNormal) best.distance_squared = nearest;
+  return best;
+}
+
+ClosestPoint TriangleBvh::closest_point(const Vec3& p) const {
+  return query<false>(p, {});
+}
+
+ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal) const {
+  return query<true>(p, normal);
+}
+
+Vec3 TriangleBvh::normal_at(const ClosestPoint& at) const {
+  assert(at.found());
+  if (options_.vertex_normals && mesh_->has_normals()) {
+    const auto& t = mesh_->triangles[at.triangle];
+    const auto& n = mesh_->normals;
+    const auto& w = at.barycentric;
+    Vec3 s = normalized(n[t[0]] * w[0] + n[t[1]] * w[1] + n[t[2]] * w[2]);
+    if (length_squared(s) > 0) return s;
+  }
+  return face_normals_[at.triangle];
+}
+
+}  // namespace lodforge

@@ -1,0 +1,92 @@
+#pragma once
+/// A bounding volume hierarchy over a mesh's triangles answering exact
+/// closest-point queries: which point of the surface is nearest to p, on which
+/// triangle, at which barycentric coordinates.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "lodforge/mesh/triangle_mesh.h"
+
+namespace lodforge {
+
+struct BvhOptions {
+  int leaf_size = 4;           ///< at most this many triangles per leaf (1..32)
+  int bins = 16;               ///< SAH bins per axis when splitting (2..64)
+  bool vertex_normals = true;  ///< normal_at interpolates the mesh's vertex normals if it has any
+};
+
+/// The answer to a closest-point query.
+struct ClosestPoint {
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  Vec3 point;                          ///< the nearest surface point
+  std::uint32_t triangle = kNone;      ///< index into mesh.triangles
+  std::array<float, 3> barycentric{};  ///< of `point` in that triangle
+  float distance_squared = std::numeric_limits<float>::infinity();
+
+  bool found() const { return triangle != kNone; }
+};
+
+/// Built once per mesh, then queried from any number of threads at once
+/// (queries are const and allocate nothing). The mesh is referenced, not
+/// copied: it must outlive the hierarchy and stay unchanged.
+///
+/// Construction: binned surface-area heuristic on triangle centroids, nodes in
+/// one flat array in depth-first order. Queries: stack traversal, nearer child
+/// first, subtrees pruned when their box is farther than the best distance so
+/// far. Degenerate triangles take part as the segments or points they are.
+class TriangleBvh {
+ public:
+  /// Preconditions: triangle indices < #V (assert). A mesh without triangles
+  /// gives an empty hierarchy whose queries find nothing.
+  explicit TriangleBvh(const TriangleMesh& mesh, const BvhOptions& options = {});
+
+  /// Exact closest point of the surface to `p`; not found() only when the mesh
+  /// has no triangles.
+  ClosestPoint closest_point(const Vec3& p) const;
+
+  /// As closest_point(p), but among triangles at the same distance (within a
+  /// relative 1e-5 of the squared distance plus float rounding noise, e.g. at
+  /// a shared edge or vertex) takes the one whose surface normal there
+  /// (normal_at) makes the smallest angle with `normal`: the tie rule of the
+  /// normal deviation measure. distance_squared is still the exact minimum;
+  /// point, triangle and barycentric are those of the chosen triangle.
+  ClosestPoint closest_point(const Vec3& p, const Vec3& normal) const;
+
+  /// Unit surface normal at a found point: the mesh's per-vertex normals
+  /// interpolated with the barycentric coordinates when it has them (and
+  /// options.vertex_normals), else the face normal. Zero for a degenerate triangle without vertex
+  /// normals.
+  Vec3 normal_at(const ClosestPoint& at) const;
+
+  bool empty() const { return nodes_.empty(); }
+  std::size_t node_count() const { return nodes_.size(); }
+  int depth() const { return depth_; }
+
+ private:
+  struct Node {
+    Vec3 lo, hi;
+    std::uint32_t index;  // interior: right child (left is this + 1); leaf: first triangle
+    std::uint32_t count;  // 0 for interior nodes, else triangles in the leaf
+  };
+  struct Corners {
+    Vec3 a, b, c;
+  };
+
+  template <bool kPreferNormal>
+  ClosestPoint query(const Vec3& p, const Vec3& normal) const;
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, int depth,
+                      std::vector<Vec3>& centroid, std::vector<Vec3>& lo, std::vector<Vec3>& hi);
+
+  const TriangleMesh* mesh_;
+  BvhOptions options_;
+  std::vector<Node> nodes_;
+  std::vector<Corners> corners_;      // triangle corners in leaf order
+  std::vector<std::uint32_t> order_;  // leaf order -> mesh triangle index
+  std::vector<Vec3> face_normals_;    // per mesh triangle, unit or zero
+  float tie_floor_ = 0;               // absolute tie tolerance on squared distances
+  int depth_ = 0;
+};
+
+}  // namespace lodforge

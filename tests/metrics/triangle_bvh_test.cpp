@@ -1,0 +1,120 @@
+#include "lodforge/metrics/triangle_bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "lodforge/metrics/closest_point_on_triangle.h"
+#include "metrics/mesh_builders.h"
+
+namespace lodforge {
+namespace {
+
+float brute_force(const TriangleMesh& m, const Vec3& p) {
+  float best = std::numeric_limits<float>::infinity();
+  for (const auto& t : m.triangles) {
+    best = std::min(
+        best, closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])
+                  .distance_squared);
+  }
+  return best;
+}
+
+// A bumpy sphere plus a detached sheet, a sliver, a collapsed triangle and
+// duplicated vertices: the shapes a BVH must not mishandle.
+TriangleMesh awkward_mesh() {
+  TriangleMesh m = test::icosphere(3);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> bump(0.9f, 1.1f);
+  for (auto& p : m.positions) p *= bump(rng);
+  auto base = std::uint32_t(m.positions.size());
+  m.positions.insert(m.positions.end(),
+                     {{3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {3, 0, 0}, {5, 5, 5}, {6, 5, 5}, {7, 5, 5}});
+  m.triangles.push_back({base, base + 1, base + 2});
+  m.triangles.push_back({base + 3, base + 2, base + 1});  // duplicate vertex 3 == 0
+  m.triangles.push_back({base + 4, base + 5, base + 6});  // collinear
+  m.triangles.push_back({base + 4, base + 4, base + 4});  // a point
+  return m;
+}
+
+TEST(TriangleBvh, EqualsBruteForceOnRandomQueries) {
+  TriangleMesh m = awkward_mesh();
+  for (int leaf : {1, 4, 8}) {
+    TriangleBvh bvh(m, {.leaf_size = leaf});
+    std::mt19937 rng(leaf);
+    std::uniform_real_distribution<float> coord(-3, 8);
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 p{coord(rng), coord(rng), coord(rng)};
+      ClosestPoint c = bvh.closest_point(p);
+      ASSERT_TRUE(c.found());
+      EXPECT_EQ(c.distance_squared, brute_force(m, p)) << i;
+      // The reported triangle and barycentrics reproduce the point.
+      const auto& t = m.triangles[c.triangle];
+      Vec3 q = m.positions[t[0]] * c.barycentric[0] + m.positions[t[1]] * c.barycentric[1] +
+               m.positions[t[2]] * c.barycentric[2];
+      EXPECT_LT(length(q - c.point), 1e-5f);
+      EXPECT_NEAR(length_squared(p - c.point), c.distance_squared, 1e-4f);
+    }
+  }
+}
+
+TEST(TriangleBvh, QueriesNearTheSurface) {
+  TriangleMesh m = test::icosphere(4);
+  TriangleBvh bvh(m);
+  EXPECT_GT(bvh.node_count(), 1u);
+  EXPECT_LE(bvh.depth(), 60);
+  std::mt19937 rng(9);
+  std::normal_distribution<float> g(0, 1);
+  for (int i = 0; i < 2000; ++i) {
+    Vec3 p = normalized(Vec3{g(rng), g(rng), g(rng)}) * (1 + 0.01f * g(rng));
+    EXPECT_EQ(bvh.closest_point(p).distance_squared, brute_force(m, p)) << i;
+  }
+}
+
+TEST(TriangleBvh, EmptyMeshFindsNothing) {
+  TriangleMesh m;
+  TriangleBvh bvh(m);
+  EXPECT_TRUE(bvh.empty());
+  EXPECT_FALSE(bvh.closest_point({0, 0, 0}).found());
+}
+
+TEST(TriangleBvh, AllCentroidsEqualStillSplits) {
+  // Many copies of one triangle: SAH cannot split, the median fallback must.
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (int i = 0; i < 1000; ++i) m.triangles.push_back({0, 1, 2});
+  TriangleBvh bvh(m, {.leaf_size = 2});
+  EXPECT_LE(bvh.depth(), 12);
+  EXPECT_FLOAT_EQ(bvh.closest_point({0.2f, 0.2f, 2}).distance_squared, 4);
+}
+
+TEST(TriangleBvh, NormalTieRulePrefersTheCloserNormal) {
+  // A point at the cube's corner vertex is equally close to the three faces
+  // there; the preferred normal picks among them.
+  TriangleMesh m = test::unit_cube();
+  TriangleBvh bvh(m);
+  for (Vec3 n : {Vec3{0, 0, -1}, Vec3{0, -1, 0}, Vec3{-1, 0, 0}}) {
+    ClosestPoint c = bvh.closest_point({0, 0, 0}, n);
+    EXPECT_EQ(c.distance_squared, 0);
+    EXPECT_EQ(bvh.normal_at(c), n);
+  }
+  // Off the corner along the diagonal, the three faces are again tied.
+  ClosestPoint c = bvh.closest_point({-1, -1, -1}, {-1, 0, 0});
+  EXPECT_FLOAT_EQ(c.distance_squared, 3);
+  EXPECT_EQ(bvh.normal_at(c), (Vec3{-1, 0, 0}));
+}
+
+TEST(TriangleBvh, NormalAtInterpolatesVertexNormals) {
+  TriangleMesh m = test::square(0, 0, 1, 1);
+  m.normals = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}};
+  TriangleBvh smooth(m);
+  ClosestPoint c = smooth.closest_point({0.5f, 0.5f, 1});
+  Vec3 n = smooth.normal_at(c);
+  EXPECT_NEAR(n.x, std::sqrt(0.5f), 1e-5f);
+  EXPECT_NEAR(n.z, std::sqrt(0.5f), 1e-5f);
+  TriangleBvh faceted(m, {.vertex_normals = false});
+  EXPECT_EQ(faceted.normal_at(faceted.closest_point({0.5f, 0.5f, 1})), (Vec3{0, 0, 1}));
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -83,16 +83,15 @@ std::size_t FieldValue::count() const {
   }
 }
 
+// The last one: a field given twice takes its last value, as in Coin.
 Field* Node::find(std::string_view field_name) {
-  for (auto& f : fields)
-    if (f.name == field_name) return &f;
+  for (auto it = fields.rbegin(); it != fields.rend(); ++it)
+    if (it->name == field_name) return &*it;
   return nullptr;
 }
 
 const Field* Node::find(std::string_view field_name) const {
-  for (const auto& f : fields)
-    if (f.name == field_name) return &f;
-  return nullptr;
+  return const_cast<Node*>(this)->find(field_name);
 }
 
 const FieldValue* Node::value(std::string_view field_name) const {

@@ -94,6 +94,7 @@ struct Node {
   int first_line = 0;              ///< where the node was read (0 if built in code)
   int last_line = 0;
 
+  /// The field of that name (the last one if the file gave it twice), or nullptr.
   Field* find(std::string_view field_name);
   const Field* find(std::string_view field_name) const;
   /// The value of a typed field given in the file, or nullptr.

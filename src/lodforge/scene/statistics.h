@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "lodforge/core/math.h"
 #include "lodforge/scene/node.h"
@@ -31,6 +32,9 @@ struct SceneStatistics {
   std::size_t total_vertices = 0;
   /// World-space bounding box of all shapes met by the traversal.
   Box3 bounds;
+  /// Shapes whose geometry cannot be built (index out of range, NaN, ...):
+  /// the reason, with the line. They count as empty in the totals.
+  std::vector<std::string> problems;
 };
 
 /// Traverses the scene once and counts.

@@ -53,6 +53,10 @@ class Lexer {
     return {begin, static_cast<std::size_t>(cursor_ - begin)};
   }
   const char* cursor() { return cursor_; }
+  /// The unread text.
+  std::string_view rest() const {
+    return {cursor_, static_cast<std::size_t>(end_ - cursor_)};
+  }
   /// Skips a balanced body up to (not including) the '}' closing the current
   /// brace level, honouring strings and comments. Throws on end of input.
   std::string_view skip_balanced_body(const Token& open);

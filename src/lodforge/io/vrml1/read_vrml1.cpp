@@ -59,7 +59,7 @@ class Parser {
 
  private:
   void parse_header() {
-    std::string_view all = lex_.slice_from(lex_.cursor());
+    std::string_view all = lex_.rest();
     std::string_view first = all.substr(0, all.find('\n'));
     if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
     Token at{TokenKind::kWord, first.substr(0, 40), 1, 1};
@@ -160,7 +160,11 @@ class Parser {
       const std::vector<std::string>* enum_names = nullptr;
       if (find_field(*node, spec, word.text, ftype, enum_names)) {
         if (node->find(word.text))
-          lex_.fail(word, fmt::format("field '{}' of {} given twice", word.text, node->type));
+          result_.log.warn(LogCategory::kParse,
+                           fmt::format("{}:{}:{}: field >{}< of {} given twice; the last value "
+                                       "counts",
+                                       options_.source_name, word.line, word.col, word.text,
+                                       node->type));
         scene::Field f;
         f.name = std::string(word.text);
         f.value = parse_value(ftype, word, enum_names);
@@ -249,33 +253,28 @@ class Parser {
   // parenthesised bit mask, or one token followed by any numbers.
   std::string_view parse_raw_value(const Token& field) {
     const Token& first = lex_.peek();
-    const char* begin = first.text.data();
     if (first.kind == TokenKind::kEnd || first.kind == TokenKind::kRBrace)
       lex_.expected(first, fmt::format("a value for field '{}'", field.text));
     Token t = lex_.next();
+    Token last = t;
     if (t.kind == TokenKind::kLBracket || t.kind == TokenKind::kLParen) {
       TokenKind close = t.kind == TokenKind::kLBracket ? TokenKind::kRBracket : TokenKind::kRParen;
       int depth = 1;
       while (depth > 0) {
-        Token u = lex_.next();
-        if (u.kind == TokenKind::kEnd)
+        last = lex_.next();
+        if (last.kind == TokenKind::kEnd)
           lex_.fail(t, fmt::format("unterminated value of field '{}'", field.text));
-        if (u.kind == t.kind) ++depth;
-        if (u.kind == close) --depth;
+        if (last.kind == t.kind) ++depth;
+        if (last.kind == close) --depth;
       }
     } else {
-      while (lex_.peek().kind == TokenKind::kWord && is_number_start(lex_.peek().text)) lex_.next();
+      while (lex_.peek().kind == TokenKind::kWord && is_number_start(lex_.peek().text))
+        last = lex_.next();
     }
-    const Token& after = lex_.peek();
-    const char* end = after.kind == TokenKind::kEnd ? begin : after.text.data();
-    // Trim the white space and comments between the value and the next token.
-    std::string_view raw(begin, after.kind == TokenKind::kEnd
-                                    ? std::string_view(begin).size()
-                                    : static_cast<std::size_t>(end - begin));
-    while (!raw.empty() && (raw.back() == ' ' || raw.back() == '\n' || raw.back() == '\t' ||
-                            raw.back() == '\r'))
-      raw.remove_suffix(1);
-    return raw;
+    // From the first token to the end of the last: comments after it stay out.
+    const char* begin = t.text.data();
+    const char* end = last.text.data() + last.text.size();
+    return {begin, static_cast<std::size_t>(end - begin)};
   }
 
   [[noreturn]] void bad_value(const Token& field, FieldType type, std::string_view what) {

@@ -1,0 +1,34 @@
+// `lodforge format SCENE -o OUT`: read a VRML 1.0 scene and write it back
+// cleanly formatted with the writer options.
+#include <fmt/core.h>
+
+#include "lodforge/apps/commands.h"
+#include "lodforge/apps/common_options.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+
+namespace lodforge::apps {
+
+void add_format_command(CLI::App& app, Runner& run) {
+  struct Settings {
+    std::string input;
+    std::string output;
+    SceneReadSettings read;
+    vrml1::WriteOptions write;
+  };
+  auto s = std::make_shared<Settings>();
+  CLI::App* cmd = app.add_subcommand("format", "Read a VRML 1.0 scene and write it back formatted");
+  cmd->add_option("SCENE", s->input, "VRML 1.0 file (.wrl, .wrl.gz; - = stdin)")->required();
+  cmd->add_option("-o,--output", s->output, "Output file (- = stdout)")->required();
+  add_scene_read_options(*cmd, s->read);
+  add_writer_options(*cmd, s->write);
+  cmd->callback([s, &run] {
+    run = [s] {
+      vrml1::ReadResult r = read_scene(s->input, s->read);
+      vrml1::write_vrml1_file(r.scene, s->output, s->write);
+      return 0;
+    };
+  });
+}
+
+}  // namespace lodforge::apps

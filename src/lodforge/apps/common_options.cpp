@@ -1,0 +1,37 @@
+#include "lodforge/apps/common_options.h"
+
+#include <fmt/core.h>
+
+namespace lodforge::apps {
+
+void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s) {
+  cmd.add_flag("--inline", s.read_inlines,
+               "Also read the local files of WWWInline nodes (never over a network)");
+  cmd.add_flag("-q,--quiet", s.quiet, "Do not print warnings");
+}
+
+void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w) {
+  cmd.add_option("--floats-per-line", w.floats_per_line, "Floats per line in lists")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  cmd.add_option("--ints-per-line", w.ints_per_line, "Integers per line in lists")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  cmd.add_flag("--no-tabs", w.no_tabs, "No indentation");
+  cmd.add_flag("--minimize", w.minimize, "Smallest output: no indentation, no line breaks");
+}
+
+void print_diagnostic(const Diagnostic& d) {
+  fmt::print(stderr, "{}: {}\n", to_string(d.level), d.text);
+}
+
+vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s) {
+  vrml1::ReadOptions opt;
+  opt.read_inlines = s.read_inlines;
+  vrml1::ReadResult r = vrml1::read_vrml1_file(path, opt);
+  if (!s.quiet)
+    for (const auto& d : r.log.entries()) print_diagnostic(d);
+  return r;
+}
+
+}  // namespace lodforge::apps

@@ -1,0 +1,29 @@
+#pragma once
+/// Options shared by several subcommands: reading scenes, the writer options,
+/// and printing the library's diagnostics.
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "lodforge/core/log.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+
+namespace lodforge::apps {
+
+struct SceneReadSettings {
+  bool read_inlines = false;
+  bool quiet = false;  ///< no warnings on stderr
+};
+
+/// --inline, --quiet.
+void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s);
+/// --floats-per-line, --ints-per-line, --no-tabs, --minimize.
+void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w);
+
+/// Prints a diagnostic on stderr as "warning: text".
+void print_diagnostic(const Diagnostic& d);
+
+/// Reads a VRML 1.0 scene, printing warnings on stderr unless quiet.
+vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);
+
+}  // namespace lodforge::apps

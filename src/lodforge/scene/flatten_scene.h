@@ -1,0 +1,21 @@
+#pragma once
+/// A whole scene as one triangle mesh in world space: every shape met by the
+/// traversal (each USE again, in its own place), primitives tessellated.
+/// Used where a scene is measured or simplified as a single surface.
+#include "lodforge/core/log.h"
+#include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/scene/node.h"
+#include "lodforge/scene/shape_mesh.h"
+
+namespace lodforge::scene {
+
+struct FlattenOptions {
+  int lod_level = 0;  ///< which child of every LOD node
+  ShapeMeshOptions shape;
+};
+
+/// Throws DataError as shape_mesh does.
+TriangleMesh flatten_scene(const Scene& scene, const FlattenOptions& options = {},
+                           Log* log = nullptr);
+
+}  // namespace lodforge::scene

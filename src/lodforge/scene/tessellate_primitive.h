@@ -1,0 +1,21 @@
+#pragma once
+/// Triangle meshes of the VRML 1.0 primitives (Cube, Sphere, Cone, Cylinder)
+/// in their local coordinates, with per-vertex normals and texture
+/// coordinates laid out as the VRML 1.0 specification describes.
+#include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/scene/node.h"
+
+namespace lodforge::scene {
+
+struct TessellateOptions {
+  /// Segments around the axis (Sphere, Cone, Cylinder); Sphere uses half as
+  /// many rings. At least 3.
+  int segments = 24;
+};
+
+/// Tessellates a Cube, Sphere, Cone or Cylinder node (fields or their spec
+/// defaults; Cone and Cylinder honour `parts`). Throws DataError naming the
+/// node for any other type or for a negative size.
+TriangleMesh tessellate_primitive(const Node& node, const TessellateOptions& options = {});
+
+}  // namespace lodforge::scene

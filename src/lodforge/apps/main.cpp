@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   Runner run;
   add_info_command(app, run);
   add_format_command(app, run);
+  add_render_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

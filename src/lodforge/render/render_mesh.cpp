@@ -298,7 +298,10 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
 
   RenderResult result;
   result.frame = options.frame.radius > 0 ? options.frame : bounding_sphere(mesh);
-  const int ss = std::clamp(options.supersample, 1, 8);
+  // Supersampling is lowered for very large pictures, keeping the framebuffer
+  // (16 bytes a sample) under about 1 GB.
+  int ss = std::clamp(options.supersample, 1, 8);
+  while (ss > 1 && static_cast<double>(options.width) * options.height * ss * ss > 64e6) --ss;
   const int w = options.width * ss, h = options.height * ss;
   Framebuffer fb(w, h, clamp01(options.background));
   if (result.frame.radius <= 0) {  // nothing to draw

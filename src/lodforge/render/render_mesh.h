@@ -50,6 +50,7 @@ struct RenderOptions {
   FrameSphere frame;
   /// Anti-aliasing: the picture is rendered at supersample x the size and
   /// averaged down. 1 = off; 2 (the default) is smooth enough for documents.
+  /// Lowered automatically when width * height * supersample^2 exceeds 64 M.
   int supersample = 2;
 };
 

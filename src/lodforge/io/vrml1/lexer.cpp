@@ -211,7 +211,11 @@ bool Lexer::read_int(std::int32_t& out, bool commas) {
 }
 
 std::string_view Lexer::skip_balanced_body(const Token& open) {
-  if (has_peeked_) unpeek();
+  // Start right after the '{', so the body keeps its leading white space.
+  has_peeked_ = false;
+  cursor_ = open.text.data() + 1;
+  line_ = open.line;
+  line_start_ = open.text.data() - (open.col - 1);
   const char* begin = cursor_;
   int depth = 0;
   const char* p = cursor_;

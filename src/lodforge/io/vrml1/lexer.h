@@ -57,8 +57,9 @@ class Lexer {
   std::string_view rest() const {
     return {cursor_, static_cast<std::size_t>(end_ - cursor_)};
   }
-  /// Skips a balanced body up to (not including) the '}' closing the current
-  /// brace level, honouring strings and comments. Throws on end of input.
+  /// Skips the body of the node opened by `open` (a '{' token already read):
+  /// everything up to (not including) the matching '}', honouring strings and
+  /// comments. Returns the body text. Throws on end of input.
   std::string_view skip_balanced_body(const Token& open);
 
   int line() const { return line_; }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include "lodforge/mesh/mesh_io.h"
 #include "lodforge/render/write_png.h"
 #include "render/test_meshes.h"
 
@@ -67,6 +70,30 @@ TEST(ContactSheet, EmptyPanelsKeepTheirPlace) {
   EXPECT_EQ(pixel_stats(r.image, r.panel_x[1], r.panel_top, 64, 64).covered_fraction, 0);
   EXPECT_EQ(pixel_stats(r.image, r.panel_x[2], 0, 64, r.image.height).covered_fraction, 0);
   EXPECT_TRUE(render_contact_sheet({}).image.empty());
+}
+
+// The real corpus: the Stanford bunny at its four scanned resolutions, like the
+// original's Figure 5.5 (skipped when ../shared/data is absent).
+TEST(ContactSheet, BunnyResolutions) {
+  const std::string dir = std::string(LODFORGE_SHARED_DATA) + "/meshes/";
+  const char* names[] = {"bun_zipper.ply", "bun_zipper_res2.ply", "bun_zipper_res3.ply",
+                         "bun_zipper_res4.ply"};
+  if (!std::filesystem::exists(dir + names[0])) GTEST_SKIP() << "no " << dir;
+  std::vector<TriangleMesh> levels;
+  for (const char* name : names) levels.push_back(read_mesh(dir + name));
+  std::vector<ContactSheetPanel> panels;
+  for (std::size_t k = 0; k < levels.size(); ++k)
+    panels.push_back(
+        {.mesh = &levels[k], .labels = lod_level_labels(k, levels[k].triangle_count(), 0.5 * k)});
+  const ContactSheetResult r = render_contact_sheet(
+      panels, {.panel = {.width = 240, .height = 240, .azimuth = 0, .elevation = 10}});
+  write_png(r.image, test::output_dir() + "/bunny_levels.png");
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const auto s = pixel_stats(r.image, r.panel_x[k], r.panel_top, 240, 240);
+    EXPECT_GT(s.covered_fraction, 0.25) << names[k];
+    EXPECT_LT(s.covered_fraction, 0.75) << names[k];
+    EXPECT_NEAR(s.center_x - r.panel_x[k], 120, 20) << names[k];
+  }
 }
 
 TEST(ContactSheet, LodLevelLabels) {

@@ -109,7 +109,7 @@ ContactSheetResult render_contact_sheet(std::span<const ContactSheetPanel> panel
   const int scale =
       options.text_scale > 0
           ? options.text_scale
-          : std::clamp(std::min(panel_options.width, panel_options.height) / 150, 1, 8);
+          : std::clamp(std::min(panel_options.width, panel_options.height) / 120, 1, 8);
   std::size_t max_lines = 0;
   for (const auto& panel : panels) max_lines = std::max(max_lines, panel.labels.size());
   const int line_height = kLineHeight * scale;

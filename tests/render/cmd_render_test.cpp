@@ -1,0 +1,82 @@
+// `lodforge render` end to end: runs the built executable (skipped when it has
+// not been built, since test_render does not depend on it).
+#include <gtest/gtest.h>
+#include <stb_image.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render/test_meshes.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CmdRender : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    exe_ = std::string(LODFORGE_BINARY_DIR) + "/lodforge";
+    if (!fs::exists(exe_)) GTEST_SKIP() << exe_ << " not built";
+    dir_ = test::output_dir() + "/cmd";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  // Exit code of `lodforge render <args>`, output discarded.
+  int lodforge_render(const std::string& args) {
+    const int status = std::system((exe_ + " render " + args + " >/dev/null 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  // An ASCII PLY of a cube with every vertex red.
+  std::string red_cube_ply() {
+    const TriangleMesh m = test::cube();
+    const std::string path = dir_ + "/red_cube.ply";
+    std::ofstream out(path);
+    out << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+           "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+           "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const auto& p : m.positions) out << p.x << ' ' << p.y << ' ' << p.z << " 255 0 0\n";
+    for (const auto& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+    return path;
+  }
+  std::string exe_, dir_;
+};
+
+TEST_F(CmdRender, WritesAPngOfTheRequestedSizeWithTheMeshColours) {
+  const std::string png = dir_ + "/out.png";
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + png + " --size 120x90 --view 45,30"), 0);
+  int w = 0, h = 0, n = 0;
+  stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
+  ASSERT_NE(data, nullptr);
+  Image img(w, h);
+  img.pixels.assign(data, data + static_cast<std::size_t>(w) * h * 4);
+  stbi_image_free(data);
+  EXPECT_EQ(w, 120);
+  EXPECT_EQ(h, 90);
+  const auto s = test::pixel_stats(img);
+  EXPECT_GT(s.covered_fraction, 0.1);
+  EXPECT_GT(s.mean_r, 2 * s.mean_g);
+
+  const std::string grey = dir_ + "/grey.png";
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + grey + " --no-colors --wireframe"), 0);
+  EXPECT_TRUE(fs::exists(grey));
+}
+
+TEST_F(CmdRender, BadUsageIsExitCode2AndBadInputExitCode1WithoutOutput) {
+  const std::string mesh = red_cube_ply(), png = dir_ + "/never.png";
+  EXPECT_EQ(lodforge_render(mesh + " -o " + png + " --size 100"), 2);
+  EXPECT_EQ(lodforge_render(mesh + " -o " + png + " --size 0x50"), 2);
+  EXPECT_EQ(lodforge_render(mesh + " -o " + png + " --size 100x50x3"), 2);
+  EXPECT_EQ(lodforge_render(mesh + " -o " + png + " --view 10"), 2);
+  EXPECT_EQ(lodforge_render(mesh + " -o " + png + " --view 10,91"), 2);
+  EXPECT_EQ(lodforge_render(mesh), 2);  // no -o
+  EXPECT_EQ(lodforge_render(dir_ + "/missing.ply -o " + png), 1);
+  std::ofstream(dir_ + "/bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
+  EXPECT_EQ(lodforge_render(dir_ + "/bad.off -o " + png), 1);
+  EXPECT_FALSE(fs::exists(png));
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -31,6 +31,18 @@ bool has_part(const Node& n, std::string_view part) {
   return false;
 }
 
+// Point i of `seg` on the unit circle; i and i + seg give the same bits, so
+// seams weld exactly, and there are no negative zeros.
+Vec2 circle(int i, int seg) {
+  int k = i % seg;
+  if ((4 * k) % seg == 0) {  // quarter turns exactly, so poles and axes are exact
+    const Vec2 quarter[4] = {{0, 1}, {1, 0}, {0, -1}, {-1, 0}};
+    return quarter[(4 * k) / seg];
+  }
+  double a = 2 * kPi * k / seg;
+  return {float(std::sin(a)) + 0.f, float(std::cos(a)) + 0.f};
+}
+
 class Builder {
  public:
   TriangleMesh mesh;
@@ -50,9 +62,8 @@ class Builder {
   void cap(float y, float r, int seg, float up) {
     std::uint32_t center = vertex({0, y, 0}, {0, up, 0}, {0.5f, 0.5f});
     for (int i = 0; i <= seg; ++i) {
-      float a = float(2 * kPi * i / seg);
-      float s = std::sin(a), c = std::cos(a);
-      std::uint32_t v = vertex({r * s, y, r * c}, {0, up, 0}, {0.5f + 0.5f * s, 0.5f - 0.5f * c * up});
+      auto [s, c] = circle(i, seg);
+      std::uint32_t v = vertex({r * s + 0.f, y, r * c + 0.f}, {0, up, 0}, {0.5f + 0.5f * s, 0.5f - 0.5f * c * up});
       if (i == 0) continue;
       if (up > 0) tri(center, v - 1, v);
       else tri(center, v, v - 1);
@@ -63,12 +74,11 @@ class Builder {
   void side(float y0, float r0, float y1, float r1, int seg) {
     float h = y1 - y0;
     for (int i = 0; i <= seg; ++i) {
-      float a = float(2 * kPi * i / seg);
-      float s = std::sin(a), c = std::cos(a);
+      auto [s, c] = circle(i, seg);
       Vec3 n{s * h, r0 - r1, c * h};
       float u = float(i) / float(seg);
-      vertex({r0 * s, y0, r0 * c}, n, {u, 0});
-      vertex({r1 * s, y1, r1 * c}, n, {u, 1});
+      vertex({r0 * s + 0.f, y0, r0 * c + 0.f}, n, {u, 0});
+      vertex({r1 * s + 0.f, y1, r1 * c + 0.f}, n, {u, 1});
     }
     std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size()) - 2 * (seg + 1);
     for (int i = 0; i < seg; ++i) {
@@ -110,10 +120,11 @@ TriangleMesh tessellate_primitive(const Node& node, const TessellateOptions& opt
     float r = float_field(node, "radius");
     int rings = std::max(seg / 2, 2);
     for (int j = 0; j <= rings; ++j) {
-      float phi = float(kPi * j / rings);
+      // Ring j at polar angle pi*j/rings, from the circle of 2*rings points.
+      Vec2 ring = circle(j, 2 * rings);
       for (int i = 0; i <= seg; ++i) {
-        float th = float(2 * kPi * i / seg);
-        Vec3 n{std::sin(phi) * std::sin(th), std::cos(phi), std::sin(phi) * std::cos(th)};
+        auto [s, c] = circle(i, seg);
+        Vec3 n{ring.x * s + 0.f, ring.y, ring.x * c + 0.f};
         b.vertex(n * r, n, {float(i) / float(seg), 1 - float(j) / float(rings)});
       }
     }

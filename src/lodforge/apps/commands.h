@@ -13,5 +13,6 @@ using Runner = std::function<int()>;
 void add_info_command(CLI::App& app, Runner& run);
 void add_format_command(CLI::App& app, Runner& run);
 void add_render_command(CLI::App& app, Runner& run);
+void add_compare_command(CLI::App& app, Runner& run);
 
 }  // namespace lodforge::apps

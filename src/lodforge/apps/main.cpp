@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   add_info_command(app, run);
   add_format_command(app, run);
   add_render_command(app, run);
+  add_compare_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,135 @@
+// `lodforge info` and `lodforge format` as a user runs them: exit codes,
+// messages, JSON, standard input/output, gzip, inlines, no partial output.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/run_command.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::read_text;
+using testing::run_lodforge;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lodforge_cli_test_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    fs::path p = dir_ / name;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+const std::string kExample = std::string(LODFORGE_EXAMPLES) + "/scene.wrl";
+
+TEST_F(Cli, InfoJsonOnTheExample) {
+  auto r = run_lodforge("info --json " + kExample);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_GE(j["shapes"]["IndexedFaceSet"].get<int>(), 1);
+  EXPECT_GE(j["ifs_triangles"].get<int>(), 39200);
+  EXPECT_GT(j["triangles"].get<int>(), j["ifs_triangles"].get<int>());  // + primitives
+  EXPECT_GT(j["bounds"]["diagonal"].get<double>(), 100);
+  EXPECT_EQ(j["node_counts"]["WWWAnchor"].get<int>(), 1);
+}
+
+TEST_F(Cli, InfoTextNamesTheOriginalCounts) {
+  auto r = run_lodforge("info " + kExample);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("IndexedFaceSets "));
+  EXPECT_THAT(r.out, HasSubstr("Cylinders "));
+  EXPECT_THAT(r.out, HasSubstr("bounds ["));
+}
+
+TEST_F(Cli, FormatRoundTripsThroughStdinAndStdout) {
+  auto r = run_lodforge("format - -o - --minimize", kExample);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto a = vrml1::read_vrml1_file(kExample);
+  auto b = vrml1::read_vrml1(r.out);
+  EXPECT_TRUE(scene::equal(a.scene, b.scene));
+  EXPECT_LT(r.out.size(), read_text(kExample).size());
+}
+
+TEST_F(Cli, GzipInputIsReadTransparently) {
+  std::string plain = write("a.wrl", "#VRML V1.0 ascii\nSeparator { Cube {} }\n");
+  ASSERT_EQ(std::system(("gzip -k -f " + plain).c_str()), 0);
+  auto r = run_lodforge("info --json " + plain + ".gz");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["shapes"]["Cube"].get<int>(), 1);
+}
+
+TEST_F(Cli, BadInputIsExitCodeOneWithPositionAndNoOutputFile) {
+  std::string bad = write("bad.wrl", "#VRML V1.0 ascii\nSeparator {\n  Cube { width x }\n}\n");
+  std::string out = path("out.wrl");
+  auto r = run_lodforge("format " + bad + " -o " + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + bad + ":3:16: expected a number for SFFloat field 'width', got 'x'\n");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
+TEST_F(Cli, MissingFileAndBadUsage) {
+  auto missing = run_lodforge("info " + path("nope.wrl"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_THAT(missing.err, HasSubstr("nope.wrl: cannot open: No such file or directory"));
+  EXPECT_EQ(run_lodforge("format").exit_code, 2);
+  EXPECT_EQ(run_lodforge("frobnicate x").exit_code, 2);
+  EXPECT_EQ(run_lodforge("format a.wrl -o b.wrl --floats-per-line 0").exit_code, 2);
+}
+
+TEST_F(Cli, UnknownNodesWarnAndSurviveFormatting) {
+  std::string in = write("ext.wrl",
+                         "#VRML V1.0 ascii\nSeparator {\n  Fog { color 1 0 0 visibilityRange 50 }\n"
+                         "  Material { diffuseColor 1 0 0 mirror 0.3 }\n}\n");
+  std::string out = path("ext.out.wrl");
+  auto r = run_lodforge("format " + in + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("3-3: unknown node type >Fog< kept as it is"));
+  EXPECT_THAT(r.err, HasSubstr("unknown field >mirror< of Material kept as it is"));
+  std::string text = read_text(out);
+  EXPECT_THAT(text, HasSubstr("Fog { color 1 0 0 visibilityRange 50 }"));
+  EXPECT_THAT(text, HasSubstr("mirror 0.3"));
+}
+
+TEST_F(Cli, InlinesAreReadOnlyWhenAskedAndNeverOutsideTheFolder) {
+  write("scene/part.wrl", "#VRML V1.0 ascii\nSeparator { Cube {} Sphere {} }\n");
+  std::string main = write("scene/main.wrl",
+                           "#VRML V1.0 ascii\nSeparator { WWWInline { name \"part.wrl\" } }\n");
+  auto without = nlohmann::json::parse(run_lodforge("info --json " + main).out);
+  EXPECT_EQ(without["shapes"]["Cube"].get<int>(), 0);
+  auto r = run_lodforge("info --json --inline " + main);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["shapes"]["Cube"].get<int>(), 1);
+
+  write("secret.wrl", "#VRML V1.0 ascii\nCube {}\n");
+  std::string escape = write(
+      "scene/escape.wrl", "#VRML V1.0 ascii\nSeparator { WWWInline { name \"../secret.wrl\" } }\n");
+  auto refused = run_lodforge("info --inline " + escape);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.err, HasSubstr("WWWInline '../secret.wrl' leaves the scene's folder"));
+
+  std::string net = write("scene/net.wrl",
+                          "#VRML V1.0 ascii\nWWWInline { name \"http://example.com/x.wrl\" }\n");
+  auto remote = run_lodforge("info --inline " + net);
+  EXPECT_EQ(remote.exit_code, 0);
+  EXPECT_THAT(remote.err, HasSubstr("lodforge never reads over a network"));
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -48,6 +48,21 @@ TEST(CompareMeshes, IdenticalMeshesWithVertexNormals) {
   EXPECT_LT(r.a_to_b.normal.max, 1e-3);  // barycentrics are recomputed, up to rounding
 }
 
+TEST(CompareMeshes, EstimatedNormalsAreSmooth) {
+  // A fine sphere against a coarser one: face normals differ by about the
+  // coarse facets' angular size; estimated vertex normals interpolate towards
+  // the true radial normal on both, so the deviation shrinks.
+  TriangleMesh fine = icosphere(4), coarse = icosphere(2);
+  CompareResult faceted = compare_meshes(fine, coarse, {.samples = 20'000});
+  CompareResult smooth =
+      compare_meshes(fine, coarse, {.samples = 20'000, .estimate_normals = true});
+  EXPECT_FALSE(faceted.vertex_normals);
+  EXPECT_TRUE(smooth.vertex_normals);
+  EXPECT_EQ(faceted.hausdorff, smooth.hausdorff);  // geometry is unchanged
+  EXPECT_LT(smooth.a_to_b.normal.mean, 0.5 * faceted.a_to_b.normal.mean);
+  EXPECT_LT(smooth.a_to_b.normal.max, 0.1);
+}
+
 TEST(CompareMeshes, CubeOffsetAlongAnAxisHasHausdorffD) {
   const float d = 0.25f;
   CompareResult r = compare_meshes(unit_cube(), unit_cube({d, 0, 0}), {.samples = 50'000});

@@ -1,5 +1,5 @@
 // `lodforge compare A B [--json] [--samples N] [--seed S] [--threads T]
-//                       [--colored OUT.ply] [--color-max X]`:
+//                       [--smooth-normals] [--colored OUT.ply] [--color-max X]`:
 // Metro-style deviation between two surfaces (SPEC §4, seed 000 §5.2): A is
 // the reference (the original), B the approximation. JSON goes to stdout with
 // --json, human text to stderr otherwise.
@@ -71,6 +71,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
     std::size_t samples = 0;
     std::uint64_t seed = 1;
     int threads = 0;
+    bool smooth_normals = false;
     std::string colored;
     double color_max = 0;
   };
@@ -87,6 +88,8 @@ void add_compare_command(CLI::App& app, Runner& run) {
   cmd->add_option("--seed", s->seed, "Seed of the sampling (default 1)");
   cmd->add_option("--threads", s->threads, "Worker threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--smooth-normals", s->smooth_normals,
+                "Estimate missing vertex normals by averaging face normals (else face normals)");
   cmd->add_option("--colored", s->colored,
                   "Write A with per-vertex colours by deviation (blue 0, green half, red max)");
   cmd->add_option("--color-max", s->color_max,
@@ -101,6 +104,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
                                         .seed = s->seed,
                                         .threads = s->threads,
                                         .per_vertex = !s->colored.empty(),
+                                        .estimate_normals = s->smooth_normals,
                                         .a_name = s->a,
                                         .b_name = s->b});
       double scale_max = 0;

@@ -72,6 +72,21 @@ float max_abs_coordinate(const Box3& box) {
   return m;
 }
 
+// Area-weighted vertex normals: the sum of the unnormalised face normals
+// (|cross| = twice the area) around each vertex.
+TriangleMesh with_estimated_normals(const TriangleMesh& mesh) {
+  TriangleMesh out = mesh;
+  std::vector<Vec3> sum(mesh.positions.size());
+  for (const auto& t : mesh.triangles) {
+    const auto& p = mesh.positions;
+    Vec3 n = cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+    for (std::uint32_t v : t) sum[v] += n;
+  }
+  out.normals.resize(sum.size());
+  for (std::size_t v = 0; v < sum.size(); ++v) out.normals[v] = normalized(sum[v]);
+  return out;
+}
+
 // Per-sample results of one direction.
 struct Measured {
   std::vector<float> distance;
@@ -215,6 +230,12 @@ CompareResult compare_meshes(const TriangleMesh& a, const TriangleMesh& b,
                              const CompareOptions& options) {
   validate(a, options.a_name);
   validate(b, options.b_name);
+  if (options.estimate_normals && !(a.has_normals() && b.has_normals())) {
+    CompareOptions again = options;
+    again.estimate_normals = false;
+    return compare_meshes(a.has_normals() ? a : with_estimated_normals(a),
+                          b.has_normals() ? b : with_estimated_normals(b), again);
+  }
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
     return arena.execute([&] { return run(a, b, options); });

@@ -19,6 +19,12 @@ struct CompareOptions {
   bool vertices = true;          ///< also sample every vertex (catches the extremes)
   std::size_t edge_samples = 0;  ///< samples along edges per direction (0: none)
   bool per_vertex = true;        ///< fill CompareResult::vertex_deviation
+  /// Give a mesh without vertex normals the area-weighted average of its face
+  /// normals at each vertex (seed 000 §5.2.2: "vertex normals are estimated
+  /// averaging face normals in the vertex neighbourhood") instead of comparing
+  /// face normals. Smooth normals measure the shape's orientation without the
+  /// facet noise of scanned meshes.
+  bool estimate_normals = false;
   /// Distances below the rounding noise of single-precision input
   /// (16 x FLT_EPSILON x the largest |coordinate| of A and B) count as 0, so
   /// that coincident surfaces measure exactly 0.

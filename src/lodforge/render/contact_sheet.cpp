@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #pragma GCC diagnostic push
@@ -46,18 +47,22 @@ void draw_text(Image& img, int x, int y, const std::string& text, int scale, con
   const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, buffer.data(),
                                         static_cast<int>(buffer.size()));
   const std::uint8_t rgb[3] = {to_byte(color.x), to_byte(color.y), to_byte(color.z)};
-  struct Vertex {
-    float x, y, z;
-    unsigned char rgba[4];
+  // Each quad is 4 vertices of 16 bytes: x, y, z as floats, then RGBA bytes.
+  constexpr std::size_t kVertexBytes = 16;
+  const auto vertex_xy = [&](std::size_t i) {
+    float xy[2];
+    std::memcpy(xy, buffer.data() + i * kVertexBytes, sizeof xy);
+    return Vec2{xy[0], xy[1]};
   };
-  const auto* v = reinterpret_cast<const Vertex*>(buffer.data());
-  for (int q = 0; q < quads; ++q) {
-    float qx0 = v[4 * q].x, qx1 = qx0, qy0 = v[4 * q].y, qy1 = qy0;
-    for (int k = 1; k < 4; ++k) {
-      qx0 = std::min(qx0, v[4 * q + k].x);
-      qx1 = std::max(qx1, v[4 * q + k].x);
-      qy0 = std::min(qy0, v[4 * q + k].y);
-      qy1 = std::max(qy1, v[4 * q + k].y);
+  for (std::size_t q = 0; q < static_cast<std::size_t>(std::max(quads, 0)); ++q) {
+    const Vec2 first = vertex_xy(4 * q);
+    float qx0 = first.x, qx1 = qx0, qy0 = first.y, qy1 = qy0;
+    for (std::size_t k = 1; k < 4; ++k) {
+      const Vec2 p = vertex_xy(4 * q + k);
+      qx0 = std::min(qx0, p.x);
+      qx1 = std::max(qx1, p.x);
+      qy0 = std::min(qy0, p.y);
+      qy1 = std::max(qy1, p.y);
     }
     const int px0 = std::max({0, clip_x0, x + static_cast<int>(std::lround(qx0 * scale))});
     const int px1 = std::min({img.width, clip_x1, x + static_cast<int>(std::lround(qx1 * scale))});

@@ -1,6 +1,7 @@
 #pragma once
 /// An 8-bit RGBA picture, the output of the renderers and the input of write_png.
 #include <cassert>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -34,7 +35,7 @@ struct Image {
 /// An 8-bit channel value from a float in [0,1] (clamped, rounded).
 inline std::uint8_t to_byte(float v) {
   v = v < 0 ? 0 : (v > 1 ? 1 : v);
-  return static_cast<std::uint8_t>(v * 255.f + 0.5f);
+  return static_cast<std::uint8_t>(std::lround(v * 255.f));
 }
 
 }  // namespace lodforge

@@ -250,7 +250,8 @@ Image downsample(const Framebuffer& fb, int factor) {
       Vec3 sum;
       for (int dy = 0; dy < factor; ++dy)
         for (int dx = 0; dx < factor; ++dx)
-          sum += fb.color[static_cast<std::size_t>(y * factor + dy) * fb.width + x * factor + dx];
+          sum += fb.color[static_cast<std::size_t>(y * factor + dy) * fb.width +
+                          static_cast<std::size_t>(x * factor + dx)];
       sum *= norm;
       std::uint8_t* px = img.at(x, y);
       px[0] = to_byte(sum.x);

@@ -80,19 +80,22 @@ void BM_BvhBuild(benchmark::State& state) {
 BENCHMARK(BM_BvhBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Samples on the low-resolution bunny against the full one: the expensive
-// direction. Arg 0: plain query; 1: with the normal tie rule (as compare).
+// direction. Arg 0: plain queries; 1: with the normal tie rule; 2: tie rule
+// and the previous answer as a hint within blocks of 256, as compare runs.
 void BM_BvhQueries(benchmark::State& state) {
   const Meshes& m = meshes();
   if (!m.ok) return state.SkipWithError("Stanford bunny not found");
   TriangleBvh bvh(m.full);
   SurfaceSamples s = sample_surface(m.low, {.count = 1'000'000, .vertices = false});
-  const bool tie = state.range(0) != 0;
+  const int mode = int(state.range(0));
   std::size_t queries = 0;
   for (auto _ : state) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.size(), 256), [&](const auto& r) {
+      std::uint32_t hint = ClosestPoint::kNone;
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        ClosestPoint c = tie ? bvh.closest_point(s.positions[i], s.normals[i])
-                             : bvh.closest_point(s.positions[i]);
+        ClosestPoint c = mode == 0 ? bvh.closest_point(s.positions[i])
+                                   : bvh.closest_point(s.positions[i], s.normals[i], hint);
+        if (mode == 2) hint = c.triangle;
         benchmark::DoNotOptimize(c.distance_squared);
       }
     });
@@ -100,7 +103,7 @@ void BM_BvhQueries(benchmark::State& state) {
   }
   state.counters["queries/s"] = benchmark::Counter(double(queries), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_BvhQueries)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BvhQueries)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The peer: brute force over all 69 451 triangles, on 2 000 of the queries.
 void BM_BruteForceQueries(benchmark::State& state) {

@@ -47,7 +47,12 @@ TEST(TriangleBvh, EqualsBruteForceOnRandomQueries) {
       Vec3 p{coord(rng), coord(rng), coord(rng)};
       ClosestPoint c = bvh.closest_point(p);
       ASSERT_TRUE(c.found());
-      EXPECT_EQ(c.distance_squared, brute_force(m, p)) << i;
+      float expected = brute_force(m, p);
+      EXPECT_EQ(c.distance_squared, expected) << i;
+      // A hint (here any triangle) and the normal tie rule never change the distance.
+      auto hint = std::uint32_t(rng() % m.triangles.size());
+      EXPECT_EQ(bvh.closest_point(p, hint).distance_squared, expected) << i;
+      EXPECT_EQ(bvh.closest_point(p, Vec3{0, 0, 1}, hint).distance_squared, expected) << i;
       // The reported triangle and barycentrics reproduce the point.
       const auto& t = m.triangles[c.triangle];
       Vec3 q = m.positions[t[0]] * c.barycentric[0] + m.positions[t[1]] * c.barycentric[1] +

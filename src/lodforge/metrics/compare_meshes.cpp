@@ -93,25 +93,39 @@ struct Measured {
   std::vector<float> angle;  // NaN where a normal is undefined
 };
 
+// Samples are processed in fixed blocks; within a block each query starts
+// from the previous answer's triangle (samples come in triangle order, so
+// neighbours are near), which prunes most of the hierarchy at once. Fixed
+// blocks keep the hints, hence the tie choices, independent of the threads.
+constexpr std::size_t kBlock = 256;
+
+template <typename Query>
+void for_each_in_blocks(std::size_t n, Query&& query) {
+  tbb::parallel_for(std::size_t(0), (n + kBlock - 1) / kBlock, [&](std::size_t block) {
+    std::uint32_t hint = ClosestPoint::kNone;
+    for (std::size_t i = block * kBlock, end = std::min(n, i + kBlock); i < end; ++i) {
+      hint = query(i, hint);
+    }
+  });
+}
+
 Measured measure(const SurfaceSamples& samples, const TriangleBvh& other, float noise) {
   Measured m;
   m.distance.resize(samples.size());
   m.angle.resize(samples.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
-                    [&](const auto& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const Vec3& n1 = samples.normals[i];
-                        ClosestPoint c = other.closest_point(samples.positions[i], n1);
-                        float d = std::sqrt(c.distance_squared);
-                        m.distance[i] = d <= noise ? 0.f : d;
-                        Vec3 n2 = other.normal_at(c);
-                        if (length_squared(n1) > 0 && length_squared(n2) > 0) {
-                          m.angle[i] = std::atan2(length(cross(n1, n2)), dot(n1, n2));
-                        } else {
-                          m.angle[i] = std::numeric_limits<float>::quiet_NaN();
-                        }
-                      }
-                    });
+  for_each_in_blocks(samples.size(), [&](std::size_t i, std::uint32_t hint) {
+    const Vec3& n1 = samples.normals[i];
+    ClosestPoint c = other.closest_point(samples.positions[i], n1, hint);
+    float d = std::sqrt(c.distance_squared);
+    m.distance[i] = d <= noise ? 0.f : d;
+    Vec3 n2 = other.normal_at(c);
+    if (length_squared(n1) > 0 && length_squared(n2) > 0) {
+      m.angle[i] = std::atan2(length(cross(n1, n2)), dot(n1, n2));
+    } else {
+      m.angle[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+    return c.triangle;
+  });
   return m;
 }
 
@@ -211,15 +225,18 @@ CompareResult run(const TriangleMesh& a, const TriangleMesh& b, const CompareOpt
 
   if (options.per_vertex) {
     result.vertex_deviation.resize(a.positions.size());
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, a.positions.size(), 256), [&](const auto& range) {
-          for (std::size_t v = range.begin(); v != range.end(); ++v) {
-            const Vec3& p = a.positions[v];
-            // Unused vertices may hold anything; they get 0.
-            float d = is_finite(p) ? std::sqrt(bvh_b->closest_point(p).distance_squared) : 0.f;
-            result.vertex_deviation[v] = d <= noise ? 0.f : d;
-          }
-        });
+    for_each_in_blocks(a.positions.size(), [&](std::size_t v, std::uint32_t hint) {
+      const Vec3& p = a.positions[v];
+      // Unused vertices may hold anything; they get 0.
+      if (!is_finite(p)) {
+        result.vertex_deviation[v] = 0;
+        return hint;
+      }
+      ClosestPoint c = bvh_b->closest_point(p, hint);
+      float d = std::sqrt(c.distance_squared);
+      result.vertex_deviation[v] = d <= noise ? 0.f : d;
+      return c.triangle;
+    });
   }
   return result;
 }

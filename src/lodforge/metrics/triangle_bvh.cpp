@@ -85,7 +85,9 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh, const BvhOptions& options)
   nodes_.reserve(2 * n / options_.leaf_size + 1);
   build(0, std::uint32_t(n), 1, centroid, lo, hi);
   corners_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  slot_.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    slot_[order_[i]] = i;
     const auto& t = mesh.triangles[order_[i]];
     corners_[i] = {p[t[0]], p[t[1]], p[t[2]]};
   }
@@ -183,7 +185,7 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
 }
 
 template <bool kPreferNormal>
-ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal) const {
+ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t hint) const {
   ClosestPoint best;
   if (nodes_.empty()) return best;
   float best_score = 0;
@@ -194,6 +196,31 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal) const {
   auto limit = [&] {
     return kPreferNormal ? nearest + kTie * nearest + tie_floor_ : best.distance_squared;
   };
+
+  auto visit = [&](std::uint32_t i) {
+    const Corners& t = corners_[i];
+    TrianglePoint tp = closest_point_on_triangle(p, t.a, t.b, t.c);
+    if constexpr (kPreferNormal) {
+      float tolerance = kTie * nearest + tie_floor_;
+      if (!best.found() || tp.distance_squared < nearest - tolerance) {
+        best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
+        score_known = false;
+      } else if (tp.distance_squared <= nearest + tolerance) {
+        ClosestPoint candidate{tp.point, order_[i], tp.barycentric, tp.distance_squared};
+        if (!score_known) best_score = dot(normal_at(best), normal);
+        score_known = true;
+        float score = dot(normal_at(candidate), normal);
+        if (score > best_score) {
+          best = candidate;
+          best_score = score;
+        }
+      }
+      nearest = std::min(nearest, tp.distance_squared);
+    } else if (tp.distance_squared < best.distance_squared) {
+      best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
+    }
+  };
+  if (hint < slot_.size()) visit(slot_[hint]);
 
   struct Entry {
     std::uint32_t node;
@@ -210,27 +237,7 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal) const {
       const Node& node = nodes_[ni];
       if (node.count) {
         for (std::uint32_t i = node.index, last = node.index + node.count; i < last; ++i) {
-          const Corners& t = corners_[i];
-          TrianglePoint tp = closest_point_on_triangle(p, t.a, t.b, t.c);
-          if constexpr (kPreferNormal) {
-            float tolerance = kTie * nearest + tie_floor_;
-            if (!best.found() || tp.distance_squared < nearest - tolerance) {
-              best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
-              score_known = false;
-            } else if (tp.distance_squared <= nearest + tolerance) {
-              ClosestPoint candidate{tp.point, order_[i], tp.barycentric, tp.distance_squared};
-              if (!score_known) best_score = dot(normal_at(best), normal);
-              score_known = true;
-              float score = dot(normal_at(candidate), normal);
-              if (score > best_score) {
-                best = candidate;
-                best_score = score;
-              }
-            }
-            nearest = std::min(nearest, tp.distance_squared);
-          } else if (tp.distance_squared < best.distance_squared) {
-            best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
-          }
+          visit(i);
         }
         break;
       }
@@ -254,12 +261,13 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal) const {
   return best;
 }
 
-ClosestPoint TriangleBvh::closest_point(const Vec3& p) const {
-  return query<false>(p, {});
+ClosestPoint TriangleBvh::closest_point(const Vec3& p, std::uint32_t hint) const {
+  return query<false>(p, {}, hint);
 }
 
-ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal) const {
-  return query<true>(p, normal);
+ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal,
+                                        std::uint32_t hint) const {
+  return query<true>(p, normal, hint);
 }
 
 Vec3 TriangleBvh::normal_at(const ClosestPoint& at) const {

@@ -43,8 +43,10 @@ class TriangleBvh {
   explicit TriangleBvh(const TriangleMesh& mesh, const BvhOptions& options = {});
 
   /// Exact closest point of the surface to `p`; not found() only when the mesh
-  /// has no triangles.
-  ClosestPoint closest_point(const Vec3& p) const;
+  /// has no triangles. `hint`, a triangle likely to be close (e.g. the answer
+  /// for the previous of a run of nearby queries), is tested first so that the
+  /// traversal starts with a tight bound; it never changes the distance found.
+  ClosestPoint closest_point(const Vec3& p, std::uint32_t hint = ClosestPoint::kNone) const;
 
   /// As closest_point(p), but among triangles at the same distance (within a
   /// relative 1e-5 of the squared distance plus float rounding noise, e.g. at
@@ -52,7 +54,8 @@ class TriangleBvh {
   /// (normal_at) makes the smallest angle with `normal`: the tie rule of the
   /// normal deviation measure. distance_squared is still the exact minimum;
   /// point, triangle and barycentric are those of the chosen triangle.
-  ClosestPoint closest_point(const Vec3& p, const Vec3& normal) const;
+  ClosestPoint closest_point(const Vec3& p, const Vec3& normal,
+                             std::uint32_t hint = ClosestPoint::kNone) const;
 
   /// Unit surface normal at a found point: the mesh's per-vertex normals
   /// interpolated with the barycentric coordinates when it has them (and
@@ -75,7 +78,7 @@ class TriangleBvh {
   };
 
   template <bool kPreferNormal>
-  ClosestPoint query(const Vec3& p, const Vec3& normal) const;
+  ClosestPoint query(const Vec3& p, const Vec3& normal, std::uint32_t hint) const;
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, int depth,
                       std::vector<Vec3>& centroid, std::vector<Vec3>& lo, std::vector<Vec3>& hi);
 
@@ -84,6 +87,7 @@ class TriangleBvh {
   std::vector<Node> nodes_;
   std::vector<Corners> corners_;      // triangle corners in leaf order
   std::vector<std::uint32_t> order_;  // leaf order -> mesh triangle index
+  std::vector<std::uint32_t> slot_;   // mesh triangle index -> leaf order
   std::vector<Vec3> face_normals_;    // per mesh triangle, unit or zero
   float tie_floor_ = 0;               // absolute tie tolerance on squared distances
   int depth_ = 0;

@@ -1,7 +1,20 @@
 // Mesh file I/O: format dispatch, and the text cursor and face collection
 // shared by the PLY, OBJ, OFF and STL readers (mesh_io_<format>.cpp).
 //
-// ASSIMP_DECISION_PLACEHOLDER
+// Why our own readers and not Assimp (Debian libassimp-dev 5.2.5), measured
+// on the shared corpus, best of 5 runs, Release, same machine:
+//
+//   file                  | Assimp, no post-process | Assimp + JoinIdentical | lodforge
+//   ----------------------+-------------------------+------------------------+----------
+//   bun_zipper.ply (ASCII)| 0.031 s                 | 0.066 s, 34834 V       | 0.012 s
+//   horse.ply (binary LE) | 0.030 s                 | 0.084 s                | 0.004 s
+//   igea.ply (tristrips)  | 0.035 s, 1 face (!)     | 0.062 s, 3 V, 1 face   | 0.012 s, 268686 F
+//   stanford-bunny.obj    | 0.045 s, 208353 V       | 0.146 s, 34834 V       | 0.015 s, 35947 V
+//
+// Assimp is 2.5-8x slower, does not understand the PLY `tristrips` element,
+// unshares every OBJ corner unless asked to re-join, and its re-joining drops
+// and renumbers vertices (35947 -> 34834), which breaks vertex-indexed data
+// (VRML bindings, range-image lattices). So we read the formats ourselves.
 #include "lodforge/mesh/mesh_io.h"
 
 #include <fast_float/fast_float.h>

@@ -298,7 +298,11 @@ class AsciiIn {
     return static_cast<double>(integer(t, w));
   }
   std::int64_t integer(PlyType, const Where& w) { return get<std::int64_t>("an integer", w); }
-  void skip(PlyType) { last_ = cursor_.token().data(); }
+  void skip(PlyType, const Where& w) {
+    std::string_view tok = cursor_.token();
+    last_ = tok.data();
+    if (tok.empty()) cursor_.fail(fmt::format("expected a value for {}, got end of file", w.str()));
+  }
   void skip_n(PlyType, std::int64_t n) {
     for (std::int64_t i = 0; i < n; ++i)
       if (cursor_.token().empty()) cursor_.fail("expected a list item, got end of file");
@@ -389,7 +393,10 @@ class BinaryIn {
     }
     fail(fmt::format("expected an integer type for {}", w.str()));
   }
-  void skip(PlyType t) { skip_n(t, 1); }
+  void skip(PlyType t, const Where& w) {
+    need(type_size(t), w);
+    pos_ += static_cast<std::size_t>(type_size(t));
+  }
   void skip_n(PlyType t, std::int64_t n) {
     std::uint64_t bytes = static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(type_size(t));
     if (bytes > data_.size() - pos_)
@@ -498,7 +505,7 @@ class BodyReader {
           } else if (p.role < kSlots) {
             v[p.role] = in_.number(p.type, Where{&e, i, &p});
           } else {
-            in_.skip(p.type);
+            in_.skip(p.type, Where{&e, i, &p});
           }
         }
         m.positions.push_back(
@@ -530,7 +537,7 @@ class BodyReader {
               in_.fail(fmt::format("negative list length {} for {}", n, Where{&e, i, &p}.str()));
             in_.skip_n(p.type, n);
           } else {
-            in_.skip(p.type);
+            in_.skip(p.type, Where{&e, i, &p});
           }
         }
     }
@@ -580,7 +587,7 @@ class BodyReader {
           } else if (p.role == kVertex1 || p.role == kVertex2) {
             ends[p.role - kVertex1] = index(e, i, p, b);
           } else {
-            in_.skip(p.type);
+            in_.skip(p.type, Where{&e, i, &p});
           }
         }
         if (have_corners) b.faces.add(corners, material);

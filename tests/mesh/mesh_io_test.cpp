@@ -163,6 +163,19 @@ TEST(MeshIo, PlyAsciiWithAttributesAndQuads) {
   EXPECT_EQ(m.texcoords[2], (Vec2{1, 1}));
 }
 
+TEST(MeshIo, PlyFloatColoursAndNormalsAreNormalised) {
+  std::string text = std::string(kPlyHeader) +
+                     "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "property float nx\nproperty float ny\nproperty float nz\n"
+                     "property float red\nproperty float green\nproperty float blue\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0 0 0 2 0.5 0.25 1\n1 0 0 0 0 1 0 0 0\n0 1 0 0 3 0 1 1 1\n3 0 1 2\n";
+  TriangleMesh m = parse(text, MeshFormat::kPly);
+  EXPECT_EQ(m.colors[0], (Vec3{0.5f, 0.25f, 1}));
+  EXPECT_EQ(m.normals[0], (Vec3{0, 0, 1}));
+  EXPECT_EQ(m.normals[2], (Vec3{0, 1, 0}));
+}
+
 TEST(MeshIo, PlyTristripsWithRestarts) {
   // Strip 0 1 2 3 gives (0,1,2) and (2,1,3); after -1, strip 1 3 4 gives (1,3,4).
   std::string text = std::string(kPlyHeader) +

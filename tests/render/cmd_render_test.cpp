@@ -19,7 +19,7 @@ class CmdRender : public ::testing::Test {
  protected:
   void SetUp() override {
     exe_ = std::string(LODFORGE_BINARY_DIR) + "/lodforge";
-    if (!fs::exists(exe_)) GTEST_SKIP() << exe_ << " not built";
+    ASSERT_TRUE(fs::exists(exe_)) << exe_ << " not built";
     dir_ = test::output_dir() + "/cmd";
     fs::remove_all(dir_);
     fs::create_directories(dir_);
@@ -40,6 +40,14 @@ class CmdRender : public ::testing::Test {
     for (const auto& p : m.positions) out << p.x << ' ' << p.y << ' ' << p.z << " 255 0 0\n";
     for (const auto& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
     return path;
+  }
+  Image load(const std::string& png) {
+    int w = 0, h = 0, n = 0;
+    stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
+    Image img(std::max(w, 0), std::max(h, 0));
+    if (data) img.pixels.assign(data, data + static_cast<std::size_t>(w) * h * 4);
+    stbi_image_free(data);
+    return img;
   }
   std::string exe_, dir_;
 };
@@ -76,6 +84,34 @@ TEST_F(CmdRender, BadUsageIsExitCode2AndBadInputExitCode1WithoutOutput) {
   std::ofstream(dir_ + "/bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
   EXPECT_EQ(lodforge_render(dir_ + "/bad.off -o " + png), 1);
   EXPECT_FALSE(fs::exists(png));
+}
+
+TEST_F(CmdRender, RendersAVrmlSceneAndEachLodLevel) {
+  const std::string scene = dir_ + "/lod.wrl";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n LOD { range [ 5, 10 ]\n"
+                          "  Sphere { radius 1 }\n  Cube { }\n  Cone { }\n }\n}\n";
+  const std::string level0 = dir_ + "/level0.png", level2 = dir_ + "/level2.png";
+  ASSERT_EQ(lodforge_render(scene + " -o " + level0 + " --size 100x100"), 0);
+  ASSERT_EQ(lodforge_render(scene + " -o " + level2 + " --size 100x100 --level 2"), 0);
+  const Image a = load(level0), b = load(level2);
+  EXPECT_GT(test::pixel_stats(a).covered_fraction, 0.1);
+  EXPECT_GT(test::pixel_stats(b).covered_fraction, 0.1);
+  EXPECT_NE(a.pixels, b.pixels);  // a sphere, then a cone
+
+  const std::string sheet = dir_ + "/levels.png";
+  ASSERT_EQ(lodforge_render(scene + " -o " + sheet + " --size 100x100 --levels"), 0);
+  const Image all = load(sheet);
+  EXPECT_EQ(all.width, 3 * 100 + 4 * 8);  // three levels side by side
+  EXPECT_EQ(lodforge_render(scene + " -o " + sheet + " --levels --level 1"), 2);
+  EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + dir_ + "/x.png --levels"), 1);
+}
+
+TEST_F(CmdRender, RendersTheExampleScene) {
+  const std::string png = dir_ + "/example.png";
+  ASSERT_EQ(lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png +
+                            " --size 160x120"),
+            0);
+  EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
 }
 
 }  // namespace

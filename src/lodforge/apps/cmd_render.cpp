@@ -1,11 +1,10 @@
-// `lodforge render MESH -o OUT.png [--size WxH] [--view azimuth,elevation]
-// [--no-colors] [--wireframe] [--flat]`: a headless picture of a mesh file
-// (PLY, OBJ, OFF, STL), with its vertex colours, so a `compare --colored`
-// output shows where the error is.
-//
-// VRML scenes (and `--level K | --levels`, a contact sheet of the LOD levels
-// through render_contact_sheet and lod_level_labels) come with the scene
-// flattening function; until then a .wrl input is refused with a clear message.
+// `lodforge render SCENE_OR_MESH -o OUT.png [--level K | --levels] [--size WxH]
+// [--view azimuth,elevation] [--no-colors] [--wireframe] [--flat]`: a headless
+// picture of a mesh file (PLY, OBJ, OFF, STL) with its vertex colours, so a
+// `compare --colored` output shows where the error is, or of a VRML 1.0 scene
+// (flattened at LOD level K), or with --levels a contact sheet of every LOD
+// level side by side with its triangle count and switch distance under it
+// (the original's Figure 5.5).
 #include <fmt/core.h>
 
 #include <cctype>
@@ -16,9 +15,13 @@
 #include <string_view>
 
 #include "lodforge/apps/commands.h"
+#include "lodforge/apps/common_options.h"
+#include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
+#include "lodforge/render/contact_sheet.h"
 #include "lodforge/render/render_mesh.h"
+#include "lodforge/scene/flatten_scene.h"
 #include "lodforge/render/write_png.h"
 
 namespace lodforge::apps {
@@ -52,16 +55,26 @@ bool parse_view(const std::string& text, float& azimuth, float& elevation) {
   }
 }
 
-bool is_vrml(std::string_view path) {
-  const auto ends_with = [&](std::string_view suffix) {
-    if (path.size() < suffix.size()) return false;
-    for (std::size_t i = 0; i < suffix.size(); ++i)
-      if (std::tolower(static_cast<unsigned char>(path[path.size() - suffix.size() + i])) !=
-          suffix[i])
-        return false;
-    return true;
-  };
-  return ends_with(".wrl") || ends_with(".wrl.gz") || ends_with(".vrml");
+// One panel per LOD level of a scene, all seen by the same camera.
+template <typename Settings>
+int render_levels(const Settings& s, const RenderOptions& options) {
+  if (!is_vrml_path(s.input))
+    throw DataError(fmt::format("{}: --levels needs a VRML 1.0 scene with LOD nodes", s.input));
+  vrml1::ReadResult r = read_scene(s.input, {});
+  SceneLevels levels = scene_levels(r.scene);
+  std::vector<TriangleMesh> meshes;
+  std::vector<ContactSheetPanel> panels;
+  for (std::size_t k = 0; k < levels.count; ++k)
+    meshes.push_back(scene::flatten_scene(r.scene, {.lod_level = int(k)}));
+  for (std::size_t k = 0; k < levels.count; ++k) {
+    float from = k == 0 ? 0.f : (k - 1 < levels.ranges.size() ? levels.ranges[k - 1] : 0.f);
+    panels.push_back({&meshes[k], lod_level_labels(k, meshes[k].triangle_count(), from)});
+  }
+  const ContactSheetResult sheet = render_contact_sheet(panels, {.panel = options});
+  write_png(sheet.image, s.output);
+  fmt::print(stderr, "render: {} ({}x{}, {} levels)\n", s.output, sheet.image.width,
+             sheet.image.height, levels.count);
+  return 0;
 }
 
 }  // namespace
@@ -75,10 +88,19 @@ void add_render_command(CLI::App& app, Runner& run) {
     bool no_colors = false;
     bool wireframe = false;
     bool flat = false;
+    int level = 0;
+    bool levels = false;
   };
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd = app.add_subcommand("render", "Render a mesh to a PNG picture (headless)");
-  cmd->add_option("MESH", s->input, "Mesh file (PLY, OBJ, OFF, STL)")->required();
+  CLI::App* cmd =
+      app.add_subcommand("render", "Render a mesh or a scene to a PNG picture (headless)");
+  cmd->add_option("SCENE_OR_MESH", s->input, "VRML 1.0 scene or mesh file (PLY, OBJ, OFF, STL)")
+      ->required();
+  auto* level = cmd->add_option("--level", s->level, "LOD level to render (scenes; 0 = finest)")
+                    ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--levels", s->levels,
+                "Contact sheet of every LOD level with triangles and switch distance (scenes)")
+      ->excludes(level);
   cmd->add_option("-o,--output", s->output, "Output PNG file (- = stdout)")->required();
   cmd->add_option("--size", s->size, "Picture size in pixels, WxH (each 1..8192)")
       ->capture_default_str()
@@ -106,17 +128,14 @@ void add_render_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--flat", s->flat, "Flat shading (one normal per triangle)");
   cmd->callback([s, &run] {
     run = [s] {
-      if (is_vrml(s->input))
-        throw DataError(fmt::format(
-            "{}: rendering VRML scenes is not supported yet; convert the scene to a mesh file",
-            s->input));
       RenderOptions options;
       parse_size(s->size, options.width, options.height);  // validated by CLI11
       parse_view(s->view, options.azimuth, options.elevation);
       options.use_colors = !s->no_colors;
       options.wireframe = s->wireframe;
       options.shading = s->flat ? Shading::kFlat : Shading::kSmooth;
-      const TriangleMesh mesh = read_mesh(s->input);
+      if (s->levels) return render_levels(*s, options);
+      const TriangleMesh mesh = load_geometry(s->input, s->level);
       if (mesh.triangles.empty() && mesh.lines.empty())
         throw DataError(fmt::format("{}: the mesh has no triangles or lines to render", s->input));
       const RenderResult r = render_mesh(mesh, options);

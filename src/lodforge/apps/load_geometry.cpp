@@ -1,0 +1,50 @@
+#include "lodforge/apps/load_geometry.h"
+
+#include <algorithm>
+#include <cctype>
+#include <unordered_set>
+
+#include "lodforge/apps/common_options.h"
+#include "lodforge/mesh/mesh_io.h"
+#include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/schema.h"
+
+namespace lodforge::apps {
+
+bool is_vrml_path(const std::string& path) {
+  std::string p = path;
+  std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return std::tolower(c); });
+  return p.ends_with(".wrl") || p.ends_with(".wrl.gz") || p.ends_with(".vrml");
+}
+
+TriangleMesh load_geometry(const std::string& path, int lod_level, bool quiet) {
+  if (!is_vrml_path(path)) return read_mesh(path);
+  vrml1::ReadResult r = read_scene(path, {.quiet = quiet});
+  Log log;
+  TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
+  if (!quiet)
+    for (const auto& d : log.entries())
+      if (d.level != LogLevel::kMessage) print_diagnostic(d);
+  return m;
+}
+
+SceneLevels scene_levels(const scene::Scene& scene) {
+  SceneLevels best;
+  std::unordered_set<const scene::Node*> seen;
+  std::vector<const scene::Node*> stack;
+  for (const auto& r : scene.roots) stack.push_back(r.get());
+  while (!stack.empty()) {
+    const scene::Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (n->type == "LOD" && n->children.size() > best.count) {
+      best.count = n->children.size();
+      const scene::FieldValue* range = scene::field_or_default(*n, "range");
+      best.ranges = range ? range->floats : std::vector<float>{};
+    }
+    for (const auto& c : n->children) stack.push_back(c.get());
+  }
+  return best;
+}
+
+}  // namespace lodforge::apps

@@ -3,6 +3,14 @@
 // Metro-style deviation between two surfaces (SPEC §4, seed 000 §5.2): A is
 // the reference (the original), B the approximation. JSON goes to stdout with
 // --json, human text to stderr otherwise.
+//
+// JSON keys: a, b, a_triangles, b_triangles, samples (area samples per
+// direction), seed, diagonal (A's bounding box), hausdorff,
+// hausdorff_pct_diag, a_to_b and b_to_a (samples measured, min, max, mean,
+// rms, variance, max/mean/rms_pct_diag, normal {samples, mean, max,
+// variance}), normal (= a_to_b.normal: samples on the reference, as in seed
+// 000), normals_from ("faces" or "vertices"), colored {file, scale_max}.
+// Distances are in the meshes' units, angles in radians.
 #include <fmt/core.h>
 
 #include <algorithm>

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lodforge/apps/commands.h"
+#include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
@@ -30,18 +31,6 @@ namespace {
 // The one place where compare turns an input path into a surface. Mesh files
 // go through read_mesh; VRML 1.0 scenes are to be read and flattened into one
 // world-space mesh (scene::flatten_scene) here, once that is wired in.
-TriangleMesh read_compare_input(const std::string& path) {
-  std::string lower = path;
-  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (lower.ends_with(".wrl") || lower.ends_with(".wrl.gz")) {
-    throw DataError(
-        fmt::format("{}: compare does not read VRML 1.0 scenes yet; convert it to "
-                    "PLY, OBJ, OFF or STL",
-                    path));
-  }
-  return read_mesh(path);
-}
-
 nlohmann::ordered_json to_json(const Deviation& d) {
   nlohmann::ordered_json j;
   j["samples"] = d.samples;
@@ -82,12 +71,17 @@ void add_compare_command(CLI::App& app, Runner& run) {
     bool smooth_normals = false;
     std::string colored;
     double color_max = 0;
+    int level_a = 0, level_b = 0;
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "Measure the geometric and normal deviation between two surfaces (A: reference)");
-  cmd->add_option("A", s->a, "Reference mesh (PLY, OBJ, OFF, STL)")->required();
-  cmd->add_option("B", s->b, "Mesh to measure against A")->required();
+  cmd->add_option("A", s->a, "Reference: mesh (PLY, OBJ, OFF, STL) or VRML 1.0 scene")->required();
+  cmd->add_option("B", s->b, "Mesh or scene to measure against A")->required();
+  cmd->add_option("--level", s->level_b, "LOD level of B when B is a scene (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--level-a", s->level_a, "LOD level of A when A is a scene (default 0)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   cmd->add_option("--samples", s->samples,
                   "Area samples per direction (default: 10 x the larger triangle count, "
@@ -105,8 +99,9 @@ void add_compare_command(CLI::App& app, Runner& run) {
       ->check(CLI::PositiveNumber);
   cmd->callback([s, &run] {
     run = [s] {
-      TriangleMesh a = read_compare_input(s->a);
-      TriangleMesh b = read_compare_input(s->b);
+      // Scenes are flattened in world space at the chosen LOD level.
+      TriangleMesh a = load_geometry(s->a, s->level_a, s->json);
+      TriangleMesh b = load_geometry(s->b, s->level_b, s->json);
       CompareResult r = compare_meshes(a, b,
                                        {.samples = s->samples,
                                         .seed = s->seed,

@@ -1,0 +1,82 @@
+#pragma once
+/// An IndexedFaceSet or IndexedLineSet with its traversal state, turned into a
+/// mesh the simplifiers work on, and back into VRML nodes.
+///
+/// Vertices of the mesh are the distinct (coordinate, normal, texture
+/// coordinate, per-vertex material) tuples of the shape's corners: a vertex is
+/// split where its corners differ in an attribute (a seam), so every attribute
+/// can follow a simplified vertex through the simplifier's vertex map.
+/// Per-face attributes (PER_FACE / PER_PART materials or normals) follow the
+/// face map. Bindings that are 1:1 with faces or vertices (PER_FACE, PER_PART,
+/// PER_VERTEX) are converted to their *_INDEXED forms (original §4 intro).
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "lodforge/core/log.h"
+#include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/mesh/triangulate_polygon.h"
+#include "lodforge/scene/node.h"
+#include "lodforge/scene/traverse.h"
+
+namespace lodforge {
+
+/// How an attribute is bound after conversion.
+enum class AttributeBinding { kNone, kPerFace, kPerVertex };
+
+struct ShapeGeometry {
+  /// Local coordinates. mesh.materials holds the material of each triangle when
+  /// materials are per face. mesh.lines holds the segments of a line set.
+  TriangleMesh mesh;
+  /// #F: the polygon of the input each triangle comes from.
+  std::vector<std::uint32_t> triangle_polygon;
+  /// Polygons that stay quads when both their triangles survive unchanged.
+  std::vector<bool> polygon_is_quad;
+
+  AttributeBinding material_binding = AttributeBinding::kNone;
+  AttributeBinding normal_binding = AttributeBinding::kNone;
+  bool has_texcoords = false;
+
+  /// Distinct attribute values, and the index of each mesh vertex's value
+  /// (#V; per-vertex bindings) or each triangle's (#F; per-face bindings).
+  std::vector<Vec3> normal_values;
+  std::vector<Vec2> texcoord_values;
+  std::vector<std::uint32_t> vertex_normal, vertex_texcoord, vertex_material;
+  std::vector<std::uint32_t> face_normal;  ///< #F, for per-face normals
+  std::vector<std::uint32_t> segment_material;  ///< #L, line sets with materials
+  /// #V: the material of a face using the vertex (per-face materials), for
+  /// the lines that faces collapse into.
+  std::vector<std::uint32_t> vertex_face_material;
+
+  /// Distinct materials (rows of the Material node's parallel fields), in
+  /// first-use order; empty when the material binding is kNone.
+  scene::NodePtr material;
+  /// The faceType of the input was not CONVEX (so an extra ShapeHints with
+  /// faceType CONVEX is written: the output is triangles and convex quads).
+  bool needs_convex_hint = false;
+  std::size_t input_faces = 0;       ///< polygons (or polylines) read
+  std::size_t dropped_faces = 0;     ///< polygons with < 3 distinct corners
+};
+
+struct ShapeGeometryOptions {
+  TriangulateOptions triangulation;  ///< quad split angle, --no-quads
+};
+
+/// Reads an IndexedFaceSet or IndexedLineSet under its state. Coordinates,
+/// normals, texture coordinates and materials are de-duplicated. Throws
+/// DataError ("line N: ...") for a coordIndex out of range or a non-finite
+/// coordinate; an attribute index out of range drops that attribute with a
+/// warning in `log`.
+ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
+                                  const ShapeGeometryOptions& options, Log& log);
+
+/// One level as VRML: a Separator holding Coordinate3, [Normal],
+/// [TextureCoordinate2], the IndexedFaceSet (or IndexedLineSet) and, for
+/// faces that collapsed to lines, an extra IndexedLineSet (unless no_lines).
+/// `mesh` is a simplified version of geometry.mesh with `vertex_map` (new ->
+/// geometry.mesh vertex) and `face_map` (new -> geometry.mesh triangle).
+scene::NodePtr shape_level_node(const ShapeGeometry& geometry, const TriangleMesh& mesh,
+                                const std::vector<std::uint32_t>& vertex_map,
+                                const std::vector<std::uint32_t>& face_map, bool no_lines);
+
+}  // namespace lodforge

@@ -1,0 +1,68 @@
+// `lodforge compare` as other tools run it: the JSON keys they read, VRML
+// input with LOD levels, the coloured output, errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/run_command.h"
+#include "lodforge/mesh/mesh_io.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::run_lodforge;
+
+class CompareCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lodforge_compare_cli_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    scene_ = (dir_ / "lod.wrl").string();
+    std::ofstream(scene_) << "#VRML V1.0 ascii\nSeparator { Translation { translation 5 0 0 }\n"
+                             "LOD { range [ 10 ] Cube { } Cube { width 1 } } }\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  std::string scene_;
+};
+
+TEST_F(CompareCli, JsonHasTheKeysOtherToolsRead) {
+  auto r = run_lodforge("compare " + scene_ + " " + scene_ + " --level 1 --json --samples 20000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  for (const char* k : {"hausdorff", "hausdorff_pct_diag", "a_to_b", "b_to_a", "normal"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* side : {"a_to_b", "b_to_a"})
+    for (const char* k : {"max", "mean", "rms", "variance"}) EXPECT_TRUE(j[side].contains(k));
+  for (const char* k : {"mean", "max", "variance"}) EXPECT_TRUE(j["normal"].contains(k));
+  // Level 1 (width 1) against level 0 (width 2): the x faces are 0.5 apart.
+  EXPECT_NEAR(j["hausdorff"].get<double>(), 0.5, 1e-4);
+  EXPECT_EQ(j["a_triangles"].get<int>(), 12);
+}
+
+TEST_F(CompareCli, SameSceneSameLevelIsZeroAndColoredOutputIsWritten) {
+  std::string colored = (dir_ / "colored.ply").string();
+  auto r = run_lodforge("compare " + scene_ + " " + scene_ + " --json --colored " + colored);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["hausdorff"].get<double>(), 0.0);
+  TriangleMesh m = read_mesh(colored);
+  EXPECT_EQ(m.colors.size(), m.positions.size());
+}
+
+TEST_F(CompareCli, EmptySurfaceAndMissingFileAreErrors) {
+  std::string empty = (dir_ / "empty.wrl").string();
+  std::ofstream(empty) << "#VRML V1.0 ascii\nSeparator { }\n";
+  auto r = run_lodforge("compare " + scene_ + " " + empty);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("empty"));
+  EXPECT_EQ(run_lodforge("compare " + scene_ + " " + (dir_ / "none.ply").string()).exit_code, 1);
+  EXPECT_EQ(run_lodforge("compare " + scene_).exit_code, 2);
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -89,6 +89,18 @@ struct Side {
 
 using Tri8 = std::array<std::uint8_t, 3>;
 
+/// A planned removal: the fan, its sides and their new triangles (polygon
+/// indices; side s owns tris[side_end[s-1] .. side_end[s])).
+struct Plan {
+  Fan fan;
+  std::array<Side, 2> sides;
+  int nsides = 1;
+  std::vector<Tri8> tris;
+  std::array<std::size_t, 2> side_end{};
+  float accumulated = 0;  // error of the new triangles
+  float priority = 0;
+};
+
 class Decimator {
  public:
   Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& options);
@@ -111,7 +123,8 @@ class Decimator {
   bool classify(std::uint32_t v, Fan& fan) const;
   bool criterion(std::uint32_t v, Fan& fan) const;
   void evaluate(std::uint32_t v);
-  Keep try_remove(std::uint32_t v);
+  Keep plan(std::uint32_t v, Plan& plan) const;
+  void apply(std::uint32_t v, const Plan& plan);
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
   Keep triangulate_side(Side& side, std::vector<Tri8>& out) const;
   bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out) const;
@@ -148,7 +161,7 @@ class Decimator {
   std::size_t live_triangles_ = 0;
   std::size_t live_vertices_ = 0;
   float max_error_ = 0;
-  mutable std::vector<Tri8> scratch_tris_;
+  Plan plan_;  // scratch
 };
 
 Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& options)
@@ -335,20 +348,10 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
 
 void Decimator::evaluate(std::uint32_t v) {
   ++version_[v];
-  Fan fan;
-  if (!criterion(v, fan)) {
-    keep_[v] = fan.why;
-    return;
-  }
-  float accumulated = fan.d;
-  float worst = 0;
-  for (int k = 0; k < fan.n; ++k) worst = std::max(worst, error_[fan.tris[k]]);
-  if (accumulated + worst > options_.target.max_error) {
-    keep_[v] = Keep::kErrorBudget;
-    return;
-  }
-  keep_[v] = Keep::kCandidate;
-  heap_.push_back({fan.d, v, version_[v]});
+  Keep k = plan(v, plan_);
+  keep_[v] = k;
+  if (k != Keep::kCandidate) return;
+  heap_.push_back({plan_.priority, v, version_[v]});
   std::push_heap(heap_.begin(), heap_.end());
 }
 
@@ -441,16 +444,18 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out) const {
 // | simple, corner      | 1     | loop[0 .. n)  (ring)           | - (3-ring: the triangle)|
 // | boundary            | 1     | loop[0 .. n]                   | loop[n]-loop[0]         |
 // | interior edge p < q | 2     | loop[p .. q], loop[q .. p+n]   | loop[p]-loop[q]         |
-Keep Decimator::try_remove(std::uint32_t v) {
-  Fan fan;
+Keep Decimator::plan(std::uint32_t v, Plan& plan) const {
+  Fan& fan = plan.fan;
   if (!criterion(v, fan)) return fan.why;
   float accumulated = 0;
   for (int k = 0; k < fan.n; ++k) accumulated = std::max(accumulated, error_[fan.tris[k]]);
   accumulated += fan.d;
   if (accumulated > options_.target.max_error) return Keep::kErrorBudget;
+  plan.accumulated = accumulated;
 
-  std::array<Side, 2> sides;
-  int nsides = 1;
+  std::array<Side, 2>& sides = plan.sides;
+  int& nsides = plan.nsides;
+  nsides = 1;
   int n = fan.n;
   auto fill = [&](Side& s, int from, int count, int ntris) {
     s.m = count;
@@ -479,14 +484,31 @@ Keep Decimator::try_remove(std::uint32_t v) {
     }
   }
 
-  std::vector<Tri8>& tris = scratch_tris_;
-  tris.clear();
-  std::array<std::size_t, 3> side_end{};
+  plan.tris.clear();
+  float volume = 0;
   for (int s = 0; s < nsides; ++s) {
-    Keep k = triangulate_side(sides[s], tris);
+    Keep k = triangulate_side(sides[s], plan.tris);
     if (k != Keep::kCandidate) return k;
-    side_end[s] = tris.size();
+    plan.side_end[s] = plan.tris.size();
+    for (std::size_t i = s == 0 ? 0 : plan.side_end[s - 1]; i < plan.side_end[s]; ++i) {
+      const Vec3& a = pos_[sides[s].poly[plan.tris[i][0]]];
+      const Vec3& b = pos_[sides[s].poly[plan.tris[i][1]]];
+      const Vec3& c = pos_[sides[s].poly[plan.tris[i][2]]];
+      volume += std::abs(dot(cross(b - a, c - a), pos_[v] - a));
+    }
   }
+  plan.priority = options_.priority == DecimationPriority::kErrorVolume ? volume / 6 : fan.d;
+  return Keep::kCandidate;
+}
+
+void Decimator::apply(std::uint32_t v, const Plan& plan) {
+  const Fan& fan = plan.fan;
+  const std::array<Side, 2>& sides = plan.sides;
+  int nsides = plan.nsides;
+  int n = fan.n;
+  float accumulated = plan.accumulated;
+  const std::vector<Tri8>& tris = plan.tris;
+  const auto& side_end = plan.side_end;
 
   // What the new triangles inherit, read before the fan's slots are reused:
   // the attribute vertex of each polygon vertex (its corner in a side
@@ -550,8 +572,10 @@ Keep Decimator::try_remove(std::uint32_t v) {
   max_error_ = std::max(max_error_, accumulated);
   live_triangles_ -= static_cast<std::size_t>(n) - slot;
   --live_vertices_;
-  for (int k = 0; k < fan.loop_size; ++k) evaluate(fan.loop[k]);
-  return Keep::kCandidate;
+  // Copy the loop: evaluate() reuses plan_.
+  std::array<std::uint32_t, kMaxLoop> loop = fan.loop;
+  int loop_size = fan.loop_size;
+  for (int k = 0; k < loop_size; ++k) evaluate(loop[k]);
 }
 
 bool Decimator::run(std::size_t triangles, std::size_t vertices) {
@@ -561,8 +585,11 @@ bool Decimator::run(std::size_t triangles, std::size_t vertices) {
     HeapEntry e = heap_.back();
     heap_.pop_back();
     if (removed_[e.v] || e.version != version_[e.v]) continue;
-    Keep k = try_remove(e.v);
-    if (k != Keep::kCandidate) keep_[e.v] = k;
+    Keep k = plan(e.v, plan_);
+    if (k == Keep::kCandidate)
+      apply(e.v, plan_);
+    else
+      keep_[e.v] = k;
   }
   return true;
 }
@@ -587,7 +614,9 @@ std::string Decimator::stuck_detail() const {
       "vertices whose re-triangulation would fold or degenerate a triangle",
       "vertices whose removal would exceed the error budget",
   };
-  std::string s = "no vertex can be removed; " + std::to_string(live_vertices_) + " left:";
+  std::size_t total = 0;
+  for (std::size_t c : count) total += c;
+  std::string s = "no vertex can be removed; " + std::to_string(total) + " left:";
   bool first = true;
   for (int i = 1; i < static_cast<int>(Keep::kCount); ++i) {
     if (count[i] == 0) continue;

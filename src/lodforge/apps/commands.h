@@ -12,6 +12,7 @@ using Runner = std::function<int()>;
 
 void add_info_command(CLI::App& app, Runner& run);
 void add_format_command(CLI::App& app, Runner& run);
+void add_lod_command(CLI::App& app, Runner& run);
 void add_render_command(CLI::App& app, Runner& run);
 void add_compare_command(CLI::App& app, Runner& run);
 

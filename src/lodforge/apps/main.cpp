@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   Runner run;
   add_info_command(app, run);
   add_format_command(app, run);
+  add_lod_command(app, run);
   add_render_command(app, run);
   add_compare_command(app, run);
   try {
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run ? run() : 2;
+  } catch (const CLI::Error& e) {  // a usage problem found after parsing
+    fmt::print(stderr, "{}: {}\n", e.get_name(), e.what());
+    return 2;
   } catch (const lodforge::DataError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

@@ -31,10 +31,10 @@ class Walker {
   Walker(const std::function<void(const ShapeVisit&)>& visit, const TraverseOptions& options)
       : visit_(visit), options_(options) {}
 
-  void node(const Node& n, TraversalState& state) {
+  void node(const Node& n, TraversalState& state, std::size_t index) {
     const std::string& t = n.type;
     if (is_shape_type(t)) {
-      visit_(ShapeVisit{n, state, camera_, path_});
+      visit_(ShapeVisit{n, state, camera_, path_, index});
       return;
     }
     if (t == "Coordinate3") state.coordinate3 = &n;
@@ -70,16 +70,16 @@ class Walker {
         const FieldValue* w = field_or_default(n, "whichChild");
         int which = (w && !w->ints.empty()) ? w->ints[0] : -1;
         if (which == -3) {
-          for (const auto& c : n.children) node(*c, s);
+          for (std::size_t i = 0; i < n.children.size(); ++i) node(*n.children[i], s, i);
         } else if (which >= 0 && std::size_t(which) < n.children.size()) {
-          node(*n.children[std::size_t(which)], s);
+          node(*n.children[std::size_t(which)], s, std::size_t(which));
         }
       } else if (n.type == "LOD") {
         std::size_t k = std::min<std::size_t>(std::size_t(std::max(options_.lod_level, 0)),
                                               n.children.size() - 1);
-        node(*n.children[k], s);
+        node(*n.children[k], s, k);
       } else {
-        for (const auto& c : n.children) node(*c, s);
+        for (std::size_t i = 0; i < n.children.size(); ++i) node(*n.children[i], s, i);
       }
     };
     if (separator) {
@@ -135,7 +135,7 @@ void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& 
               const TraverseOptions& options) {
   Walker w(visit, options);
   TraversalState state;
-  for (const auto& r : scene.roots) w.node(*r, state);
+  for (std::size_t i = 0; i < scene.roots.size(); ++i) w.node(*scene.roots[i], state, i);
 }
 
 }  // namespace lodforge::scene

@@ -35,6 +35,9 @@ struct ShapeVisit {
   const Node* camera;             ///< first PerspectiveCamera met so far, or nullptr
   /// The group nodes from a root down to the shape's parent.
   const std::vector<const Node*>& path;
+  /// Where the shape is: its index in path.back()->children, or in
+  /// Scene::roots when the path is empty.
+  std::size_t child_index = 0;
 };
 
 struct TraverseOptions {

@@ -1,0 +1,257 @@
+// `lodforge lod SCENE... -o OUT | --out-dir DIR [options]`: the main job —
+// every shape of a VRML 1.0 scene becomes an LOD node (SPEC §2, §6).
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "lodforge/apps/commands.h"
+#include "lodforge/apps/common_options.h"
+#include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
+#include "lodforge/lod/generate_lod.h"
+
+namespace lodforge::apps {
+namespace {
+
+const std::vector<std::string> kTypes = {"polygon", "line", "sphere", "cone", "cylinder", "cube"};
+
+std::vector<float> parse_floats(const std::string& text, const std::string& what) {
+  std::vector<float> v;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t comma = text.find(',', pos);
+    std::string part = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    try {
+      std::size_t used = 0;
+      float f = std::stof(part, &used);
+      if (used != part.size() || !(f > 0)) throw std::invalid_argument(part);
+      v.push_back(f);
+    } catch (const std::exception&) {
+      throw CLI::ValidationError(what, "expected positive numbers separated by commas, got '" + part + "'");
+    }
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (v[i] <= v[i - 1]) throw CLI::ValidationError(what, "ranges must increase");
+  return v;
+}
+
+// "TYPE=value" -> the type (checked) and the value.
+std::pair<std::string, std::string> split_typed(const std::string& text, const std::string& what) {
+  auto eq = text.find('=');
+  if (eq == std::string::npos) return {"", text};
+  std::string type = text.substr(0, eq);
+  if (std::find(kTypes.begin(), kTypes.end(), type) == kTypes.end())
+    throw CLI::ValidationError(what, "unknown shape type '" + type +
+                                         "' (polygon, line, sphere, cone, cylinder, cube)");
+  return {type, text.substr(eq + 1)};
+}
+
+struct Settings {
+  std::vector<std::string> inputs;
+  std::string output, out_dir, stats;
+  std::string method = "qem", export_flavour = "spec";
+  double error_range_pct = 2, min_diff_pct = 20;
+  double camera_angle = -1, quad_split_angle = 0.174533;
+  int levels = 0, threads = 0;
+  std::optional<int> extract;
+  std::vector<std::string> quality, ranges, verbose;
+  bool join = false, no_lines = false, no_quads = false, by_size = false;
+  SceneReadSettings read;
+  vrml1::WriteOptions write;
+};
+
+LodOptions lod_options(const Settings& s) {
+  LodOptions o;
+  o.method = s.method == "cluster" ? LodMethod::kCluster
+             : s.method == "decimate" ? LodMethod::kDecimate
+                                      : LodMethod::kQem;
+  o.range.error_range = float(s.error_range_pct / 100.0);
+  if (s.camera_angle > 0) {
+    o.range.camera_angle = float(s.camera_angle);
+    o.camera_angle_given = true;
+  }
+  o.min_diff = float(s.min_diff_pct / 100.0);
+  o.max_levels = std::size_t(s.levels);
+  o.differentiate_by_size = s.by_size;
+  o.no_lines = s.no_lines;
+  o.triangulation.quad_split_angle = float(s.quad_split_angle);
+  o.triangulation.keep_quads = !s.no_quads;
+  o.export_flavour = s.export_flavour == "performer" ? ExportFlavour::kPerformer
+                     : s.export_flavour == "reducer" ? ExportFlavour::kReducer
+                                                     : ExportFlavour::kSpec;
+  o.extract = s.extract;
+  o.threads = s.threads;
+  for (const auto& q : s.quality) {
+    auto [type, value] = split_typed(q, "--quality");
+    int n = -1;
+    try {
+      n = std::stoi(value);
+    } catch (const std::exception&) {
+    }
+    if (type.empty() || n < 0)
+      throw CLI::ValidationError("--quality", "expected TYPE=N with N >= 0, got '" + q + "'");
+    o.manual[type].quality = n;
+  }
+  for (const auto& r : s.ranges) {
+    auto [type, value] = split_typed(r, "--ranges");
+    std::vector<float> v = parse_floats(value, "--ranges");
+    if (type.empty())
+      for (const auto& t : kTypes) o.manual[t].ranges = v;
+    else
+      o.manual[type].ranges = v;
+  }
+  return o;
+}
+
+nlohmann::ordered_json stats_json(const std::string& file, const LodResult& r) {
+  nlohmann::ordered_json j;
+  j["file"] = file;
+  j["camera_angle"] = r.camera_angle;
+  std::size_t original = 0;
+  for (const auto& s : r.shapes) {
+    nlohmann::ordered_json sj;
+    sj["type"] = s.type;
+    if (!s.name.empty()) sj["name"] = s.name;
+    sj["line"] = s.line;
+    sj["occurrences"] = s.occurrences;
+    sj["method"] = s.method;
+    sj["radius"] = s.radius;
+    sj["scale"] = s.scale;
+    for (const auto& l : s.levels)
+      sj["levels"].push_back({{"triangles", l.triangles}, {"vertices", l.vertices}, {"error", l.error}});
+    sj["ranges"] = s.ranges;
+    if (!s.stop_reason.empty()) sj["stop_reason"] = s.stop_reason;
+    if (!s.levels.empty()) original += s.levels[0].triangles * s.occurrences;
+    j["shapes"].push_back(sj);
+  }
+  j["triangles"] = original;
+  for (const auto& [d, t] : r.triangles_by_distance)
+    j["triangles_by_distance"].push_back({{"distance", d}, {"triangles", t}});
+  return j;
+}
+
+void print_summary(const std::string& file, const LodResult& r) {
+  std::size_t levels = 0, lods = 0;
+  for (const auto& s : r.shapes) {
+    if (s.ranges.empty()) continue;
+    ++lods;
+    levels += s.levels.size() + 1;
+  }
+  fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
+             file, r.shapes.size(), lods, levels, r.camera_angle);
+  fmt::print(stderr, "  distance      triangles drawn\n");
+  for (const auto& [d, t] : r.triangles_by_distance) fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
+}
+
+}  // namespace
+
+void add_lod_command(CLI::App& app, Runner& run) {
+  auto s = std::make_shared<Settings>();
+  CLI::App* cmd = app.add_subcommand("lod", "Replace every shape of VRML 1.0 scenes by LOD nodes");
+  cmd->add_option("SCENE", s->inputs, "VRML 1.0 files (- = stdin)")->required();
+  auto* out = cmd->add_option("-o,--output", s->output, "Output file (- = stdout), for one scene");
+  auto* dir = cmd->add_option("--out-dir", s->out_dir, "Output folder, for several scenes");
+  out->excludes(dir);
+  cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cluster", "decimate", "qem"}));
+  cmd->add_option("--error-range", s->error_range_pct, "Allowed error in % of the screen height")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0001, 100.0));
+  cmd->add_option("--camera-angle", s->camera_angle,
+                  "Camera height angle in radians (default: first PerspectiveCamera, else pi/4)")
+      ->check(CLI::Range(0.0001, 3.14));
+  cmd->add_option("--min-diff", s->min_diff_pct, "Each level keeps at most (100 - PCT) % of the previous")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
+  cmd->add_option("--levels", s->levels, "At most N levels per shape (original and empty included)")
+      ->check(CLI::Range(2, 1000));
+  cmd->add_option("--quality", s->quality,
+                  "Manual mode per shape type: TYPE=N (0 empty, 1 no LOD, N levels); types "
+                  "polygon, line, sphere, cone, cylinder, cube")
+      ->delimiter(' ');
+  cmd->add_option("--ranges", s->ranges, "Explicit LOD ranges: a,b,... or TYPE=a,b,...");
+  cmd->add_flag("--differentiate-by-size", s->by_size, "Fewer levels for smaller objects (manual mode)");
+  cmd->add_flag("--join", s->join, "Join small IndexedFaceSets under unneeded Separators");
+  cmd->add_flag("--no-lines", s->no_lines, "Drop faces that collapse into lines");
+  cmd->add_flag("--no-quads", s->no_quads, "Split every quadrilateral into triangles");
+  cmd->add_option("--quad-split-angle", s->quad_split_angle, "Split quads bent more than this (radians)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3.1416));
+  cmd->add_option("--export", s->export_flavour, "LOD centre: spec, performer or reducer")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"spec", "performer", "reducer"}));
+  cmd->add_option("--extract", s->extract, "Write only level K of every shape (-1: only clean)")
+      ->check(CLI::Range(-1, 1000));
+  cmd->add_option("--stats", s->stats, "Write statistics as JSON to this file (- = stdout)");
+  cmd->add_option("--verbose", s->verbose,
+                  "Show messages of these categories: coord, material, normal, texcoord, face, "
+                  "line, join, triangulator")
+      ->delimiter(',');
+  cmd->add_option("--threads", s->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  add_scene_read_options(*cmd, s->read);
+  add_writer_options(*cmd, s->write);
+  cmd->callback([s, &run] {
+    run = [s] {
+      if (s->inputs.size() > 1 && s->out_dir.empty())
+        throw CLI::ValidationError("--out-dir", "several scenes need --out-dir DIR");
+      if (s->inputs.size() == 1 && s->output.empty() && s->out_dir.empty())
+        throw CLI::ValidationError("-o", "give -o OUT (or --out-dir DIR)");
+      std::vector<LogCategory> shown;
+      for (const auto& v : s->verbose) {
+        LogCategory c;
+        if (!parse_category(v, c))
+          throw CLI::ValidationError("--verbose", "unknown category '" + v + "'");
+        shown.push_back(c);
+      }
+      LodOptions options = lod_options(*s);
+      if (s->join)
+        fmt::print(stderr, "warning: --join is not implemented yet; shapes are processed one by one\n");
+      const bool tty = isatty(STDERR_FILENO);
+      int failures = 0;
+      nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();
+      for (const auto& input : s->inputs) {
+        try {
+          vrml1::ReadResult r = read_scene(input, s->read);
+          if (tty)
+            options.progress = [&](std::size_t done, std::size_t total) {
+              fmt::print(stderr, "\r{}: shape {}/{}", input, done, total);
+              if (done == total) fmt::print(stderr, "\r\033[K");
+            };
+          LodResult result = generate_lod(r.scene, options);
+          for (const auto& d : result.log.entries()) {
+            bool show = d.level != LogLevel::kMessage ||
+                        std::find(shown.begin(), shown.end(), d.category) != shown.end();
+            if (show && !s->read.quiet) print_diagnostic(d);
+          }
+          std::string target = s->output;
+          if (!s->out_dir.empty()) {
+            std::filesystem::create_directories(s->out_dir);
+            std::string base = input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
+            if (base.ends_with(".gz")) base.resize(base.size() - 3);
+            target = (std::filesystem::path(s->out_dir) / base).string();
+          }
+          vrml1::write_vrml1_file(result.scene, target, s->write);
+          if (!s->read.quiet) print_summary(input, result);
+          all_stats.push_back(stats_json(input, result));
+        } catch (const DataError& e) {
+          fmt::print(stderr, "error: {}{}\n", std::string(e.what()).starts_with(input) ? "" : input + ": ",
+                     e.what());
+          ++failures;
+        }
+      }
+      if (!s->stats.empty()) {
+        std::string text = (all_stats.size() == 1 ? all_stats[0] : all_stats).dump(2) + "\n";
+        write_file_atomic(s->stats, text);
+      }
+      return failures ? 1 : 0;
+    };
+  });
+}
+
+}  // namespace lodforge::apps

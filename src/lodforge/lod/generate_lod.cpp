@@ -1,0 +1,464 @@
+// The LODCreator pipeline (original thesis §4, Figure 4.1; SPEC §2):
+//  1. copy the scene (sharing kept), find the camera height angle;
+//  2. traverse it and collect every shape occurrence with its state; group
+//     occurrences into jobs (same shape node under the same property nodes);
+//  3. per job, in parallel: read the geometry (bindings converted, attributes
+//     de-duplicated), make the levels, measure each level's error;
+//  4. per occurrence: switching ranges from the errors and the occurrence's
+//     transform scale, and the LOD subtree in place of the shape.
+#include "lodforge/lod/generate_lod.h"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <set>
+#include <unordered_map>
+
+#include "lodforge/core/error.h"
+#include "lodforge/lod/shape_geometry.h"
+#include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/scene/schema.h"
+#include "lodforge/scene/shape_mesh.h"
+#include "lodforge/scene/tessellate_primitive.h"
+#include "lodforge/scene/traverse.h"
+
+namespace lodforge {
+namespace {
+
+using scene::FieldKind;
+using scene::Node;
+using scene::NodePtr;
+
+NodePtr make_node(std::string type) {
+  auto n = std::make_shared<Node>();
+  n->type = std::move(type);
+  return n;
+}
+
+// Deep copy that keeps the sharing pattern.
+NodePtr clone(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& done) {
+  auto it = done.find(n.get());
+  if (it != done.end()) return it->second;
+  auto c = std::make_shared<Node>(*n);
+  done[n.get()] = c;
+  for (auto& child : c->children) child = clone(child, done);
+  return c;
+}
+
+std::string type_key(const std::string& node_type) {
+  if (node_type == "IndexedFaceSet") return "polygon";
+  if (node_type == "IndexedLineSet") return "line";
+  std::string k = node_type;
+  for (char& ch : k) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return k;
+}
+
+bool is_lod_shape(const std::string& t) {
+  return t == "IndexedFaceSet" || t == "IndexedLineSet" || t == "Cube" || t == "Sphere" ||
+         t == "Cone" || t == "Cylinder";
+}
+
+// The property nodes a shape's geometry depends on.
+struct JobKey {
+  const Node* shape;
+  const Node *coords, *normal, *texcoord, *material, *mbind, *nbind, *hints, *texture;
+  auto tie() const {
+    return std::tie(shape, coords, normal, texcoord, material, mbind, nbind, hints, texture);
+  }
+  bool operator<(const JobKey& o) const { return tie() < o.tie(); }
+};
+
+struct Occurrence {
+  Node* parent;  // nullptr: a root
+  std::size_t index;
+  std::size_t job;
+  double scale;
+  Mat4 transform;
+};
+
+struct Job {
+  const Node* shape = nullptr;
+  scene::TraversalState state;
+  // Results.
+  std::vector<NodePtr> level_nodes;  // level 0 .. last simplified level (no empty level)
+  std::vector<double> errors;        // per level (0 for level 0)
+  std::vector<float> ranges_override;
+  ShapeGeometry geometry;
+  Vec3 center;
+  double radius = 0;
+  bool remove = false;   // quality 0
+  bool no_lod = false;   // quality 1
+  ShapeStatistics stats;
+  Log log;
+};
+
+double max_scale_of(const Mat4& m) {
+  double s = m.max_scale();
+  return s > 0 && std::isfinite(s) ? s : 1.0;
+}
+
+// Bounding sphere about the box centre.
+void bounding_sphere(const std::vector<Vec3>& pts, Vec3& center, double& radius) {
+  Box3 b;
+  for (const auto& p : pts) b.add(p);
+  center = b.empty() ? Vec3{} : b.center();
+  radius = 0;
+  for (const auto& p : pts) radius = std::max(radius, double(length(p - center)));
+}
+
+ShapeGeometry primitive_geometry(const TriangleMesh& tess, bool textured) {
+  ShapeGeometry g;
+  g.mesh.positions = tess.positions;
+  g.mesh.triangles = tess.triangles;
+  g.normal_binding = AttributeBinding::kPerVertex;
+  g.normal_values = tess.normals;
+  g.vertex_normal.resize(tess.positions.size());
+  g.vertex_texcoord.resize(tess.positions.size());
+  for (std::uint32_t i = 0; i < tess.positions.size(); ++i) g.vertex_normal[i] = g.vertex_texcoord[i] = i;
+  g.has_texcoords = textured && !tess.texcoords.empty();
+  g.texcoord_values = tess.texcoords;
+  g.triangle_polygon.resize(tess.triangles.size());
+  for (std::uint32_t i = 0; i < tess.triangles.size(); ++i) g.triangle_polygon[i] = i;
+  g.polygon_is_quad.assign(tess.triangles.size(), false);
+  return g;
+}
+
+class Pipeline {
+ public:
+  Pipeline(const scene::Scene& input, const LodOptions& options) : opt_(options) {
+    std::unordered_map<const Node*, NodePtr> done;
+    result_.scene.header = "#VRML V1.0 ascii";
+    for (const auto& r : input.roots) result_.scene.roots.push_back(clone(r, done));
+  }
+
+  LodResult run() {
+    collect();
+    const int threads = opt_.threads > 0 ? opt_.threads : 0;
+    std::optional<tbb::global_control> limit;
+    if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+    size_scale();
+    std::mutex progress_mutex;
+    std::size_t done = 0;
+    tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
+      make_levels(jobs_[i]);
+      if (opt_.progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        opt_.progress(++done, jobs_.size());
+      }
+    });
+    for (auto& j : jobs_) result_.log.merge(j.log);
+    replace();
+    statistics();
+    return std::move(result_);
+  }
+
+ private:
+  void collect() {
+    std::map<JobKey, std::size_t> job_of;
+    std::map<std::pair<Node*, std::size_t>, std::size_t> occurrence_of;
+    const Node* camera = nullptr;
+    scene::traverse(result_.scene, [&](const scene::ShapeVisit& v) {
+      if (!camera && v.camera) camera = v.camera;
+      if (!is_lod_shape(v.shape.type)) return;
+      const auto& s = v.state;
+      JobKey key{&v.shape,   s.coordinate3,      s.normal,         s.texture_coordinate2, s.material,
+                 s.material_binding, s.normal_binding, s.shape_hints, s.texture2};
+      auto [jit, fresh] = job_of.try_emplace(key, jobs_.size());
+      if (fresh) {
+        jobs_.emplace_back();
+        jobs_.back().shape = &v.shape;
+        jobs_.back().state = v.state;
+      }
+      Node* parent = v.path.empty() ? nullptr : const_cast<Node*>(v.path.back());
+      double scale = max_scale_of(v.state.transform);
+      auto [oit, new_place] = occurrence_of.try_emplace({parent, v.child_index}, occurrences_.size());
+      if (new_place) {
+        occurrences_.push_back({parent, v.child_index, jit->second, scale, v.state.transform});
+      } else {
+        // The same place reached again (its group is USEd elsewhere): one
+        // subtree serves all, so it takes the largest scale (the farthest ranges).
+        Occurrence& o = occurrences_[oit->second];
+        o.scale = std::max(o.scale, scale);
+        if (o.job != jit->second)
+          result_.log.warn(LogCategory::kGeneral,
+                           fmt::format("line {}: {} is used under different properties in a "
+                                       "shared group; its LOD is made for the first use",
+                                       v.shape.first_line, v.shape.type));
+      }
+    });
+    camera_angle_ = opt_.range.camera_angle;
+    if (!opt_.camera_angle_given && camera) {
+      const scene::FieldValue* h = scene::field_or_default(*camera, "heightAngle");
+      if (h && !h->floats.empty() && h->floats[0] > 0 && h->floats[0] < 3.14159f)
+        camera_angle_ = h->floats[0];
+    }
+    result_.camera_angle = camera_angle_;
+  }
+
+  // Radii (for differentiate-by-size) need the geometry: primitives' from
+  // their fields, sets' from their coordinates; computed up front.
+  void size_scale() {
+    for (const auto& o : occurrences_)
+      jobs_[o.job].stats.scale = std::max(jobs_[o.job].stats.scale, o.scale);
+    if (!opt_.differentiate_by_size) return;
+    for (auto& o : occurrences_) {
+      Job& j = jobs_[o.job];
+      scene::ShapeVisit v{*j.shape, j.state, nullptr, empty_path_, 0};
+      Log ignore;
+      try {
+        TriangleMesh m = scene::shape_mesh(v, {.world_space = false});
+        Vec3 c;
+        double r;
+        bounding_sphere(m.positions, c, r);
+        largest_radius_ = std::max(largest_radius_, r * o.scale);
+      } catch (const DataError&) {
+      }
+    }
+  }
+
+  int quality_for(const Job& j, double radius, double scale) const {
+    auto it = opt_.manual.find(type_key(j.shape->type));
+    if (it == opt_.manual.end() || it->second.quality < 0) return -1;
+    int q = it->second.quality;
+    if (opt_.differentiate_by_size && q >= 2 && largest_radius_ > 0 && radius > 0) {
+      double halvings = std::floor(std::log2(largest_radius_ / (radius * scale)));
+      q = std::max(2, q - int(std::max(0.0, halvings)));
+    }
+    return q;
+  }
+
+  void make_levels(Job& j) {
+    const std::string& t = j.shape->type;
+    j.stats.type = t;
+    j.stats.name = j.shape->name;
+    j.stats.line = j.shape->first_line;
+    scene::ShapeVisit visit{*j.shape, j.state, nullptr, empty_path_, 0};
+    const double scale = j.stats.scale;
+    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+      j.geometry = read_shape_geometry(visit, {.triangulation = opt_.triangulation}, j.log);
+      bounding_sphere(j.geometry.mesh.positions, j.center, j.radius);
+    } else {
+      TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = 32});
+      bounding_sphere(tess.positions, j.center, j.radius);
+    }
+    if (opt_.export_flavour == ExportFlavour::kReducer)
+      for (auto& p : j.geometry.mesh.positions) p -= j.center;
+    int quality = quality_for(j, j.radius, scale);
+    if (quality == 0) {
+      j.remove = true;
+      j.stats.method = "removed (quality 0)";
+      return;
+    }
+    j.no_lod = quality == 1 || (opt_.extract && *opt_.extract <= 0);
+    std::size_t max_levels = opt_.max_levels;
+    if (quality >= 2) max_levels = std::size_t(quality);
+    // Level 0.
+    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+      j.level_nodes.push_back(shape_level_node(j.geometry, j.geometry.mesh, {}, {}, opt_.no_lines));
+      j.errors.push_back(0);
+      j.stats.levels.push_back({j.geometry.mesh.triangle_count(), j.geometry.mesh.vertex_count(), 0});
+    } else {
+      auto original = std::make_shared<Node>(*j.shape);
+      original->name.clear();
+      j.level_nodes.push_back(original);
+      j.errors.push_back(0);
+      TriangleMesh tess = scene::tessellate_primitive(*j.shape);
+      j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), 0});
+    }
+    if (j.no_lod || (max_levels && max_levels <= 2)) {
+      j.stats.method = j.no_lod ? "none" : to_string(opt_.method);
+      return;
+    }
+    std::size_t simplified_max = max_levels ? max_levels - 2 : 0;
+    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+      set_levels(j, simplified_max, quality);
+    } else if (t != "Cube") {
+      primitive_levels(j, simplified_max);
+    } else {
+      j.stats.method = "none";
+    }
+  }
+
+  void set_levels(Job& j, std::size_t simplified_max, int quality) {
+    LevelChainOptions c;
+    c.method = opt_.method;
+    c.min_diff = opt_.min_diff;
+    c.max_levels = simplified_max;
+    c.measure_samples = opt_.measure_samples;
+    c.threads = 1;
+    if (quality >= 2) {
+      // Manual mode: quality-2 levels, halving the triangles each time.
+      double tcount = double(j.geometry.mesh.triangle_count());
+      for (int k = 0; k < quality - 2; ++k) {
+        tcount = std::floor(tcount / 2);
+        if (tcount < 1) break;
+        c.triangle_targets.push_back(std::size_t(tcount));
+      }
+      if (c.triangle_targets.empty()) return;
+    }
+    j.stats.method = j.geometry.mesh.triangles.empty() ? "cluster" : to_string(opt_.method);
+    std::vector<MeasuredLevel> levels = simplify_levels(j.geometry.mesh, c);
+    const double vanish = vanishing_error(j.radius);
+    for (auto& l : levels) {
+      // A level whose error reaches the object's size is never seen: the
+      // object vanishes first (automatic mode only).
+      if (quality < 0 && l.error >= vanish) break;
+      j.level_nodes.push_back(shape_level_node(j.geometry, l.level.mesh, l.level.vertex_map,
+                                               l.level.face_map, opt_.no_lines));
+      j.errors.push_back(l.error);
+      j.stats.levels.push_back({l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
+      j.stats.stop_reason = to_string(l.level.stop_reason);
+    }
+  }
+
+  void primitive_levels(Job& j, std::size_t simplified_max) {
+    j.stats.method = "tessellation";
+    TriangleMesh reference = scene::tessellate_primitive(*j.shape, {.segments = 96});
+    if (opt_.export_flavour == ExportFlavour::kReducer)
+      for (auto& p : reference.positions) p -= j.center;
+    std::size_t previous = j.stats.levels.front().triangles;
+    for (int seg : {16, 8, 4}) {
+      if (simplified_max && j.level_nodes.size() - 1 >= simplified_max) break;
+      TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = seg});
+      if (double(tess.triangle_count()) > double(previous) * (1.0 - opt_.min_diff)) continue;
+      if (opt_.export_flavour == ExportFlavour::kReducer)
+        for (auto& p : tess.positions) p -= j.center;
+      CompareResult c = compare_meshes(reference, tess, {.samples = opt_.measure_samples,
+                                                         .threads = 1,
+                                                         .per_vertex = false});
+      if (c.hausdorff >= vanishing_error(j.radius)) break;
+      ShapeGeometry g = primitive_geometry(tess, j.state.texture2 != nullptr);
+      j.level_nodes.push_back(shape_level_node(g, g.mesh, {}, {}, true));
+      j.errors.push_back(c.hausdorff);
+      j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), c.hausdorff});
+      previous = tess.triangle_count();
+    }
+  }
+
+  NodePtr binding_node(const char* type, AttributeBinding b) {
+    auto n = make_node(type);
+    n->set("value", scene::make_enum(b == AttributeBinding::kPerFace ? "PER_FACE_INDEXED"
+                                                                      : "PER_VERTEX_INDEXED"));
+    return n;
+  }
+
+  // The subtree that replaces one occurrence.
+  NodePtr subtree(Job& j, const Occurrence& o) {
+    if (j.remove) return make_node("Separator");
+    auto sep = make_node("Separator");
+    const ShapeGeometry& g = j.geometry;
+    if (g.material_binding != AttributeBinding::kNone) {
+      sep->children.push_back(g.material);
+      sep->children.push_back(binding_node("MaterialBinding", g.material_binding));
+    }
+    if (g.normal_binding != AttributeBinding::kNone)
+      sep->children.push_back(binding_node("NormalBinding", g.normal_binding));
+    if (g.needs_convex_hint) {
+      auto hints = std::make_shared<Node>(*j.state.shape_hints);
+      hints->name.clear();
+      hints->children.clear();
+      hints->set("faceType", scene::make_enum("CONVEX"));
+      sep->children.push_back(hints);
+    }
+    if (opt_.export_flavour == ExportFlavour::kReducer && j.shape->type != "IndexedFaceSet" &&
+        j.shape->type != "IndexedLineSet") {
+      // Primitives are centred at their origin already: nothing to move.
+    } else if (opt_.export_flavour == ExportFlavour::kReducer) {
+      auto tr = make_node("Translation");
+      tr->set("translation", scene::make_floats(FieldKind::kVec3f, false,
+                                                {j.center.x, j.center.y, j.center.z}));
+      sep->children.push_back(tr);
+    }
+    if (opt_.extract) {
+      std::size_t k = std::size_t(std::max(0, *opt_.extract));
+      if (k < j.level_nodes.size()) sep->children.push_back(j.level_nodes[k]);
+      return sep;
+    }
+    if (j.no_lod) {
+      sep->children.push_back(j.level_nodes[0]);
+      return sep;
+    }
+    auto lod = make_node("LOD");
+    std::vector<double> errors(j.errors.begin() + 1, j.errors.end());
+    errors.push_back(vanishing_error(j.radius));
+    RangeOptions ro = opt_.range;
+    ro.camera_angle = float(camera_angle_);
+    std::vector<float> ranges = switching_ranges(errors, o.scale, j.radius * o.scale, ro);
+    auto manual = opt_.manual.find(type_key(j.shape->type));
+    if (manual != opt_.manual.end()) {
+      const auto& given = manual->second.ranges;
+      for (std::size_t i = 0; i < given.size() && i < ranges.size(); ++i) ranges[i] = given[i];
+      for (std::size_t i = 1; i < ranges.size(); ++i)
+        if (ranges[i] <= ranges[i - 1]) ranges[i] = std::nextafter(ranges[i - 1], INFINITY);
+    }
+    lod->set("range", scene::make_floats(FieldKind::kFloat, true, ranges));
+    if (opt_.export_flavour == ExportFlavour::kSpec) {
+      lod->set("center", scene::make_floats(FieldKind::kVec3f, false, {j.center.x, j.center.y, j.center.z}));
+    } else if (opt_.export_flavour == ExportFlavour::kPerformer) {
+      Vec3 c = o.transform.transform_point(j.center);
+      lod->set("center", scene::make_floats(FieldKind::kVec3f, false, {c.x, c.y, c.z}));
+    }
+    lod->children = j.level_nodes;
+    lod->children.push_back(make_node("Separator"));  // the empty last level
+    sep->children.push_back(lod);
+    if (j.stats.ranges.empty()) j.stats.ranges = ranges;
+    return sep;
+  }
+
+  void replace() {
+    for (const auto& o : occurrences_) {
+      Job& j = jobs_[o.job];
+      NodePtr s = subtree(j, o);
+      if (!j.shape->name.empty()) s->name = j.shape->name;
+      if (o.parent) o.parent->children[o.index] = s;
+      else result_.scene.roots[o.index] = s;
+      ++occurrence_count_[o.job];
+    }
+  }
+
+  void statistics() {
+    std::set<double> distances = {0.0};
+    std::vector<std::vector<float>> occurrence_ranges;
+    for (std::size_t i = 0; i < jobs_.size(); ++i) {
+      jobs_[i].stats.occurrences = occurrence_count_[i];
+      jobs_[i].stats.radius = jobs_[i].radius;
+      if (!jobs_[i].stats.ranges.empty() || jobs_[i].no_lod || jobs_[i].remove) {
+        for (float r : jobs_[i].stats.ranges) distances.insert(r);
+      }
+      result_.shapes.push_back(jobs_[i].stats);
+    }
+    // Each occurrence draws the level whose range interval holds the distance.
+    for (double d : distances) {
+      std::size_t total = 0;
+      for (const auto& o : occurrences_) {
+        const ShapeStatistics& s = jobs_[o.job].stats;
+        if (s.levels.empty()) continue;
+        std::size_t level = 0;
+        while (level < s.ranges.size() && d >= s.ranges[level]) ++level;
+        if (level < s.levels.size()) total += s.levels[level].triangles;
+      }
+      result_.triangles_by_distance.emplace_back(d, total);
+    }
+  }
+
+  const LodOptions& opt_;
+  LodResult result_;
+  std::vector<Job> jobs_;
+  std::vector<Occurrence> occurrences_;
+  std::unordered_map<std::size_t, std::size_t> occurrence_count_;
+  std::vector<const Node*> empty_path_;
+  double camera_angle_ = 0.785398;
+  double largest_radius_ = 0;
+};
+
+}  // namespace
+
+LodResult generate_lod(const scene::Scene& scene, const LodOptions& options) {
+  return Pipeline(scene, options).run();
+}
+
+}  // namespace lodforge

@@ -1,0 +1,90 @@
+// Chains of levels from the three simplifiers, with measured errors.
+#include "lodforge/lod/simplify_levels.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/simplify/quadric_collapse.h"
+#include "lodforge/simplify/vertex_clustering.h"
+#include "lodforge/simplify/vertex_decimation.h"
+
+namespace lodforge {
+
+const char* to_string(LodMethod method) {
+  switch (method) {
+    case LodMethod::kCluster: return "cluster";
+    case LodMethod::kDecimate: return "decimate";
+    case LodMethod::kQem: return "qem";
+  }
+  return "?";
+}
+
+namespace {
+
+std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChainOptions& o) {
+  const bool lines_only = mesh.triangles.empty();
+  if (o.method == LodMethod::kCluster || lines_only) {
+    // Line sets are always clustered (weighted mean), as in the original.
+    VertexClusteringOptions c;
+    c.min_diff = std::clamp(o.min_diff, 0.01f, 1.0f);
+    if (!o.triangle_targets.empty()) c.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
+    auto chain = vertex_clustering(mesh, c);
+    if (!chain.empty() && chain.front().stop_reason == StopReason::kNoReduction)
+      chain.erase(chain.begin());  // level 0: the input itself
+    return chain;
+  }
+  if (o.method == LodMethod::kDecimate) {
+    VertexDecimationOptions d;
+    d.step = std::clamp(o.min_diff, 0.01f, 1.0f);
+    if (!o.triangle_targets.empty()) d.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
+    return vertex_decimation_chain(mesh, d);
+  }
+  std::vector<std::size_t> targets = o.triangle_targets;
+  if (targets.empty()) {
+    double t = double(mesh.triangle_count());
+    while (true) {
+      t = std::floor(t * (1.0 - double(o.min_diff)));
+      if (t < 4) break;
+      targets.push_back(std::size_t(t));
+      if (o.max_levels && targets.size() >= o.max_levels) break;
+    }
+    if (targets.empty() && mesh.triangle_count() > 4) targets.push_back(4);
+  }
+  if (targets.empty()) return {};
+  return quadric_collapse_chain(mesh, {}, targets);
+}
+
+}  // namespace
+
+std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
+                                           const LevelChainOptions& options) {
+  std::vector<MeasuredLevel> out;
+  if (options.min_diff >= 1.0f && options.triangle_targets.empty()) return out;
+  std::vector<SimplifyResult> chain = run_method(mesh, options);
+  std::size_t previous = mesh.triangles.empty() ? mesh.lines.size() : mesh.triangle_count();
+  const bool manual = !options.triangle_targets.empty();
+  for (auto& level : chain) {
+    std::size_t count = mesh.triangles.empty() ? level.mesh.lines.size() : level.mesh.triangle_count();
+    // A level must be smaller by min diff (manual targets: smaller at all).
+    double limit = manual ? double(previous) - 1 : double(previous) * (1.0 - options.min_diff);
+    if (double(count) > limit + 1e-9 || count == 0) break;
+    MeasuredLevel m;
+    if (!mesh.triangles.empty() && !level.mesh.triangles.empty()) {
+      CompareResult c = compare_meshes(mesh, level.mesh,
+                                       {.samples = options.measure_samples,
+                                        .threads = options.threads,
+                                        .per_vertex = false});
+      m.error = c.hausdorff;
+    } else {
+      m.error = level.error;
+    }
+    m.level = std::move(level);
+    out.push_back(std::move(m));
+    previous = count;
+    if (options.max_levels && out.size() >= options.max_levels) break;
+  }
+  return out;
+}
+
+}  // namespace lodforge

@@ -1,0 +1,41 @@
+#pragma once
+/// The chain of simplified levels of one mesh with the method the user chose,
+/// each level keeping at most (1 - min_diff) of the previous level's triangles
+/// (the original's "min diff"), each with its error measured against level 0.
+#include <cstddef>
+#include <vector>
+
+#include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/simplify/simplify_result.h"
+
+namespace lodforge {
+
+enum class LodMethod { kCluster, kDecimate, kQem };
+
+/// "cluster", "decimate", "qem".
+const char* to_string(LodMethod method);
+
+struct LevelChainOptions {
+  LodMethod method = LodMethod::kQem;
+  float min_diff = 0.2f;     ///< each level <= (1 - min_diff) x the previous one
+  std::size_t max_levels = 0;  ///< simplified levels at most (0: until exhausted)
+  /// Explicit triangle counts per level instead of the min-diff progression
+  /// (manual mode); decreasing.
+  std::vector<std::size_t> triangle_targets;
+  std::size_t measure_samples = 0;  ///< compare_meshes samples (0: its default)
+  int threads = 1;                  ///< for the measurement
+};
+
+struct MeasuredLevel {
+  SimplifyResult level;
+  /// Two-sided Hausdorff distance between level 0 and this level, measured by
+  /// compare_meshes (model units); for line sets the simplifier's bound.
+  double error = 0;
+};
+
+/// Levels 1..n of `mesh` (level 0 is `mesh` itself). Stops when a level would
+/// not reduce by min_diff, when nothing is left, or at max_levels.
+std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
+                                           const LevelChainOptions& options);
+
+}  // namespace lodforge

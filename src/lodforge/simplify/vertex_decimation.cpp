@@ -66,7 +66,8 @@ struct Fan {
   int feature[2] = {0, 0};         // loop positions of the two feature neighbours
   std::array<std::uint32_t, kMaxLoop> loop{};
   std::array<std::uint32_t, kMaxLoop> tris{};
-  float d = 0;  // criterion
+  std::array<Vec3, kMaxLoop> cross{};  // of tris[k]
+  float d = 0;                         // criterion
 };
 
 struct HeapEntry {
@@ -77,14 +78,25 @@ struct HeapEntry {
   bool operator<(const HeapEntry& o) const { return d != o.d ? d > o.d : v > o.v; }
 };
 
+/// A triangle (v, a, b) as seen from its vertex v (counter-clockwise), with
+/// (a - v) x (b - v): twice its area times its normal. Each vertex keeps the
+/// corners of its triangles, so that fans are read from one short array.
+struct Corner {
+  std::uint32_t t, a, b;
+  Vec3 cross;
+};
+
 /// One polygon to re-triangulate: the whole loop, or one side of a feature line.
 struct Side {
   int m = 0;                                   // polygon vertices
   std::array<std::uint32_t, kMaxLoop> poly{};  // mesh vertices, loop order
-  std::array<std::uint32_t, kMaxLoop>
-      tris{};  // tris[j] had polygon edge (j, j+1); m-1 or m of them
+  // tris[j] had polygon edge (j, j+1): m of them for a ring, m - 1 otherwise.
+  std::array<std::uint32_t, kMaxLoop> tris{};
   int ntris = 0;
-  Vec3 normal;  // unit average-plane normal of the side
+  Vec3 normal;  // sum of the side triangles' cross products, then its unit vector
+  // Polygon vertices in the average plane (orthonormal u, w with u x w =
+  // normal, origin poly[0]): the split-plane tests are 2D orientation tests.
+  std::array<float, kMaxLoop> x{}, y{};
 };
 
 using Tri8 = std::array<std::uint8_t, 3>;
@@ -116,18 +128,25 @@ class Decimator {
   SimplifyResult snapshot(StopReason reason, std::string detail) const;
 
  private:
-  Vec3 triangle_cross(std::uint32_t t) const {
-    const auto& f = tv_[t];
-    return cross(pos_[f[1]] - pos_[f[0]], pos_[f[2]] - pos_[f[0]]);
+  /// Adds triangle t (tv_ set) to the corner lists of its vertices.
+  void link(std::uint32_t t) {
+    const Triangle& f = tv_[t];
+    Vec3 c = cross(pos_[f[1]] - pos_[f[0]], pos_[f[2]] - pos_[f[0]]);
+    for (int r = 0; r < 3; ++r) corners_[f[r]].push_back({t, f[(r + 1) % 3], f[(r + 2) % 3], c});
   }
   bool classify(std::uint32_t v, Fan& fan) const;
   bool criterion(std::uint32_t v, Fan& fan) const;
   void evaluate(std::uint32_t v);
-  Keep plan(std::uint32_t v, Plan& plan) const;
+  /// Plans the removal of v. `final`: also make sure that no split line is
+  /// an existing edge (costly, as it reads the neighbours' corner lists; a
+  /// plan for the queue skips it, as such lines are rare, and the removal
+  /// itself re-plans with it).
+  Keep plan(std::uint32_t v, Plan& plan, bool final) const;
   void apply(std::uint32_t v, const Plan& plan);
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
-  Keep triangulate_side(Side& side, std::vector<Tri8>& out) const;
-  bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out) const;
+  Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const;
+  bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
+                  bool final, bool check_edges = false) const;
   std::uint32_t attribute_vertex(std::uint32_t t, std::uint32_t v) const {
     const auto& f = tv_[t];
     return ta_[t][f[0] == v ? 0 : f[1] == v ? 1 : 2];
@@ -136,6 +155,8 @@ class Decimator {
   const TriangleMesh& input_;
   VertexDecimationOptions options_;
   float cos_feature_;
+  bool has_materials_ = false;
+  bool has_seams_ = false;  // some position has several attribute vertices
 
   // Attribute vertices (input vertices with equal position and attributes
   // merged) and the input vertex each stands for.
@@ -143,7 +164,7 @@ class Decimator {
   std::vector<Segment> lines_;  // in attribute vertices
   // Position vertices (equal positions merged): the topology.
   std::vector<Vec3> pos_;
-  std::vector<std::vector<std::uint32_t>> vtris_;
+  std::vector<std::vector<Corner>> corners_;
   std::vector<std::uint32_t> version_;
   std::vector<Keep> keep_;
   std::vector<std::uint8_t> locked_;  // used by a line segment
@@ -177,10 +198,12 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
   points.positions = std::move(w1.mesh.positions);
   WeldResult w2 = weld(points, {});
   pos_ = std::move(w2.mesh.positions);
+  has_seams_ = pos_.size() != av_input_.size();
+  has_materials_ = w1.mesh.has_materials();
   const std::vector<std::uint32_t>& pv = w2.remap;
 
   std::size_t nv = pos_.size();
-  vtris_.resize(nv);
+  corners_.resize(nv);
   version_.assign(nv, 0);
   keep_.assign(nv, Keep::kCandidate);
   locked_.assign(nv, 0);
@@ -196,13 +219,13 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
     ta_.push_back(a);
     material_.push_back(w1.mesh.has_materials() ? w1.mesh.materials[f] : 0);
     origin_.push_back(w1.face_origin[f]);
-    for (std::uint32_t x : p) vtris_[x].push_back(t);
+    link(t);
   }
   error_.assign(tv_.size(), 0.0f);
   alive_.assign(tv_.size(), 1);
   live_triangles_ = tv_.size();
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (vtris_[v].empty()) continue;
+    if (corners_[v].empty()) continue;
     ++live_vertices_;
     evaluate(v);
   }
@@ -223,15 +246,13 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   fan.cls = VertexClass::kComplex;
   fan.why = Keep::kComplex;
   fan.attribute_feature = false;
-  const std::vector<std::uint32_t>& ts = vtris_[v];
-  int n = static_cast<int>(ts.size());
+  const std::vector<Corner>& cs = corners_[v];
+  int n = static_cast<int>(cs.size());
   if (locked_[v] || n == 0 || n > static_cast<int>(kMaxDecimationValence)) return false;
   std::array<std::uint32_t, kMaxLoop> src{}, dst{};
   for (int k = 0; k < n; ++k) {
-    const Triangle& f = tv_[ts[k]];
-    int r = f[0] == v ? 0 : f[1] == v ? 1 : 2;
-    src[k] = f[(r + 1) % 3];
-    dst[k] = f[(r + 2) % 3];
+    src[k] = cs[k].a;
+    dst[k] = cs[k].b;
   }
   // Every neighbour at most once as a source and once as a target of the link.
   for (int i = 0; i < n; ++i)
@@ -249,7 +270,8 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   int cur = fan.closed ? 0 : start;
   for (int s = 0; s < n; ++s) {
     fan.loop[s] = src[cur];
-    fan.tris[s] = ts[cur];
+    fan.tris[s] = cs[cur].t;
+    fan.cross[s] = cs[cur].cross;
     if (s + 1 == n) break;
     int next = -1;
     for (int j = 0; j < n; ++j)
@@ -266,13 +288,15 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   // Feature edges: the spokes (v, loop[k]) between tris[k-1] and tris[k].
   int features = 0;
   for (int k = fan.closed ? 0 : 1; k < n; ++k) {
-    std::uint32_t t1 = fan.tris[(k + n - 1) % n], t2 = fan.tris[k];
-    bool attribute = material_[t1] != material_[t2] ||
-                     attribute_vertex(t1, v) != attribute_vertex(t2, v) ||
-                     attribute_vertex(t1, fan.loop[k]) != attribute_vertex(t2, fan.loop[k]);
+    int k1 = (k + n - 1) % n;
+    std::uint32_t t1 = fan.tris[k1], t2 = fan.tris[k];
+    bool attribute =
+        (has_materials_ && material_[t1] != material_[t2]) ||
+        (has_seams_ && (attribute_vertex(t1, v) != attribute_vertex(t2, v) ||
+                        attribute_vertex(t1, fan.loop[k]) != attribute_vertex(t2, fan.loop[k])));
     bool feature = attribute;
     if (!feature) {
-      Vec3 n1 = triangle_cross(t1), n2 = triangle_cross(t2);
+      const Vec3 &n1 = fan.cross[k1], &n2 = fan.cross[k];
       float l = length(n1) * length(n2);
       feature = l > 0 && dot(n1, n2) < cos_feature_ * l;
     }
@@ -327,12 +351,10 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
     Vec3 normal{0, 0, 0}, centre{0, 0, 0};
     float area = 0;
     for (int k = 0; k < fan.n; ++k) {
-      std::uint32_t t = fan.tris[k];
-      Vec3 c = triangle_cross(t);
+      const Vec3& c = fan.cross[k];
       float a = length(c);
       normal += c;
-      const Triangle& f = tv_[t];
-      centre += (pos_[f[0]] + pos_[f[1]] + pos_[f[2]]) * (a / 3.0f);
+      centre += (p + pos_[fan.loop[k]] + pos_[fan.loop[(k + 1) % fan.loop_size]]) * (a / 3.0f);
       area += a;
     }
     float nl = length(normal);
@@ -348,7 +370,7 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
 
 void Decimator::evaluate(std::uint32_t v) {
   ++version_[v];
-  Keep k = plan(v, plan_);
+  Keep k = plan(v, plan_, false);
   keep_[v] = k;
   if (k != Keep::kCandidate) return;
   heap_.push_back({plan_.priority, v, version_[v]});
@@ -356,10 +378,8 @@ void Decimator::evaluate(std::uint32_t v) {
 }
 
 bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
-  for (std::uint32_t t : vtris_[a]) {
-    const Triangle& f = tv_[t];
-    if (f[0] == b || f[1] == b || f[2] == b) return true;
-  }
+  for (const Corner& c : corners_[a])
+    if (c.a == b || c.b == b) return true;
   return false;
 }
 
@@ -372,8 +392,8 @@ bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
 // outside of a concave loop) and the line is not already a mesh edge. Among the
 // valid ones the largest aspect ratio (smallest distance of a loop vertex to
 // the split plane over the line's length) wins.
-bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m,
-                           std::vector<Tri8>& out) const {
+bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
+                           bool final, bool check_edges) const {
   if (m == 3) {
     out.push_back({idx[0], idx[1], idx[2]});
     return true;
@@ -381,50 +401,62 @@ bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m,
   float best = 0;
   int bi = -1, bj = -1;
   for (int i = 0; i < m; ++i) {
+    float ax = side.x[idx[i]], ay = side.y[idx[i]];
     const Vec3& a = pos_[side.poly[idx[i]]];
     for (int j = i + 2; j < m; ++j) {
       if (i == 0 && j == m - 1) continue;
-      Vec3 line = pos_[side.poly[idx[j]]] - a;
-      Vec3 plane = cross(line, side.normal);
-      float pl = length(plane);
-      float ll = length(line);
-      if (!(pl > 0) || !(ll > 0)) continue;
+      // Split plane normal = line x normal = (ly, -lx) in the plane's basis;
+      // aspect ratio = smallest signed distance / length of the split line.
+      float lx = side.x[idx[j]] - ax, ly = side.y[idx[j]] - ay;
+      float scale = std::sqrt((lx * lx + ly * ly) * length_squared(pos_[side.poly[idx[j]]] - a));
+      if (!(scale > 0)) continue;
+      float bound = best * scale;
       float worst = std::numeric_limits<float>::infinity();
-      for (int k = 0; k < m && worst > best * pl * ll; ++k) {
+      for (int k = 0; k < m && worst > bound; ++k) {
         if (k == i || k == j) continue;
-        float s = dot(pos_[side.poly[idx[k]]] - a, plane);
-        if (k > i && k < j) s = -s;  // the first half must be on the positive side
-        worst = std::min(worst, -s);
+        float s = (side.x[idx[k]] - ax) * ly - (side.y[idx[k]] - ay) * lx;
+        // The first half must be on the positive side, the second negative.
+        worst = std::min(worst, k > i && k < j ? s : -s);
       }
-      float aspect = worst / (pl * ll);
-      if (!(aspect > best)) continue;
-      if (edge_exists(side.poly[idx[i]], side.poly[idx[j]])) continue;
-      best = aspect;
+      if (!(worst > bound)) continue;
+      if (check_edges && edge_exists(side.poly[idx[i]], side.poly[idx[j]])) continue;
+      best = worst / scale;
       bi = i;
       bj = j;
     }
   }
   if (bi < 0) return false;
+  // Looking up edges is the costly part: do it for the winner only, and search
+  // again among the lines that are not edges if the winner is one.
+  if (final && !check_edges && edge_exists(side.poly[idx[bi]], side.poly[idx[bj]]))
+    return split_loop(side, idx, m, out, true, true);
   std::array<std::uint8_t, kMaxLoop> half{};
   int h = 0;
   for (int k = bi; k <= bj; ++k) half[h++] = idx[k];
-  if (!split_loop(side, half.data(), h, out)) return false;
+  if (!split_loop(side, half.data(), h, out, final)) return false;
   h = 0;
   for (int k = bj; k != bi; k = (k + 1) % m) half[h++] = idx[k];
   half[h++] = idx[bi];
-  return split_loop(side, half.data(), h, out);
+  return split_loop(side, half.data(), h, out, final);
 }
 
-Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out) const {
-  Vec3 normal{0, 0, 0};
-  for (int j = 0; j < side.ntris; ++j) normal += triangle_cross(side.tris[j]);
-  float l = length(normal);
+Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const {
+  float l = length(side.normal);
   if (!(l > 0)) return Keep::kFold;
-  side.normal = normal / l;
+  Vec3 n = side.normal / l;
+  side.normal = n;
+  Vec3 u = normalized(cross(n, std::abs(n.x) < 0.6f ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  Vec3 w = cross(n, u);
+  const Vec3& origin = pos_[side.poly[0]];
   std::array<std::uint8_t, kMaxLoop> idx;
-  for (int j = 0; j < side.m; ++j) idx[j] = static_cast<std::uint8_t>(j);
+  for (int j = 0; j < side.m; ++j) {
+    idx[j] = static_cast<std::uint8_t>(j);
+    Vec3 d = pos_[side.poly[j]] - origin;
+    side.x[j] = dot(d, u);
+    side.y[j] = dot(d, w);
+  }
   std::size_t first = out.size();
-  if (!split_loop(side, idx.data(), side.m, out)) return Keep::kNoSplit;
+  if (!split_loop(side, idx.data(), side.m, out, final)) return Keep::kNoSplit;
   // No fold, no sliver: each new normal points along the average-plane normal.
   for (std::size_t i = first; i < out.size(); ++i) {
     const Vec3& a = pos_[side.poly[out[i][0]]];
@@ -444,7 +476,7 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out) const {
 // | simple, corner      | 1     | loop[0 .. n)  (ring)           | - (3-ring: the triangle)|
 // | boundary            | 1     | loop[0 .. n]                   | loop[n]-loop[0]         |
 // | interior edge p < q | 2     | loop[p .. q], loop[q .. p+n]   | loop[p]-loop[q]         |
-Keep Decimator::plan(std::uint32_t v, Plan& plan) const {
+Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
   Fan& fan = plan.fan;
   if (!criterion(v, fan)) return fan.why;
   float accumulated = 0;
@@ -461,7 +493,11 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan) const {
     s.m = count;
     s.ntris = ntris;
     for (int j = 0; j < count; ++j) s.poly[j] = fan.loop[(from + j) % fan.loop_size];
-    for (int j = 0; j < ntris; ++j) s.tris[j] = fan.tris[(from + j) % n];
+    s.normal = {0, 0, 0};
+    for (int j = 0; j < ntris; ++j) {
+      s.tris[j] = fan.tris[(from + j) % n];
+      s.normal += fan.cross[(from + j) % n];
+    }
   };
   if (fan.cls == VertexClass::kInteriorEdge) {
     int p = fan.feature[0], q = fan.feature[1];
@@ -476,18 +512,17 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan) const {
     fill(sides[0], 0, n, n);
     if (n == 3) {
       // The only new triangle uses three existing edges: it must not exist yet.
-      for (std::uint32_t t : vtris_[fan.loop[0]]) {
-        const Triangle& f = tv_[t];
-        auto has = [&](std::uint32_t x) { return f[0] == x || f[1] == x || f[2] == x; };
-        if (!has(v) && has(fan.loop[1]) && has(fan.loop[2])) return Keep::kExistingEdge;
-      }
+      for (const Corner& c : corners_[fan.loop[0]])
+        if ((c.a == fan.loop[1] && c.b == fan.loop[2]) ||
+            (c.a == fan.loop[2] && c.b == fan.loop[1]))
+          return Keep::kExistingEdge;
     }
   }
 
   plan.tris.clear();
   float volume = 0;
   for (int s = 0; s < nsides; ++s) {
-    Keep k = triangulate_side(sides[s], plan.tris);
+    Keep k = triangulate_side(sides[s], plan.tris, final);
     if (k != Keep::kCandidate) return k;
     plan.side_end[s] = plan.tris.size();
     for (std::size_t i = s == 0 ? 0 : plan.side_end[s - 1]; i < plan.side_end[s]; ++i) {
@@ -533,15 +568,14 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
   for (int k = 0; k < n; ++k) {
     std::uint32_t t = fan.tris[k];
     alive_[t] = 0;
-    for (std::uint32_t x : tv_[t]) {
-      if (x == v) continue;
-      auto& list = vtris_[x];
-      auto it = std::find(list.begin(), list.end(), t);
+    for (std::uint32_t x : {fan.loop[k], fan.loop[(k + 1) % fan.loop_size]}) {
+      auto& list = corners_[x];
+      auto it = std::find_if(list.begin(), list.end(), [t](const Corner& c) { return c.t == t; });
       *it = list.back();
       list.pop_back();
     }
   }
-  vtris_[v].clear();
+  corners_[v].clear();
   removed_[v] = 1;
   keep_[v] = Keep::kCandidate;
   std::size_t slot = 0;
@@ -566,7 +600,7 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
       origin_[t] = in.origin[from];
       error_[t] = accumulated;
       alive_[t] = 1;
-      for (std::uint32_t x : tv_[t]) vtris_[x].push_back(t);
+      link(t);
     }
   }
   max_error_ = std::max(max_error_, accumulated);
@@ -585,7 +619,7 @@ bool Decimator::run(std::size_t triangles, std::size_t vertices) {
     HeapEntry e = heap_.back();
     heap_.pop_back();
     if (removed_[e.v] || e.version != version_[e.v]) continue;
-    Keep k = plan(e.v, plan_);
+    Keep k = plan(e.v, plan_, true);
     if (k == Keep::kCandidate)
       apply(e.v, plan_);
     else
@@ -596,7 +630,7 @@ bool Decimator::run(std::size_t triangles, std::size_t vertices) {
 
 StopReason Decimator::stuck_reason() const {
   for (std::uint32_t v = 0; v < keep_.size(); ++v)
-    if (!removed_[v] && !vtris_[v].empty() && keep_[v] == Keep::kErrorBudget)
+    if (!removed_[v] && !corners_[v].empty() && keep_[v] == Keep::kErrorBudget)
       return StopReason::kErrorBudgetReached;
   return StopReason::kCannotSimplify;
 }
@@ -604,7 +638,7 @@ StopReason Decimator::stuck_reason() const {
 std::string Decimator::stuck_detail() const {
   std::array<std::size_t, static_cast<int>(Keep::kCount)> count{};
   for (std::uint32_t v = 0; v < keep_.size(); ++v)
-    if (!removed_[v] && !vtris_[v].empty()) ++count[static_cast<int>(keep_[v])];
+    if (!removed_[v] && !corners_[v].empty()) ++count[static_cast<int>(keep_[v])];
   static constexpr const char* kText[] = {
       "candidates",
       "interior-edge or corner vertices (feature edges preserved)",

@@ -8,9 +8,11 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "lodforge/mesh/mesh_io.h"
@@ -45,10 +47,12 @@ enum Variant { kDefault, kThesis, kQuadricOnly, kDefaultOneThread };
 
 VertexClusteringOptions options_of(Variant v) {
   switch (v) {
-    case kThesis: return {.quadric_weight = 0};
+    case kThesis:
+      return {.quadric_weight = 0};
     case kQuadricOnly:
       return {.area_weight = 0, .volume_weight = 0, .mean_weight = 0, .quadric_weight = 1};
-    default: return {};
+    default:
+      return {};
   }
 }
 
@@ -71,10 +75,10 @@ void BM_VertexClusteringChain(benchmark::State& state) {
   state.counters["levels"] = double(levels);
   state.counters["lowest_triangles"] = double(lowest);
   state.SetLabel(std::string(kMeshes[state.range(0)]) +
-                 (variant == kDefault            ? " default"
-                  : variant == kThesis           ? " thesis heuristics only"
-                  : variant == kQuadricOnly      ? " quadric only"
-                                                 : " default, 1 thread"));
+                 (variant == kDefault       ? " default"
+                  : variant == kThesis      ? " thesis heuristics only"
+                  : variant == kQuadricOnly ? " quadric only"
+                                            : " default, 1 thread"));
 }
 BENCHMARK(BM_VertexClusteringChain)
     ->ArgsProduct({{0, 1}, {kDefault, kThesis, kQuadricOnly, kDefaultOneThread}})
@@ -84,7 +88,10 @@ BENCHMARK(BM_VertexClusteringChain)
 void BM_SimplifySloppyToLowestLevel(benchmark::State& state) {
   const TriangleMesh* mesh = load(kMeshes[state.range(0)]);
   if (!mesh) return state.SkipWithError("mesh not found (set LODFORGE_SHARED_DATA)");
-  const std::size_t target = vertex_clustering(*mesh).back().mesh.triangle_count();
+  // The chain's lowest level that still has triangles (the last may be lines).
+  std::size_t target = mesh->triangle_count();
+  for (const SimplifyResult& r : vertex_clustering(*mesh))
+    if (r.mesh.triangle_count() > 0) target = std::min(target, r.mesh.triangle_count());
   std::vector<unsigned> indices;
   indices.reserve(mesh->triangle_count() * 3);
   for (const Triangle& t : mesh->triangles)
@@ -92,9 +99,8 @@ void BM_SimplifySloppyToLowestLevel(benchmark::State& state) {
   std::vector<unsigned> out(indices.size());
   std::size_t got = 0;
   for (auto _ : state) {
-    got = meshopt_simplifySloppy(out.data(), indices.data(), indices.size(),
-                                 &mesh->positions[0].x, mesh->vertex_count(), sizeof(Vec3),
-                                 target * 3, 1e30f, nullptr);
+    got = meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), &mesh->positions[0].x,
+                                 mesh->vertex_count(), sizeof(Vec3), target * 3, 1e30f, nullptr);
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["target_triangles"] = double(target);

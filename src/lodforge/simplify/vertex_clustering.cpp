@@ -331,8 +331,10 @@ std::vector<std::uint32_t> remap_faces(std::span<const Triangle> tris,
     for (std::uint32_t* it = first + 1; it < last; ++it)
       if (key[*it][1] == key[it[-1]][1] && key[*it][2] == key[it[-1]][2]) doublet[*it] = 1;
   }
-  for (std::size_t f = 0; f < tris.size(); ++f) {
-    if (key[f][0] == kNone || doublet[f]) continue;
+  // Kept triangles in bucket order, i.e. by smallest vertex in octree order:
+  // neighbours in memory are neighbours in space for the levels to come.
+  for (std::uint32_t f : bucket) {
+    if (doublet[f]) continue;
     to.tris.push_back({vertex_map[tris[f][0]], vertex_map[tris[f][1]], vertex_map[tris[f][2]]});
     to.tri_origin.push_back(tri_origin[f]);
   }
@@ -729,13 +731,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     }
     node_of[v] = static_cast<std::uint32_t>(cut.pos.size() - 1);
   }
-  if (quadrics) {
-    cut.quadric.assign(cut.pos.size(), Quadric{});
-    for (const Triangle& t : mesh.triangles) {
-      Quadric k = plane_quadric(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-      for (std::uint32_t v : t) cut.quadric[node_of[v]] += k;
-    }
-  }
   std::vector<std::uint32_t> identity(mesh.triangles.size());
   std::iota(identity.begin(), identity.end(), 0u);
   {
@@ -746,6 +741,28 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       if (n != kNone) n = keep[n];
   }
   identity = {};
+  // The input vertices still represented, in octree order, with their
+  // positions and current vertex (for the displacement of each level).
+  std::vector<Vec3> input_pos;
+  std::vector<std::uint32_t> input_node;
+  input_pos.reserve(order.size());
+  input_node.reserve(order.size());
+  for (const CodedVertex& it : order) {
+    if (node_of[it.vertex] == kNone) continue;
+    input_pos.push_back(mesh.positions[it.vertex]);
+    input_node.push_back(node_of[it.vertex]);
+  }
+  node_of = {};
+  order = {};
+  // Each distinct triangle's plane quadric goes to its three corners (level 0
+  // positions are the input's).
+  if (quadrics) {
+    cut.quadric.assign(cut.size(), Quadric{});
+    for (const Triangle& t : cut.tris) {
+      Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
+      for (std::uint32_t v : t) cut.quadric[v] += k;
+    }
+  }
 
   std::vector<SimplifyResult> chain;
   const std::size_t input_tris = mesh.triangle_count();
@@ -856,14 +873,14 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                     fmt::format("the level at octree depth {} would be empty", depth));
 
     // The largest displacement of a represented input vertex.
-    std::vector<std::uint32_t> new_node_of(nv, kNone);
-    double error = 0;
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (node_of[v] == kNone) continue;
-      std::uint32_t n = keep[cell_of[node_of[v]]];
-      new_node_of[v] = n;
-      if (n != kNone) error = std::max(error, double(length(mesh.positions[v] - next.pos[n])));
+    std::vector<std::uint32_t> new_node(input_node.size());
+    float error2 = 0;
+    for (std::size_t i = 0; i < input_node.size(); ++i) {
+      std::uint32_t n = input_node[i] == kNone ? kNone : keep[cell_of[input_node[i]]];
+      new_node[i] = n;
+      if (n != kNone) error2 = std::max(error2, length_squared(input_pos[i] - next.pos[n]));
     }
+    const float error = std::sqrt(error2);
     if (error > max_error)
       return finish(
           StopReason::kErrorBudgetReached,
@@ -877,9 +894,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         100.0 * (1.0 - double(next.size()) / double(n_prev)), next.tris.size(), next.lines.size(),
         error);
     cut = std::move(next);
-    node_of = std::move(new_node_of);
-    chain.push_back(make_result(mesh, cut, static_cast<float>(error), StopReason::kTargetReached,
-                                std::move(detail)));
+    input_node = std::move(new_node);
+    chain.push_back(make_result(mesh, cut, error, StopReason::kTargetReached, std::move(detail)));
     if (count_target && cut.tris.size() <= target_tris)
       return finish(StopReason::kTargetReached,
                     fmt::format("{} triangles <= target {}", cut.tris.size(), target_tris));

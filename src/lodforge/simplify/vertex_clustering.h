@@ -88,8 +88,10 @@ struct VertexClusteringOptions {
 /// Each level's mesh carries the attributes of the input: vertex normals,
 /// texcoords and colours of the original vertex in `vertex_map` (the
 /// representative's; for a quadric-placed vertex, the nearest vertex of its
-/// cell), materials of the original triangle in `face_map`. The vertex order
-/// is the octree (Morton) order; triangles keep their input order.
+/// cell), materials of the original triangle in `face_map`. Vertices are in
+/// octree (Morton) order, triangles sorted by their smallest vertex index
+/// (each keeps its corner order, so its orientation), so that neighbours in
+/// memory are neighbours in space; `face_map` gives the input triangle.
 ///
 /// `error` of a level, in model units: the largest distance from an original
 /// vertex (one still represented in the level) to its representative's

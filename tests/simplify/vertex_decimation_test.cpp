@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -393,6 +394,51 @@ TEST(VertexDecimation, MessyInput) {
     }
     EXPECT_EQ(mesh_topology_report(r.mesh).non_manifold_edges, 1u);
   }
+}
+
+// Random junk: triangles over a few vertices (non-manifold edges, repeated and
+// flipped triangles, degenerate ones), some coordinates coincident or not
+// finite. Never crashes or loops; the output uses input vertices only.
+TEST(VertexDecimation, RandomMessesNeverBreakIt) {
+  std::uint64_t state = 12345;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::uint32_t>(state >> 33);
+  };
+  for (int round = 0; round < 300; ++round) {
+    TriangleMesh m;
+    std::uint32_t nv = 4 + next() % 40;
+    for (std::uint32_t i = 0; i < nv; ++i)
+      m.positions.push_back({float(next() % 5), float(next() % 5), float(next() % 3)});
+    if (round % 7 == 0) m.positions[0].x = std::numeric_limits<float>::quiet_NaN();
+    if (round % 11 == 0) m.positions[1].y = std::numeric_limits<float>::infinity();
+    std::uint32_t nf = 1 + next() % 80;
+    for (std::uint32_t f = 0; f < nf; ++f)
+      m.triangles.push_back({next() % nv, next() % nv, next() % nv});
+    for (bool preserve : {true, false}) {
+      SimplifyResult r =
+          vertex_decimation(m, {.target = {.ratio = 0.1f}, .preserve_feature_edges = preserve});
+      ASSERT_EQ(r.vertex_map.size(), r.mesh.vertex_count());
+      ASSERT_EQ(r.face_map.size(), r.mesh.triangle_count());
+      for (const Triangle& t : r.mesh.triangles)
+        for (std::uint32_t i : t) ASSERT_LT(i, r.mesh.vertex_count());
+      std::vector<SimplifyResult> chain =
+          vertex_decimation_chain(m, {.preserve_feature_edges = preserve});
+      for (std::size_t k = 1; k < chain.size(); ++k)
+        EXPECT_LE(chain[k].mesh.triangle_count(), chain[k - 1].mesh.triangle_count());
+    }
+  }
+}
+
+// Decisions are relative: a scaled copy decimates to the same triangles.
+TEST(VertexDecimation, ScaleInvariant) {
+  TriangleMesh a = make_torus(1.0f, 0.3f, 32, 16);
+  TriangleMesh b = a;
+  for (Vec3& p : b.positions) p = p * 1024.0f;
+  SimplifyResult ra = vertex_decimation(a, {.target = {.ratio = 0.2f}});
+  SimplifyResult rb = vertex_decimation(b, {.target = {.ratio = 0.2f}});
+  EXPECT_EQ(ra.mesh.triangles, rb.mesh.triangles);
+  EXPECT_FLOAT_EQ(rb.error, 1024 * ra.error);
 }
 
 TEST(VertexDecimation, TriangleSoupOfOneSphere) {

@@ -533,6 +533,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
     }
   }
   plan.priority = options_.priority == DecimationPriority::kErrorVolume ? volume / 6 : fan.d;
+  if (!std::isfinite(plan.priority)) return Keep::kComplex;  // non-finite coordinates
   return Keep::kCandidate;
 }
 

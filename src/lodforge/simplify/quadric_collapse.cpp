@@ -1,0 +1,1182 @@
+// Quadric edge collapse.
+//
+// M. Garland, P. S. Heckbert, "Surface Simplification Using Quadric Error
+// Metrics", SIGGRAPH 1997: every vertex carries the sum of the (area-weighted)
+// squared-distance quadrics of its planes; the cheapest edge collapse goes
+// first, to the position that minimises the summed quadric (with a fallback to
+// the best point of the edge when that system is ill-conditioned), and border
+// edges add penalty planes perpendicular to their face.
+//
+// H. Hoppe, "New Quadric Metric for Simplifying Meshes with Appearance
+// Attributes", IEEE Visualization 1999: each attribute channel s is modelled
+// over a triangle as a linear function g.p + d of the position; the quadric
+// sum_t area_t (s - g_t.p - d_t)^2, minimised over s, is a quadric in p that
+// joins the geometric one, and its minimiser gives the attribute at the new
+// position. Attributes live on wedges (a position's distinct attribute sets),
+// so attribute seams stay sharp.
+//
+// Implementation notes (meshoptimizer's simplifier is the speed model): flat
+// arrays, a per-position list of triangles rewritten by appending, a binary
+// heap with lazy deletion (entries carry the version stamps of their two
+// vertices), and no allocation per collapse beyond amortised vector growth.
+#include "lodforge/simplify/quadric_collapse.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "lodforge/core/error.h"
+
+namespace lodforge {
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+struct D3 {
+  double x = 0, y = 0, z = 0;
+};
+inline D3 operator+(D3 a, D3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline D3 operator-(D3 a, D3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline D3 operator*(D3 a, double s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline double dot(D3 a, D3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline D3 cross(D3 a, D3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm2(D3 a) {
+  return dot(a, a);
+}
+
+/// Symmetric quadric Q(p) = p^T A p + 2 b.p + c.
+struct Quadric {
+  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0, b0 = 0, b1 = 0, b2 = 0, c = 0;
+
+  void add(const Quadric& o) {
+    a00 += o.a00;
+    a01 += o.a01;
+    a02 += o.a02;
+    a11 += o.a11;
+    a12 += o.a12;
+    a22 += o.a22;
+    b0 += o.b0;
+    b1 += o.b1;
+    b2 += o.b2;
+    c += o.c;
+  }
+  /// weight * (n.p + d)^2
+  void add_plane(D3 n, double d, double w) {
+    a00 += w * n.x * n.x;
+    a01 += w * n.x * n.y;
+    a02 += w * n.x * n.z;
+    a11 += w * n.y * n.y;
+    a12 += w * n.y * n.z;
+    a22 += w * n.z * n.z;
+    b0 += w * n.x * d;
+    b1 += w * n.y * d;
+    b2 += w * n.z * d;
+    c += w * d * d;
+  }
+  D3 apply_a(D3 p) const {
+    return {a00 * p.x + a01 * p.y + a02 * p.z, a01 * p.x + a11 * p.y + a12 * p.z,
+            a02 * p.x + a12 * p.y + a22 * p.z};
+  }
+  double eval(D3 p) const {
+    D3 ap = apply_a(p);
+    return std::max(0.0, dot(p, ap) + 2 * (b0 * p.x + b1 * p.y + b2 * p.z) + c);
+  }
+};
+
+/// Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision
+/// Detection, 5.1.5).
+double distance2_to_triangle(D3 p, D3 a, D3 b, D3 c) {
+  D3 ab = b - a, ac = c - a, ap = p - a;
+  double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return norm2(ap);
+  D3 bp = p - b;
+  double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return norm2(bp);
+  double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    double t = d1 / (d1 - d3);
+    return norm2(p - (a + ab * t));
+  }
+  D3 cp = p - c;
+  double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return norm2(cp);
+  double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    double t = d2 / (d2 - d6);
+    return norm2(p - (a + ac * t));
+  }
+  double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return norm2(p - (b + (c - b) * t));
+  }
+  double denom = 1 / (va + vb + vc);
+  D3 q = a + ab * (vb * denom) + ac * (vc * denom);
+  return norm2(p - q);
+}
+
+/// Vertex (welded position) kinds. A vertex moves only as its kind allows:
+///
+/// | kind     | where it is                                   | may move along          |
+/// |----------|-----------------------------------------------|-------------------------|
+/// | kFree    | interior, one wedge, no feature edge          | any edge                |
+/// | kFeature | on exactly two feature edges (border, seam,   | its feature edges only  |
+/// |          | material boundary): the middle of a line      |                         |
+/// | kLocked  | line ends and crossings, non-manifold or      | never (others may       |
+/// |          | inconsistently oriented edges, line segments, | collapse onto it)       |
+/// |          | borders under lock_border                     |                         |
+///
+/// A free vertex's edges are never feature edges, so an edge whose two ends
+/// may both move joins two vertices of the same kind.
+enum Kind : std::uint8_t { kFree, kFeature, kLocked };
+
+/// A planned collapse: vertex `u` goes into vertex `v`, which moves to `w`.
+struct Collapse {
+  double cost = 0;
+  std::uint32_t u = kNone, v = kNone;
+  D3 w;
+};
+
+struct HeapEntry {
+  float cost;
+  std::uint32_t a, b;
+  std::uint32_t va;  // version of a when pushed
+  std::uint32_t vb;  // version of b when pushed, kDeferred set for a deferred sliver
+};
+constexpr std::uint32_t kDeferred = 0x80000000u;
+struct HeapGreater {
+  bool operator()(const HeapEntry& x, const HeapEntry& y) const {
+    return x.cost > y.cost || (x.cost == y.cost && (x.vb & kDeferred) > (y.vb & kDeferred));
+  }
+};
+
+/// What try_collapse decided.
+enum class Outcome { kDone, kRejected, kSliver, kOverBudget };
+
+// At most 3 + 2 + 3 attribute channels; a wedge's attribute quadric holds the
+// summed p-part (10), the area (1) and per channel G (3) and D (1).
+constexpr int kMaxChannels = 8;
+constexpr int kMaxAttrStride = 11 + 4 * kMaxChannels;
+
+class Collapser {
+ public:
+  Collapser(const TriangleMesh& mesh, const QuadricCollapseOptions& options)
+      : mesh_(mesh), options_(options) {
+    build();
+  }
+
+  std::size_t live_triangles() const { return live_triangles_; }
+  std::size_t input_triangles() const { return mesh_.triangles.size(); }
+
+  /// Collapses until at most `target` triangles are live or nothing is
+  /// allowed; returns why it stopped.
+  StopReason run(std::size_t target, std::string& detail);
+  SimplifyResult snapshot() const;
+
+ private:
+  void build();
+  void compute_kinds();
+  void compute_quadrics();
+  void fill_heap();
+  void push_edges(std::uint32_t a, bool only_greater, bool collect_rejected = false);
+  bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out);
+  Outcome try_collapse(const Collapse& c, bool allow_slivers);
+  int edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* tris) const;
+  bool is_feature_edge(std::uint32_t a, std::uint32_t b, bool& movable) const;
+  void collect_wedge_pairs(std::uint32_t u, std::uint32_t v);
+  double attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q);
+  void update_wedge_attributes(std::uint32_t v);
+  D3 position_of_corner(std::uint32_t t, int k) const { return pos_[tv_[3 * t + k]]; }
+  std::uint32_t* tris_begin(std::uint32_t p) { return refs_.data() + ref_start_[p]; }
+  const std::uint32_t* tris_begin(std::uint32_t p) const { return refs_.data() + ref_start_[p]; }
+  std::uint32_t tris_count(std::uint32_t p) const { return ref_count_[p]; }
+
+  const TriangleMesh& mesh_;
+  const QuadricCollapseOptions& options_;
+
+  // Positions (welded vertices).
+  std::vector<D3> pos_;
+  std::vector<Quadric> quadric_;
+  std::vector<Kind> kind_;
+  std::vector<std::uint32_t> version_;
+  std::vector<std::uint8_t> vertex_alive_;
+  std::vector<std::uint32_t> first_wedge_;
+  std::vector<std::uint32_t> ref_start_, ref_count_;
+  std::vector<std::uint32_t> refs_;
+  std::vector<std::uint32_t> mark_;
+  std::uint32_t stamp_ = 0;
+  // Set on both ends of a rejected collapse; a change next to such a vertex
+  // queues its edges again, since the change may have made them valid.
+  std::vector<std::uint8_t> rejected_;
+
+  // Wedges (distinct position + attribute sets).
+  std::vector<std::uint32_t> wedge_origin_;  // first input vertex of the wedge
+  std::vector<std::uint32_t> wedge_vertex_;  // its position
+  std::vector<std::uint32_t> next_wedge_;    // next wedge of the same position
+  std::vector<std::uint32_t> wedge_parent_;  // wedge it merged into, or itself
+  std::vector<std::uint32_t> input_wedge_;   // #V of the input: input vertex -> wedge
+  int channels_ = 0;
+  int attr_stride_ = 0;
+  std::array<double, kMaxChannels> channel_scale_{};
+  std::vector<double> wedge_quadric_;  // attr_stride_ per wedge
+  std::vector<float> wedge_attr_;      // channels_ per wedge, current values
+
+  // Triangles (the input's, minus those using a position twice).
+  std::vector<std::uint32_t> tv_, tw_;  // 3 per triangle: positions, wedges
+  std::vector<std::uint8_t> tri_alive_;
+  std::vector<float> tri_error_;  // the bound e(T)
+  std::size_t live_triangles_ = 0;
+
+  std::vector<HeapEntry> heap_;
+  std::size_t collapses_since_fill_ = 0;
+  std::size_t budget_rejections_ = 0;
+  // Rejected collapses are retried when their neighbourhood changes; a full
+  // refill of the heap is only the safety net, tried a few times.
+  static constexpr int kMaxRefills = 4;
+  int refills_ = 0;
+
+  // Scratch, reused by every collapse.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> wedge_pairs_;
+  std::vector<std::pair<std::uint32_t, float>> new_errors_;
+  std::vector<std::uint32_t> new_list_;
+  std::vector<std::uint32_t> requeue_;
+};
+
+void Collapser::build() {
+  const std::size_t nv = mesh_.positions.size();
+  const std::size_t nf = mesh_.triangles.size();
+  for (const Triangle& t : mesh_.triangles)
+    for (std::uint32_t i : t)
+      if (i >= nv)
+        throw DataError("quadric_collapse: triangle index " + std::to_string(i) +
+                        " out of range (" + std::to_string(nv) + " vertices)");
+  for (const Segment& s : mesh_.lines)
+    for (std::uint32_t i : s)
+      if (i >= nv) throw DataError("quadric_collapse: line index out of range");
+
+  // Weld by position with an open-addressing hash; vertices of one position
+  // with equal attributes share a wedge.
+  std::size_t cap = 1;
+  while (cap < 2 * nv + 1) cap <<= 1;
+  std::vector<std::uint32_t> table(cap, kNone);
+  auto bits = [](float f) {
+    f = f == 0.0f ? 0.0f : f;  // +0 == -0
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+  };
+  std::vector<std::uint32_t> vertex_position(nv);
+  input_wedge_.assign(nv, kNone);
+  std::vector<std::uint32_t> position_first_input;  // per position: first input vertex
+  std::vector<std::uint32_t> next_same_position(nv, kNone);
+  auto same_attributes = [&](std::uint32_t i, std::uint32_t j) {
+    if (mesh_.has_normals() && !(mesh_.normals[i] == mesh_.normals[j])) return false;
+    if (mesh_.has_texcoords() && !(mesh_.texcoords[i] == mesh_.texcoords[j])) return false;
+    if (mesh_.has_colors() && !(mesh_.colors[i] == mesh_.colors[j])) return false;
+    return true;
+  };
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    const Vec3& p = mesh_.positions[i];
+    std::uint32_t h = bits(p.x) * 73856093u ^ bits(p.y) * 19349663u ^ bits(p.z) * 83492791u;
+    std::size_t slot = (h ^ (h >> 15)) & (cap - 1);
+    while (table[slot] != kNone && !(mesh_.positions[position_first_input[table[slot]]] == p))
+      slot = (slot + 1) & (cap - 1);
+    if (table[slot] == kNone) {
+      table[slot] = static_cast<std::uint32_t>(position_first_input.size());
+      position_first_input.push_back(i);
+    }
+    vertex_position[i] = table[slot];
+  }
+  const std::size_t np = position_first_input.size();
+  pos_.resize(np);
+  first_wedge_.assign(np, kNone);
+  std::vector<std::uint32_t> last_input(np, kNone);
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    std::uint32_t p = vertex_position[i];
+    // Look for an earlier input vertex of the same position and attributes.
+    for (std::uint32_t j = position_first_input[p]; j != kNone && j != i; j = next_same_position[j])
+      if (same_attributes(i, j)) {
+        input_wedge_[i] = input_wedge_[j];
+        break;
+      }
+    if (last_input[p] != kNone && last_input[p] != i) next_same_position[last_input[p]] = i;
+    last_input[p] = i;
+    if (input_wedge_[i] == kNone) {
+      auto w = static_cast<std::uint32_t>(wedge_origin_.size());
+      input_wedge_[i] = w;
+      wedge_origin_.push_back(i);
+      wedge_vertex_.push_back(p);
+      next_wedge_.push_back(first_wedge_[p]);
+      first_wedge_[p] = w;
+    }
+  }
+  const std::size_t nw = wedge_origin_.size();
+  wedge_parent_.resize(nw);
+  for (std::uint32_t w = 0; w < nw; ++w) wedge_parent_[w] = w;
+  for (std::size_t p = 0; p < np; ++p) {
+    const Vec3& q = mesh_.positions[position_first_input[p]];
+    pos_[p] = {q.x, q.y, q.z};
+  }
+
+  // Triangles: drop those using a position twice.
+  tv_.reserve(3 * nf);
+  tw_.reserve(3 * nf);
+  tv_.resize(3 * nf);
+  tw_.resize(3 * nf);
+  tri_alive_.assign(nf, 0);
+  tri_error_.assign(nf, 0.0f);
+  std::vector<std::uint8_t> used(np, 0);
+  for (std::size_t t = 0; t < nf; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t i = mesh_.triangles[t][k];
+      tv_[3 * t + k] = vertex_position[i];
+      tw_[3 * t + k] = input_wedge_[i];
+    }
+    std::uint32_t a = tv_[3 * t], b = tv_[3 * t + 1], c = tv_[3 * t + 2];
+    if (a != b && b != c && c != a) {
+      tri_alive_[t] = 1;
+      ++live_triangles_;
+      for (int k = 0; k < 3; ++k) used[tv_[3 * t + k]] = 1;
+    }
+  }
+  for (std::size_t p = 0; p < np; ++p)
+    if (used[p] || !mesh_.lines.empty()) {
+      const D3& q = pos_[p];
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+        throw DataError("quadric_collapse: vertex " + std::to_string(position_first_input[p]) +
+                        " has a non-finite coordinate");
+    }
+
+  // Vertex -> triangle lists (CSR, later rewritten by appending).
+  ref_start_.assign(np, 0);
+  ref_count_.assign(np, 0);
+  for (std::size_t t = 0; t < nf; ++t)
+    if (tri_alive_[t])
+      for (int k = 0; k < 3; ++k) ++ref_count_[tv_[3 * t + k]];
+  std::uint32_t sum = 0;
+  for (std::size_t p = 0; p < np; ++p) {
+    ref_start_[p] = sum;
+    sum += ref_count_[p];
+    ref_count_[p] = 0;
+  }
+  refs_.reserve(std::size_t{sum} * 3);
+  refs_.resize(sum);
+  for (std::size_t t = 0; t < nf; ++t)
+    if (tri_alive_[t])
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t p = tv_[3 * t + k];
+        refs_[ref_start_[p] + ref_count_[p]++] = static_cast<std::uint32_t>(t);
+      }
+
+  version_.assign(np, 0);
+  vertex_alive_.assign(np, 1);
+  mark_.assign(np, 0);
+  rejected_.assign(np, 0);
+  kind_.assign(np, kFree);
+
+  // Attribute channels, scaled so that a unit difference costs like a
+  // displacement of weight x diagonal.
+  Box3 box;
+  for (std::size_t p = 0; p < np; ++p)
+    if (used[p]) box.add(mesh_.positions[position_first_input[p]]);
+  const double diagonal = box.empty() ? 1.0 : std::max(1e-30, double(box.diagonal()));
+  auto add_channels = [&](bool present, int count, float weight) {
+    if (!present) return;
+    for (int i = 0; i < count; ++i)
+      channel_scale_[channels_++] = std::max(double(weight), 1e-4) * diagonal;
+  };
+  add_channels(mesh_.has_normals(), 3, options_.normal_weight);
+  add_channels(mesh_.has_texcoords(), 2, options_.texcoord_weight);
+  add_channels(mesh_.has_colors(), 3, options_.color_weight);
+  attr_stride_ = channels_ > 0 ? 11 + 4 * channels_ : 0;
+  if (channels_ > 0) {
+    wedge_attr_.resize(nw * channels_);
+    for (std::size_t w = 0; w < nw; ++w) {
+      std::uint32_t i = wedge_origin_[w];
+      float* a = &wedge_attr_[w * channels_];
+      int c = 0;
+      if (mesh_.has_normals())
+        for (int k = 0; k < 3; ++k) a[c++] = mesh_.normals[i][k];
+      if (mesh_.has_texcoords()) {
+        a[c++] = mesh_.texcoords[i].x;
+        a[c++] = mesh_.texcoords[i].y;
+      }
+      if (mesh_.has_colors())
+        for (int k = 0; k < 3; ++k) a[c++] = mesh_.colors[i][k];
+    }
+  }
+
+  compute_kinds();
+  compute_quadrics();
+  wedge_pairs_.reserve(16);
+  new_errors_.reserve(64);
+  new_list_.reserve(64);
+}
+
+// Feature edges around each vertex decide its kind (table above).
+void Collapser::compute_kinds() {
+  const std::size_t np = pos_.size();
+  struct Half {
+    std::uint32_t other, tri;
+    bool forward;  // the triangle runs p -> other
+  };
+  std::vector<Half> halves;
+  for (std::uint32_t p = 0; p < np; ++p) {
+    if (ref_count_[p] == 0) {
+      kind_[p] = kLocked;
+      continue;
+    }
+    halves.clear();
+    const std::uint32_t* ts = tris_begin(p);
+    for (std::uint32_t i = 0; i < ref_count_[p]; ++i) {
+      std::uint32_t t = ts[i];
+      int k = tv_[3 * t] == p ? 0 : tv_[3 * t + 1] == p ? 1 : 2;
+      halves.push_back({tv_[3 * t + (k + 1) % 3], t, true});
+      halves.push_back({tv_[3 * t + (k + 2) % 3], t, false});
+    }
+    std::sort(halves.begin(), halves.end(),
+              [](const Half& x, const Half& y) { return x.other < y.other; });
+    int features = 0;
+    bool border = false, locked = false;
+    for (std::size_t i = 0; i < halves.size();) {
+      std::size_t j = i;
+      while (j < halves.size() && halves[j].other == halves[i].other) ++j;
+      std::size_t n = j - i;
+      if (n == 1) {
+        ++features;
+        border = true;
+      } else if (n == 2) {
+        const Half& h0 = halves[i];
+        const Half& h1 = halves[i + 1];
+        if (h0.forward == h1.forward) {
+          locked = true;  // inconsistent orientation (or the same triangle twice)
+        } else {
+          auto wedge_at = [&](std::uint32_t t, std::uint32_t q) {
+            for (int k = 0; k < 3; ++k)
+              if (tv_[3 * t + k] == q) return tw_[3 * t + k];
+            return kNone;
+          };
+          bool seam = wedge_at(h0.tri, p) != wedge_at(h1.tri, p) ||
+                      wedge_at(h0.tri, h0.other) != wedge_at(h1.tri, h0.other);
+          bool material =
+              mesh_.has_materials() && mesh_.materials[h0.tri] != mesh_.materials[h1.tri];
+          if (seam || material) ++features;
+        }
+      } else {
+        locked = true;  // non-manifold edge
+      }
+      i = j;
+    }
+    if (locked || (features != 0 && features != 2) || (border && options_.lock_border))
+      kind_[p] = kLocked;
+    else if (features == 2)
+      kind_[p] = kFeature;
+    else
+      kind_[p] = next_wedge_[first_wedge_[p]] == kNone ? kFree : kLocked;
+  }
+  for (const Segment& s : mesh_.lines)
+    for (std::uint32_t i : s) {
+      // Vertices of line segments stay where they are; look the position up
+      // through the wedge.
+      kind_[wedge_vertex_[input_wedge_[i]]] = kLocked;
+    }
+}
+
+void Collapser::compute_quadrics() {
+  const std::size_t nf = tri_alive_.size();
+  quadric_.assign(pos_.size(), Quadric{});
+  if (attr_stride_ > 0) wedge_quadric_.assign(wedge_origin_.size() * attr_stride_, 0.0);
+  const double border_weight = options_.border_weight;
+  for (std::size_t t = 0; t < nf; ++t) {
+    if (!tri_alive_[t]) continue;
+    D3 p[3] = {position_of_corner(t, 0), position_of_corner(t, 1), position_of_corner(t, 2)};
+    D3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+    D3 n = cross(e1, e2);
+    double len = std::sqrt(norm2(n));
+    if (len <= 0) continue;
+    double area = 0.5 * len;
+    n = n * (1 / len);
+    Quadric q;
+    q.add_plane(n, -dot(n, p[0]), area);
+    for (int k = 0; k < 3; ++k) quadric_[tv_[3 * t + k]].add(q);
+
+    // Penalty planes through feature edges, perpendicular to the face.
+    if (border_weight > 0) {
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
+        if (kind_[a] == kFree || kind_[b] == kFree) continue;
+        bool movable = false;
+        if (!is_feature_edge(a, b, movable)) continue;
+        D3 edge = pos_[b] - pos_[a];
+        double l2 = norm2(edge);
+        if (l2 <= 0) continue;
+        D3 m = cross(edge, n);
+        double ml = std::sqrt(norm2(m));
+        if (ml <= 0) continue;
+        m = m * (1 / ml);
+        Quadric pq;
+        pq.add_plane(m, -dot(m, pos_[a]), border_weight * l2);
+        quadric_[a].add(pq);
+        quadric_[b].add(pq);
+      }
+    }
+
+    // Hoppe's attribute quadrics: per channel the in-plane gradient g and
+    // offset d with g.p_i + d = s_i at the three corners.
+    if (attr_stride_ > 0) {
+      double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+      double det = g11 * g22 - g12 * g12;
+      if (det <= 1e-30 * g11 * g22) continue;
+      std::array<D3, kMaxChannels> grad;
+      std::array<double, kMaxChannels> off;
+      for (int c = 0; c < channels_; ++c) {
+        double sc = channel_scale_[c];
+        double s0 = wedge_attr_[tw_[3 * t] * channels_ + c] * sc;
+        double s1 = wedge_attr_[tw_[3 * t + 1] * channels_ + c] * sc;
+        double s2 = wedge_attr_[tw_[3 * t + 2] * channels_ + c] * sc;
+        double r1 = s1 - s0, r2 = s2 - s0;
+        double alpha = (g22 * r1 - g12 * r2) / det, beta = (g11 * r2 - g12 * r1) / det;
+        grad[c] = e1 * alpha + e2 * beta;
+        off[c] = s0 - dot(grad[c], p[0]);
+      }
+      for (int k = 0; k < 3; ++k) {
+        double* wq = &wedge_quadric_[std::size_t{tw_[3 * t + k]} * attr_stride_];
+        Quadric* qp = reinterpret_cast<Quadric*>(wq);
+        static_assert(sizeof(Quadric) == 10 * sizeof(double));
+        for (int c = 0; c < channels_; ++c) {
+          // area * (g.p + d)^2 as a quadric in p.
+          D3 g = grad[c];
+          double d = off[c];
+          qp->a00 += area * g.x * g.x;
+          qp->a01 += area * g.x * g.y;
+          qp->a02 += area * g.x * g.z;
+          qp->a11 += area * g.y * g.y;
+          qp->a12 += area * g.y * g.z;
+          qp->a22 += area * g.z * g.z;
+          qp->b0 += area * g.x * d;
+          qp->b1 += area * g.y * d;
+          qp->b2 += area * g.z * d;
+          qp->c += area * d * d;
+          double* ch = wq + 11 + 4 * c;
+          ch[0] += area * g.x;
+          ch[1] += area * g.y;
+          ch[2] += area * g.z;
+          ch[3] += area * d;
+        }
+        wq[10] += area;
+      }
+    }
+  }
+}
+
+/// Triangles on edge {a, b}, at most 3 written; returns the count (which may
+/// exceed 3).
+int Collapser::edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* tris) const {
+  int n = 0;
+  const std::uint32_t* ts = tris_begin(a);
+  for (std::uint32_t i = 0; i < ref_count_[a]; ++i) {
+    std::uint32_t t = ts[i];
+    if (!tri_alive_[t]) continue;
+    if (tv_[3 * t] == b || tv_[3 * t + 1] == b || tv_[3 * t + 2] == b) {
+      if (n < 3) tris[n] = t;
+      ++n;
+    }
+  }
+  return n;
+}
+
+/// Whether {a, b} is a border, seam or material edge; `movable` tells whether
+/// a feature vertex may slide along it (false on non-manifold edges).
+bool Collapser::is_feature_edge(std::uint32_t a, std::uint32_t b, bool& movable) const {
+  std::uint32_t t[3];
+  int n = edge_triangles(a, b, t);
+  movable = n == 1 || n == 2;
+  if (n == 1) return true;
+  if (n != 2) return true;
+  auto wedge_at = [&](std::uint32_t tri, std::uint32_t q) {
+    for (int k = 0; k < 3; ++k)
+      if (tv_[3 * tri + k] == q) return tw_[3 * tri + k];
+    return kNone;
+  };
+  if (wedge_at(t[0], a) != wedge_at(t[1], a) || wedge_at(t[0], b) != wedge_at(t[1], b)) return true;
+  return mesh_.has_materials() && mesh_.materials[t[0]] != mesh_.materials[t[1]];
+}
+
+/// The wedge merges of collapsing u into v: for each triangle on the edge,
+/// (wedge of u, wedge of v).
+void Collapser::collect_wedge_pairs(std::uint32_t u, std::uint32_t v) {
+  wedge_pairs_.clear();
+  const std::uint32_t* ts = tris_begin(u);
+  for (std::uint32_t i = 0; i < ref_count_[u]; ++i) {
+    std::uint32_t t = ts[i];
+    if (!tri_alive_[t]) continue;
+    std::uint32_t wu = kNone, wv = kNone;
+    for (int k = 0; k < 3; ++k) {
+      if (tv_[3 * t + k] == u) wu = tw_[3 * t + k];
+      if (tv_[3 * t + k] == v) wv = tw_[3 * t + k];
+    }
+    if (wv == kNone) continue;
+    bool known = false;
+    for (auto& pr : wedge_pairs_) known |= pr.first == wu;
+    if (!known) wedge_pairs_.push_back({wu, wv});
+  }
+}
+
+/// Adds to `q` the attribute quadrics (minimised over the attribute values) of
+/// the wedges the collapse of u into v leaves at v. Uses wedge_pairs_.
+double Collapser::attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q) {
+  std::array<double, kMaxAttrStride> merged;
+  auto add_reduced = [&](const double* wq) {
+    q.add(*reinterpret_cast<const Quadric*>(wq));
+    double area = wq[10];
+    if (area <= 0) return;
+    double inv = 1 / area;
+    for (int c = 0; c < channels_; ++c) {
+      const double* g = wq + 11 + 4 * c;
+      Quadric r;
+      r.a00 = g[0] * g[0];
+      r.a01 = g[0] * g[1];
+      r.a02 = g[0] * g[2];
+      r.a11 = g[1] * g[1];
+      r.a12 = g[1] * g[2];
+      r.a22 = g[2] * g[2];
+      r.b0 = g[0] * g[3];
+      r.b1 = g[1] * g[3];
+      r.b2 = g[2] * g[3];
+      r.c = g[3] * g[3];
+      q.a00 -= inv * r.a00;
+      q.a01 -= inv * r.a01;
+      q.a02 -= inv * r.a02;
+      q.a11 -= inv * r.a11;
+      q.a12 -= inv * r.a12;
+      q.a22 -= inv * r.a22;
+      q.b0 -= inv * r.b0;
+      q.b1 -= inv * r.b1;
+      q.b2 -= inv * r.b2;
+      q.c -= inv * r.c;
+    }
+  };
+  const std::size_t s = attr_stride_;
+  for (std::uint32_t w = first_wedge_[v]; w != kNone; w = next_wedge_[w]) {
+    const double* wq = &wedge_quadric_[w * s];
+    bool any = false;
+    for (auto& pr : wedge_pairs_)
+      if (pr.second == w) {
+        if (!any) std::copy(wq, wq + s, merged.begin());
+        any = true;
+        const double* uq = &wedge_quadric_[pr.first * s];
+        for (std::size_t i = 0; i < s; ++i) merged[i] += uq[i];
+      }
+    add_reduced(any ? merged.data() : wq);
+  }
+  for (std::uint32_t w = first_wedge_[u]; w != kNone; w = next_wedge_[w]) {
+    bool paired = false;
+    for (auto& pr : wedge_pairs_) paired |= pr.first == w;
+    if (!paired) add_reduced(&wedge_quadric_[w * s]);
+  }
+  return 0;
+}
+
+/// Plans the collapse of edge {a, b}; false if neither end may move.
+///
+/// | a may move | b may move | plan                                           |
+/// |------------|------------|------------------------------------------------|
+/// | no         | no         | none                                           |
+/// | yes        | no         | a into b, at b                                 |
+/// | no         | yes        | b into a, at a                                 |
+/// | yes        | yes        | a into b, at the quadric's minimiser if it is  |
+/// |            |            | well conditioned and near the edge, else at    |
+/// |            |            | the best point of the edge                     |
+bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
+  bool ma = kind_[a] == kFree, mb = kind_[b] == kFree;
+  if (kind_[a] == kFeature || kind_[b] == kFeature) {
+    bool movable = false;
+    bool feature = is_feature_edge(a, b, movable);
+    if (kind_[a] == kFeature) ma = feature && movable;
+    if (kind_[b] == kFeature) mb = feature && movable;
+    if (ma && mb && !feature) ma = mb = false;
+  }
+  if (!ma && !mb) return false;
+  std::uint32_t u = a, v = b;
+  if (!ma) std::swap(u, v);
+  Quadric q = quadric_[u];
+  q.add(quadric_[v]);
+  if (attr_stride_ > 0) {
+    collect_wedge_pairs(u, v);
+    attribute_quadric(u, v, q);
+  }
+  D3 w = pos_[v];
+  if (ma && mb) {
+    D3 pa = pos_[u], pb = pos_[v];
+    D3 mid = (pa + pb) * 0.5;
+    double l2 = norm2(pb - pa);
+    bool solved = false;
+    double det = q.a00 * (q.a11 * q.a22 - q.a12 * q.a12) - q.a01 * (q.a01 * q.a22 - q.a12 * q.a02) +
+                 q.a02 * (q.a01 * q.a12 - q.a11 * q.a02);
+    double tr = q.a00 + q.a11 + q.a22;
+    if (std::abs(det) > 1e-9 * tr * tr * tr) {
+      // Solve A x = -b relative to the midpoint for accuracy.
+      D3 rhs = (q.apply_a(mid) + D3{q.b0, q.b1, q.b2}) * -1.0;
+      double inv = 1 / det;
+      D3 x{(rhs.x * (q.a11 * q.a22 - q.a12 * q.a12) - q.a01 * (rhs.y * q.a22 - q.a12 * rhs.z) +
+            q.a02 * (rhs.y * q.a12 - q.a11 * rhs.z)) *
+               inv,
+           (q.a00 * (rhs.y * q.a22 - q.a12 * rhs.z) - rhs.x * (q.a01 * q.a22 - q.a12 * q.a02) +
+            q.a02 * (q.a01 * rhs.z - rhs.y * q.a02)) *
+               inv,
+           (q.a00 * (q.a11 * rhs.z - rhs.y * q.a12) - q.a01 * (q.a01 * rhs.z - rhs.y * q.a02) +
+            rhs.x * (q.a01 * q.a12 - q.a11 * q.a02)) *
+               inv};
+      if (norm2(x) <= l2) {
+        w = mid + x;
+        solved = true;
+      }
+    }
+    if (!solved) {
+      // Best point of the segment u..v: minimise Q(pa + t d), t in [0, 1].
+      D3 d = pb - pa;
+      double dad = dot(d, q.apply_a(d));
+      double slope = dot(d, q.apply_a(pa) + D3{q.b0, q.b1, q.b2});
+      double best_t = q.eval(pa) <= q.eval(pb) ? 0.0 : 1.0;
+      if (dad > 0) {
+        double t = std::clamp(-slope / dad, 0.0, 1.0);
+        if (q.eval(pa + d * t) < q.eval(pa + d * best_t)) best_t = t;
+      }
+      w = pa + d * best_t;
+    }
+  }
+  out.u = u;
+  out.v = v;
+  out.w = w;
+  out.cost = q.eval(w);
+  return true;
+}
+
+/// Queues the edges of `a` (only towards higher indices when filling the
+/// heap); `collect_rejected` notes neighbours flagged in rejected_.
+void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_rejected) {
+  std::uint32_t s = ++stamp_;
+  const std::uint32_t* ts = tris_begin(a);
+  const std::uint32_t n = ref_count_[a];
+  mark_[a] = s;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::uint32_t t = ts[i];
+    if (!tri_alive_[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t b = tv_[3 * t + k];
+      if (mark_[b] == s || (only_greater && b < a)) continue;
+      mark_[b] = s;
+      if (collect_rejected && rejected_[b]) requeue_.push_back(b);
+      Collapse c;
+      if (!evaluate(a, b, c)) continue;
+      heap_.push_back({static_cast<float>(c.cost), a, b, version_[a], version_[b]});
+      if (!only_greater) std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+    }
+  }
+}
+
+void Collapser::fill_heap() {
+  heap_.clear();
+  for (std::uint32_t p = 0; p < pos_.size(); ++p)
+    if (vertex_alive_[p] && ref_count_[p] > 0) push_edges(p, true);
+  std::make_heap(heap_.begin(), heap_.end(), HeapGreater{});
+  collapses_since_fill_ = 0;
+  budget_rejections_ = 0;
+}
+
+/// Checks the collapse (link condition, duplicate triangles, flips, slivers,
+/// error budget) and performs it if allowed. A collapse that fails only the
+/// sliver test is reported as such: the caller defers it (see run()).
+Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
+  const std::uint32_t u = c.u, v = c.v;
+  const D3 w = c.w;
+
+  // Link condition: the vertices adjacent to both u and v must be exactly the
+  // third corners of the triangles on the edge.
+  const std::uint32_t s_u = ++stamp_;
+  const std::uint32_t s_common = ++stamp_;
+  const std::uint32_t* tu = tris_begin(u);
+  const std::uint32_t* tvv = tris_begin(v);
+  const std::uint32_t nu = ref_count_[u], nv = ref_count_[v];
+  int edge_tris = 0;
+  for (std::uint32_t i = 0; i < nu; ++i) {
+    std::uint32_t t = tu[i];
+    if (!tri_alive_[t]) continue;
+    bool has_v = false;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t x = tv_[3 * t + k];
+      has_v |= x == v;
+      if (x != u) mark_[x] = s_u;
+    }
+    edge_tris += has_v;
+  }
+  int common = 0;
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    std::uint32_t t = tvv[i];
+    if (!tri_alive_[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t x = tv_[3 * t + k];
+      if (x != v && x != u && mark_[x] == s_u) {
+        mark_[x] = s_common;
+        ++common;
+      }
+    }
+  }
+  if (edge_tris == 0 || common != edge_tris) return Outcome::kRejected;
+
+  // Geometry of the triangles that stay: flips, slivers, duplicates, bound.
+  new_errors_.clear();
+  const double min_q = allow_slivers ? 0.0 : double(options_.min_triangle_quality);
+  bool sliver = false;
+  const double max_error = options_.target.max_error;
+  bool over_budget = false;
+  auto check = [&](std::uint32_t t, std::uint32_t moved) {
+    int k = tv_[3 * t] == moved ? 0 : tv_[3 * t + 1] == moved ? 1 : 2;
+    D3 p0 = pos_[tv_[3 * t]], p1 = pos_[tv_[3 * t + 1]], p2 = pos_[tv_[3 * t + 2]];
+    D3 n_old = cross(p1 - p0, p2 - p0);
+    D3 q[3] = {p0, p1, p2};
+    q[k] = w;
+    D3 n_new = cross(q[1] - q[0], q[2] - q[0]);
+    double area2_new = norm2(n_new), area2_old = norm2(n_old);
+    if (area2_new <= 0 && area2_old > 0) return false;
+    if (dot(n_old, n_new) < 0) return false;
+    if (min_q > 0) {
+      // quality = 2 sqrt(3) |n| / sum of squared edge lengths
+      double l_new = norm2(q[1] - q[0]) + norm2(q[2] - q[1]) + norm2(q[0] - q[2]);
+      double l_old = norm2(p1 - p0) + norm2(p2 - p1) + norm2(p0 - p2);
+      double q_new = l_new > 0 ? 2 * std::sqrt(3.0) * std::sqrt(area2_new) / l_new : 0;
+      double q_old = l_old > 0 ? 2 * std::sqrt(3.0) * std::sqrt(area2_old) / l_old : 0;
+      if (q_new < min_q && q_new < q_old) sliver = true;
+    }
+    double e = tri_error_[t] + std::sqrt(distance2_to_triangle(w, p0, p1, p2));
+    auto ef = static_cast<float>(e);
+    if (ef < e) ef = std::nextafter(ef, std::numeric_limits<float>::infinity());
+    if (ef > max_error) {
+      over_budget = true;
+      return false;
+    }
+    new_errors_.push_back({t, ef});
+    return true;
+  };
+  for (std::uint32_t i = 0; i < nu; ++i) {
+    std::uint32_t t = tu[i];
+    if (!tri_alive_[t]) continue;
+    std::uint32_t x = kNone, y = kNone;
+    bool has_v = false;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t z = tv_[3 * t + k];
+      if (z == v)
+        has_v = true;
+      else if (z != u)
+        (x == kNone ? x : y) = z;
+    }
+    if (has_v) continue;
+    // (u, x, y) becomes (v, x, y): a duplicate if v already has a triangle on x and y.
+    if (mark_[x] == s_common && mark_[y] == s_common)
+      for (std::uint32_t j = 0; j < nv; ++j) {
+        std::uint32_t t2 = tvv[j];
+        if (!tri_alive_[t2]) continue;
+        int hits = 0;
+        for (int k = 0; k < 3; ++k) hits += tv_[3 * t2 + k] == x || tv_[3 * t2 + k] == y;
+        if (hits == 2) return Outcome::kRejected;
+      }
+    if (!check(t, u)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
+  }
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    std::uint32_t t = tvv[i];
+    if (!tri_alive_[t]) continue;
+    if (tv_[3 * t] == u || tv_[3 * t + 1] == u || tv_[3 * t + 2] == u) continue;
+    if (!check(t, v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
+  }
+  if (sliver) return Outcome::kSliver;
+
+  // Allowed: perform it. Wedges of u merge into the wedges of v they meet on
+  // the edge triangles; others move to v as they are.
+  if (attr_stride_ > 0 || first_wedge_[u] != kNone) collect_wedge_pairs(u, v);
+  for (std::uint32_t wu = first_wedge_[u]; wu != kNone;) {
+    std::uint32_t next = next_wedge_[wu];
+    std::uint32_t target = kNone;
+    for (auto& pr : wedge_pairs_)
+      if (pr.first == wu) target = pr.second;
+    if (target != kNone) {
+      wedge_parent_[wu] = target;
+      if (attr_stride_ > 0) {
+        double* dst = &wedge_quadric_[std::size_t{target} * attr_stride_];
+        const double* src = &wedge_quadric_[std::size_t{wu} * attr_stride_];
+        for (int i = 0; i < attr_stride_; ++i) dst[i] += src[i];
+      }
+    } else {
+      wedge_vertex_[wu] = v;
+      next_wedge_[wu] = first_wedge_[v];
+      first_wedge_[v] = wu;
+    }
+    wu = next;
+  }
+  first_wedge_[u] = kNone;
+
+  for (auto& [t, e] : new_errors_) tri_error_[t] = e;
+  new_list_.clear();
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    std::uint32_t t = tvv[i];
+    if (tri_alive_[t]) new_list_.push_back(t);
+  }
+  for (std::uint32_t i = 0; i < nu; ++i) {
+    std::uint32_t t = tu[i];
+    if (!tri_alive_[t]) continue;
+    bool has_v = tv_[3 * t] == v || tv_[3 * t + 1] == v || tv_[3 * t + 2] == v;
+    if (has_v) {
+      tri_alive_[t] = 0;
+      --live_triangles_;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+      if (tv_[3 * t + k] == u) {
+        tv_[3 * t + k] = v;
+        std::uint32_t wu = tw_[3 * t + k];
+        tw_[3 * t + k] = wedge_parent_[wu] != wu ? wedge_parent_[wu] : wu;
+      }
+    new_list_.push_back(t);
+  }
+  // Drop the edge triangles from v's list as well (they died above).
+  std::size_t kept = 0;
+  for (std::uint32_t t : new_list_)
+    if (tri_alive_[t]) new_list_[kept++] = t;
+  new_list_.resize(kept);
+  if (new_list_.size() <= ref_count_[v]) {
+    std::copy(new_list_.begin(), new_list_.end(), refs_.begin() + ref_start_[v]);
+  } else {
+    ref_start_[v] = static_cast<std::uint32_t>(refs_.size());
+    refs_.insert(refs_.end(), new_list_.begin(), new_list_.end());
+  }
+  ref_count_[v] = static_cast<std::uint32_t>(new_list_.size());
+  ref_count_[u] = 0;
+
+  quadric_[v].add(quadric_[u]);
+  pos_[v] = w;
+  vertex_alive_[u] = 0;
+  ++version_[u];
+  ++version_[v];
+  if (attr_stride_ > 0) update_wedge_attributes(v);
+  return Outcome::kDone;
+}
+
+/// The attributes of v's wedges at v's (new) position: the minimisers of
+/// their attribute quadrics.
+void Collapser::update_wedge_attributes(std::uint32_t v) {
+  const D3 p = pos_[v];
+  for (std::uint32_t w = first_wedge_[v]; w != kNone; w = next_wedge_[w]) {
+    const double* wq = &wedge_quadric_[std::size_t{w} * attr_stride_];
+    double area = wq[10];
+    if (area <= 0) continue;
+    float* a = &wedge_attr_[std::size_t{w} * channels_];
+    for (int c = 0; c < channels_; ++c) {
+      const double* g = wq + 11 + 4 * c;
+      a[c] = static_cast<float>((g[0] * p.x + g[1] * p.y + g[2] * p.z + g[3]) / area /
+                                channel_scale_[c]);
+    }
+    int c = 0;
+    if (mesh_.has_normals()) {
+      Vec3 n = normalized(Vec3{a[0], a[1], a[2]});
+      a[0] = n.x, a[1] = n.y, a[2] = n.z;
+      c = 3;
+    }
+    if (mesh_.has_texcoords()) c += 2;
+    if (mesh_.has_colors())
+      for (int k = 0; k < 3; ++k) a[c + k] = std::clamp(a[c + k], 0.0f, 1.0f);
+  }
+}
+
+StopReason Collapser::run(std::size_t target, std::string& detail) {
+  if (live_triangles_ <= target) {
+    detail = "reached " + std::to_string(live_triangles_) + " triangles (target " +
+             std::to_string(target) + ")";
+    return StopReason::kTargetReached;
+  }
+  if (heap_.empty() && collapses_since_fill_ == 0) fill_heap();
+  while (live_triangles_ > target) {
+    if (heap_.empty()) {
+      // Collapses rejected earlier may be allowed now that their
+      // neighbourhood changed: try every edge again while that still helps.
+      if (collapses_since_fill_ == 0 || ++refills_ > kMaxRefills) break;
+      fill_heap();
+      if (heap_.empty()) break;
+      continue;
+    }
+    std::pop_heap(heap_.begin(), heap_.end(), HeapGreater{});
+    HeapEntry e = heap_.back();
+    heap_.pop_back();
+    const bool deferred = (e.vb & kDeferred) != 0;
+    if (version_[e.a] != e.va || version_[e.b] != (e.vb & ~kDeferred)) continue;
+    Collapse c;
+    if (!evaluate(e.a, e.b, c)) continue;
+    // A collapse that would create a sliver waits until nothing cheaper than
+    // twice its cost is left (ties: after the others); then it is taken, since
+    // the alternative is a worse shape.
+    Outcome outcome = try_collapse(c, deferred);
+    if (outcome == Outcome::kSliver) {
+      heap_.push_back({static_cast<float>(2 * c.cost), e.a, e.b, e.va, e.vb | kDeferred});
+      std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+      continue;
+    }
+    if (outcome == Outcome::kOverBudget) {
+      // Bounds only grow: this collapse stays over budget unless u or v
+      // change, which re-queues it anyway.
+      ++budget_rejections_;
+      continue;
+    }
+    if (outcome == Outcome::kRejected) {
+      rejected_[e.a] = rejected_[e.b] = 1;
+      continue;
+    }
+    ++collapses_since_fill_;
+    requeue_.clear();
+    push_edges(c.v, false, true);
+    for (std::size_t i = 0; i < requeue_.size(); ++i) {
+      std::uint32_t n = requeue_[i];
+      rejected_[n] = 0;
+      push_edges(n, false);
+    }
+  }
+  if (live_triangles_ <= target) {
+    detail = "reached " + std::to_string(live_triangles_) + " triangles (target " +
+             std::to_string(target) + ")";
+    return StopReason::kTargetReached;
+  }
+  if (budget_rejections_ > 0) {
+    detail = "every remaining collapse would raise the error bound above the budget of " +
+             std::to_string(options_.target.max_error) + "; " + std::to_string(live_triangles_) +
+             " triangles remain (target " + std::to_string(target) + ")";
+    return StopReason::kErrorBudgetReached;
+  }
+  detail =
+      "no edge can collapse without flipping or degenerating a triangle, changing the "
+      "topology (link condition) or moving a locked border/feature vertex; " +
+      std::to_string(live_triangles_) + " triangles remain (target " + std::to_string(target) + ")";
+  return StopReason::kCannotSimplify;
+}
+
+SimplifyResult Collapser::snapshot() const {
+  SimplifyResult r;
+  const std::size_t nw = wedge_origin_.size();
+  std::vector<std::uint32_t> out_index(nw, kNone);
+  const std::size_t nf = tri_alive_.size();
+  auto root = [&](std::uint32_t w) {
+    while (wedge_parent_[w] != w) w = wedge_parent_[w];
+    return w;
+  };
+  for (std::size_t t = 0; t < nf; ++t)
+    if (tri_alive_[t])
+      for (int k = 0; k < 3; ++k) out_index[tw_[3 * t + k]] = 0;
+  for (const Segment& s : mesh_.lines)
+    for (std::uint32_t i : s) out_index[root(input_wedge_[i])] = 0;
+  std::uint32_t count = 0;
+  for (std::size_t w = 0; w < nw; ++w)
+    if (out_index[w] == 0)
+      out_index[w] = count++;
+    else
+      out_index[w] = kNone;
+  TriangleMesh& m = r.mesh;
+  m.positions.resize(count);
+  r.vertex_map.resize(count);
+  if (mesh_.has_normals()) m.normals.resize(count);
+  if (mesh_.has_texcoords()) m.texcoords.resize(count);
+  if (mesh_.has_colors()) m.colors.resize(count);
+  for (std::size_t w = 0; w < nw; ++w) {
+    std::uint32_t o = out_index[w];
+    if (o == kNone) continue;
+    const D3& p = pos_[wedge_vertex_[w]];
+    m.positions[o] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+    r.vertex_map[o] = wedge_origin_[w];
+    int c = 0;
+    const float* a = channels_ > 0 ? &wedge_attr_[w * channels_] : nullptr;
+    if (mesh_.has_normals()) {
+      m.normals[o] = {a[0], a[1], a[2]};
+      c = 3;
+    }
+    if (mesh_.has_texcoords()) {
+      m.texcoords[o] = {a[c], a[c + 1]};
+      c += 2;
+    }
+    if (mesh_.has_colors()) m.colors[o] = {a[c], a[c + 1], a[c + 2]};
+  }
+  m.triangles.reserve(live_triangles_);
+  r.face_map.reserve(live_triangles_);
+  float error = 0;
+  for (std::size_t t = 0; t < nf; ++t) {
+    if (!tri_alive_[t]) continue;
+    m.triangles.push_back(
+        {out_index[tw_[3 * t]], out_index[tw_[3 * t + 1]], out_index[tw_[3 * t + 2]]});
+    r.face_map.push_back(static_cast<std::uint32_t>(t));
+    if (mesh_.has_materials()) m.materials.push_back(mesh_.materials[t]);
+    error = std::max(error, tri_error_[t]);
+  }
+  for (const Segment& s : mesh_.lines)
+    m.lines.push_back({out_index[root(input_wedge_[s[0]])], out_index[root(input_wedge_[s[1]])]});
+  r.error = error;
+  return r;
+}
+
+/// The triangle count `target` asks for; an error budget alone asks for as
+/// few as the budget allows.
+std::size_t triangle_goal(const SimplifyTarget& target, std::size_t input) {
+  if (target.triangles == 0 && target.ratio <= 0)
+    return std::isfinite(target.max_error) ? 0 : input;
+  return target.triangle_target(input);
+}
+
+}  // namespace
+
+std::vector<SimplifyResult> quadric_collapse_chain(
+    const TriangleMesh& mesh, const QuadricCollapseOptions& options,
+    const std::vector<std::size_t>& triangle_targets) {
+  std::vector<SimplifyResult> results;
+  results.reserve(triangle_targets.size());
+  if (triangle_targets.empty()) return results;
+  Collapser collapser(mesh, options);
+  const std::size_t input = mesh.triangles.size();
+  bool stopped = false;
+  StopReason last_reason = StopReason::kNoReduction;
+  std::string last_detail;
+  for (std::size_t target : triangle_targets) {
+    if (!stopped) {
+      if (target >= input && !std::isfinite(options.target.max_error)) {
+        last_reason = StopReason::kNoReduction;
+        last_detail = "the target (" + std::to_string(target) +
+                      " triangles) asks for no "
+                      "reduction of " +
+                      std::to_string(input) + " triangles";
+      } else {
+        last_reason = collapser.run(target, last_detail);
+        stopped = last_reason != StopReason::kTargetReached;
+      }
+    }
+    SimplifyResult r = collapser.snapshot();
+    r.stop_reason = last_reason;
+    r.stop_detail = last_detail;
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+SimplifyResult quadric_collapse(const TriangleMesh& mesh, const QuadricCollapseOptions& options) {
+  std::size_t target = triangle_goal(options.target, mesh.triangles.size());
+  return std::move(quadric_collapse_chain(mesh, options, {target}).front());
+}
+
+}  // namespace lodforge

@@ -66,13 +66,15 @@ std::string read_file(const std::string& path) {
       throw DataError(fmt::format("{}: is a directory, expected a file", path));
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw DataError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-    std::fseek(f, 0, SEEK_END);
-    long size = std::ftell(f);
-    std::fseek(f, 0, SEEK_SET);
-    if (size > 0) {
+    // Regular files are read in one go; pipes and devices in chunks.
+    long size = std::fseek(f, 0, SEEK_END) == 0 ? std::ftell(f) : -1;
+    if (size > 0 && std::fseek(f, 0, SEEK_SET) == 0) {
       data.resize(static_cast<std::size_t>(size));
-      std::size_t got = std::fread(data.data(), 1, data.size(), f);
-      data.resize(got);
+      data.resize(std::fread(data.data(), 1, data.size(), f));
+    } else {
+      char chunk[1 << 16];
+      std::size_t got;
+      while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.append(chunk, got);
     }
     bool failed = std::ferror(f);
     std::fclose(f);

@@ -330,11 +330,12 @@ class Pipeline {
       CompareResult c = compare_meshes(reference, tess, {.samples = opt_.measure_samples,
                                                          .threads = 1,
                                                          .per_vertex = false});
-      if (c.hausdorff >= vanishing_error(j.radius)) break;
+      const double error = kErrorMargin * c.hausdorff;
+      if (error >= vanishing_error(j.radius)) break;
       ShapeGeometry g = primitive_geometry(tess, j.state.texture2 != nullptr);
       j.level_nodes.push_back(shape_level_node(g, g.mesh, {}, {}, true));
-      j.errors.push_back(c.hausdorff);
-      j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), c.hausdorff});
+      j.errors.push_back(error);
+      j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), error});
       previous = tess.triangle_count();
     }
   }

@@ -45,10 +45,6 @@ Bind binding_of(const Node* binding_node, Bind default_binding) {
   return default_binding;
 }
 
-bool index_is_default(const FieldValue* idx) {
-  return !idx || idx->ints.empty() || (idx->ints.size() == 1 && idx->ints[0] == -1);
-}
-
 // The attribute index of a corner under a binding, before range checking;
 // -1 if the binding has none.
 struct AttributeIndexer {
@@ -194,7 +190,7 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
     if (!ok) return;
     ok = false;
     log.warn(LogCategory::kParse,
-             fmt::format("line {}: {} {} index {} is out of range (0..{}); the {} are ignored",
+             fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
                          shape.first_line, shape.type, what, bad, std::int64_t(limit) - 1, what));
   };
 
@@ -401,19 +397,20 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
     if (fresh) coords.insert(coords.end(), {p.x, p.y, p.z});
     return it->second;
   };
-  std::unordered_map<std::uint32_t, std::int32_t> normal_ids, tex_ids;
+  std::map<std::array<std::uint32_t, 3>, std::int32_t> normal_ids;
+  std::map<std::array<std::uint32_t, 2>, std::int32_t> tex_ids;
   std::vector<float> normals, texs;
   auto normal_of = [&](std::uint32_t value) {
-    auto [it, fresh] = normal_ids.try_emplace(value, std::int32_t(normals.size() / 3));
-    if (fresh) {
-      const Vec3& n = g.normal_values[value];
-      normals.insert(normals.end(), {n.x, n.y, n.z});
-    }
+    const Vec3& n = g.normal_values[value];
+    auto [it, fresh] =
+        normal_ids.try_emplace({bits(n.x), bits(n.y), bits(n.z)}, std::int32_t(normals.size() / 3));
+    if (fresh) normals.insert(normals.end(), {n.x, n.y, n.z});
     return it->second;
   };
   auto tex_of = [&](std::uint32_t value) {
-    auto [it, fresh] = tex_ids.try_emplace(value, std::int32_t(texs.size() / 2));
-    if (fresh) texs.insert(texs.end(), {g.texcoord_values[value].x, g.texcoord_values[value].y});
+    const Vec2& t = g.texcoord_values[value];
+    auto [it, fresh] = tex_ids.try_emplace({bits(t.x), bits(t.y)}, std::int32_t(texs.size() / 2));
+    if (fresh) texs.insert(texs.end(), {t.x, t.y});
     return it->second;
   };
   auto origin = [&](std::uint32_t v) { return vertex_map.empty() ? v : vertex_map[v]; };

@@ -75,7 +75,7 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                        {.samples = options.measure_samples,
                                         .threads = options.threads,
                                         .per_vertex = false});
-      m.error = c.hausdorff;
+      m.error = kErrorMargin * c.hausdorff;
     } else {
       m.error = level.error;
     }

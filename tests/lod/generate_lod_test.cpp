@@ -1,0 +1,220 @@
+// The scene LOD pipeline on scenes built in the test: structure, measured
+// errors against the ranges, min diff, export flavours, threads, bad input.
+#include "lodforge/lod/generate_lod.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "lod/lod_test_support.h"
+#include "lodforge/core/error.h"
+#include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/statistics.h"
+#include "mesh/test_meshes.h"
+
+namespace lodforge {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::scene_of;
+
+scene::Scene read(const std::string& text) { return vrml1::read_vrml1(text).scene; }
+
+// Errors measured again with another seed and twice the samples stay within
+// the error the ranges used; on screen, at the switch distance, the level's
+// deviation is at most the error range.
+void expect_errors_bounded(const LodResult& r, const scene::Scene& out, double error_range,
+                           double camera_angle, std::size_t samples) {
+  ASSERT_EQ(r.shapes.size(), 1u);
+  const ShapeStatistics& s = r.shapes[0];
+  TriangleMesh level0 = scene::flatten_scene(out, {.lod_level = 0});
+  for (std::size_t k = 1; k < s.levels.size(); ++k) {
+    TriangleMesh level = scene::flatten_scene(out, {.lod_level = int(k)});
+    CompareResult c = compare_meshes(level0, level, {.samples = 2 * samples, .seed = 77});
+    // The flattened levels are in world space: errors scale with the transform.
+    EXPECT_LE(c.hausdorff, s.levels[k].error * s.scale) << "level " << k;
+    // Screen fraction of the deviation seen from the switch distance (beyond r).
+    double d = s.ranges[k - 1] - s.radius * s.scale;
+    double screen = c.hausdorff / (2 * d * std::tan(camera_angle / 2));
+    EXPECT_LE(screen, error_range * (1 + 1e-6)) << "level " << k;
+  }
+}
+
+TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {
+  const std::string text = scene_of(test::make_icosphere(4), "Scale { scaleFactor 2 2 2 }");
+  for (LodMethod m : {LodMethod::kQem, LodMethod::kCluster, LodMethod::kDecimate}) {
+    LodOptions o{.method = m, .measure_samples = 20000};
+    LodResult r = generate_lod(read(text), o);
+    ASSERT_EQ(r.shapes.size(), 1u);
+    const auto& s = r.shapes[0];
+    EXPECT_GE(s.levels.size(), 3u) << to_string(m);
+    EXPECT_EQ(s.ranges.size(), s.levels.size());  // + the empty level
+    EXPECT_DOUBLE_EQ(s.scale, 2.0);
+    for (std::size_t k = 1; k < s.levels.size(); ++k) {
+      EXPECT_LE(double(s.levels[k].triangles), 0.8 * double(s.levels[k - 1].triangles) + 1e-9);
+      EXPECT_GE(s.levels[k].error, s.levels[k - 1].error * 0.999);
+    }
+    scene::Scene out = read(vrml1::write_vrml1(r.scene));
+    EXPECT_EQ(testing::expect_lod_structure(out), 1u);
+    testing::expect_indices_in_range(out);
+    expect_errors_bounded(r, out, 0.02, 0.785398, 20000);
+    // Level 0 is the input, triangle for triangle.
+    EXPECT_EQ(scene::flatten_scene(out, {.lod_level = 0}).triangle_count(), 5120u);
+  }
+}
+
+TEST(GenerateLod, MinDiffControlsTheNumberOfLevels) {
+  const std::string text = scene_of(test::make_icosphere(4));
+  LodResult many = generate_lod(read(text), {.min_diff = 0.2f, .measure_samples = 20000});
+  LodResult two = generate_lod(read(text), {.min_diff = 1.0f, .measure_samples = 20000});
+  EXPECT_GE(many.shapes[0].levels.size(), 5u);
+  // 100 %: only the original and the empty level.
+  EXPECT_EQ(two.shapes[0].levels.size(), 1u);
+  EXPECT_EQ(two.shapes[0].ranges.size(), 1u);
+}
+
+TEST(GenerateLod, CameraAngleComesFromTheFirstPerspectiveCamera) {
+  const std::string text = scene_of(test::make_icosphere(2), "PerspectiveCamera { heightAngle 0.3 }");
+  LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  EXPECT_FLOAT_EQ(float(r.camera_angle), 0.3f);
+  LodResult given = generate_lod(read(text), {.range = {.camera_angle = 1.0f},
+                                              .camera_angle_given = true,
+                                              .measure_samples = 20000});
+  EXPECT_FLOAT_EQ(float(given.camera_angle), 1.0f);
+  // A narrower camera magnifies: ranges grow.
+  EXPECT_GT(r.shapes[0].ranges[0], given.shapes[0].ranges[0]);
+}
+
+TEST(GenerateLod, ExportFlavoursAgreeOnTheWorldCentre) {
+  // The original's example: a shape under Translation { 0 0 5 }, here a cube
+  // whose own centre is off its origin.
+  TriangleMesh cube = test::make_cube(2);
+  for (auto& p : cube.positions) p.x += 1;
+  const std::string text = scene_of(cube, "Translation { translation 0 0 5 }");
+  auto world_centre = [&](ExportFlavour f) {
+    LodResult r = generate_lod(read(text), {.export_flavour = f, .measure_samples = 20000});
+    scene::Scene out = read(vrml1::write_vrml1(r.scene));
+    // The centre as each target reads it: spec = local centre under the
+    // shape's transform; performer = global already; reducer = the shape's
+    // origin (its Translation) under the transform.
+    Vec3 c{};
+    Mat4 m;
+    scene::traverse(out, [&](const scene::ShapeVisit& v) {
+      m = v.state.transform;
+      for (const auto* n : v.path) {
+        if (n->type != "LOD") continue;
+        const scene::FieldValue* center = n->value("center");
+        if (f == ExportFlavour::kReducer) {
+          EXPECT_EQ(center, nullptr);
+        } else {
+          c = {center->floats[0], center->floats[1], center->floats[2]};
+        }
+      }
+    });
+    if (f == ExportFlavour::kPerformer) return c;
+    return m.transform_point(c);
+  };
+  const Vec3 expected = cube.bounds().center() + Vec3{0, 0, 5};
+  for (ExportFlavour f : {ExportFlavour::kSpec, ExportFlavour::kPerformer, ExportFlavour::kReducer}) {
+    Vec3 c = world_centre(f);
+    EXPECT_NEAR(c.x, expected.x, 1e-5);
+    EXPECT_NEAR(c.y, expected.y, 1e-5);
+    EXPECT_NEAR(c.z, expected.z, 1e-5);
+  }
+}
+
+TEST(GenerateLod, OneThreadAndAllThreadsWriteTheSameFile) {
+  std::string text = "#VRML V1.0 ascii\nSeparator {\n";
+  for (int i = 0; i < 6; ++i) {
+    std::string part = scene_of(test::make_icosphere(2 + i % 2),
+                                "Translation { translation " + std::to_string(3 * i) + " 0 0 }");
+    text += part.substr(part.find('\n') + 1);
+  }
+  text += "Sphere {} Cone {} Cube {} }\n";
+  scene::Scene in = read(text);
+  std::string one = vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 1}).scene);
+  std::string all = vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 0}).scene);
+  EXPECT_EQ(one, all);
+}
+
+TEST(GenerateLod, SharedShapeIsSimplifiedOnceAndItsLevelsShared) {
+  std::string part = scene_of(test::make_icosphere(3));
+  std::string text = part;
+  text.replace(text.find("IndexedFaceSet"), 14, "DEF Ball IndexedFaceSet");
+  text.insert(text.rfind('}'), "Translation { translation 5 0 0 } USE Ball\n");
+  LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  ASSERT_EQ(r.shapes.size(), 1u);
+  EXPECT_EQ(r.shapes[0].occurrences, 2u);
+  scene::Scene out = read(vrml1::write_vrml1(r.scene));
+  EXPECT_EQ(testing::expect_lod_structure(out), 2u);
+  scene::SceneStatistics st = scene::scene_statistics(out);
+  EXPECT_EQ(st.node_counts["LOD"], 2u);
+  // Level nodes are shared: as many IndexedFaceSets as levels, not twice.
+  EXPECT_EQ(st.node_counts["IndexedFaceSet"], r.shapes[0].levels.size());
+}
+
+TEST(GenerateLod, PerFaceMaterialsBecomeIndexedAndSurviveSimplification) {
+  TriangleMesh m = test::make_icosphere(3);
+  std::string text = scene_of(m, "", true);
+  // PER_FACE needs one material per face: repeat the three colours.
+  std::string colours;
+  for (std::size_t i = 0; i < m.triangle_count(); ++i) colours += i % 3 == 0 ? "1 0 0," : i % 3 == 1 ? "0 1 0," : "0 0 1,";
+  text.replace(text.find("[1 0 0, 0 1 0, 0 0 1]"), 21, "[" + colours + "]");
+  LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  scene::Scene out = read(vrml1::write_vrml1(r.scene));
+  testing::expect_indices_in_range(out);
+  std::string written = vrml1::write_vrml1(out);
+  EXPECT_THAT(written, HasSubstr("PER_FACE_INDEXED"));
+  // Three distinct materials remain after de-duplication.
+  scene::SceneStatistics st = scene::scene_statistics(out);
+  EXPECT_EQ(st.node_counts["Material"], 2u);  // the original (kept) and the de-duplicated one
+}
+
+TEST(GenerateLod, ExtractWritesOneLevelWithoutLodNodes) {
+  const std::string text = scene_of(test::make_icosphere(3));
+  LodResult full = generate_lod(read(text), {.measure_samples = 20000});
+  ASSERT_GE(full.shapes[0].levels.size(), 2u);
+  const int k = int(full.shapes[0].levels.size()) - 1;  // the coarsest simplified level
+  LodResult one = generate_lod(read(text), {.extract = k, .measure_samples = 20000});
+  scene::Scene out = read(vrml1::write_vrml1(one.scene));
+  EXPECT_EQ(testing::expect_lod_structure(out), 0u);
+  EXPECT_EQ(scene::flatten_scene(out).triangle_count(), full.shapes[0].levels[k].triangles);
+  // Past the last level: the empty level.
+  LodResult past = generate_lod(read(text), {.extract = k + 1, .measure_samples = 20000});
+  EXPECT_EQ(scene::flatten_scene(read(vrml1::write_vrml1(past.scene))).triangle_count(), 0u);
+  LodResult clean = generate_lod(read(text), {.extract = -1});
+  EXPECT_EQ(scene::flatten_scene(read(vrml1::write_vrml1(clean.scene))).triangle_count(), 1280u);
+}
+
+TEST(GenerateLod, ManualQualityAndRanges) {
+  const std::string text = scene_of(test::make_icosphere(3)) ;
+  LodOptions o{.measure_samples = 20000};
+  o.manual["polygon"] = {.quality = 4, .ranges = {10, 20, 30}};
+  LodResult r = generate_lod(read(text), o);
+  ASSERT_EQ(r.shapes[0].levels.size(), 3u);  // original, 2 simplified; + empty
+  EXPECT_THAT(r.shapes[0].ranges, ::testing::ElementsAre(10, 20, 30));
+  o.manual["polygon"] = {.quality = 0};
+  scene::Scene removed = read(vrml1::write_vrml1(generate_lod(read(text), o).scene));
+  EXPECT_EQ(scene::flatten_scene(removed).triangle_count(), 0u);
+  o.manual["polygon"] = {.quality = 1};
+  scene::Scene kept = read(vrml1::write_vrml1(generate_lod(read(text), o).scene));
+  EXPECT_EQ(testing::expect_lod_structure(kept), 0u);
+  EXPECT_EQ(scene::flatten_scene(kept).triangle_count(), 1280u);
+}
+
+TEST(GenerateLod, BadInputNamesTheLine) {
+  const std::string text =
+      "#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [0 0 0, 1 0 0, 0 1 0] }\n"
+      "IndexedFaceSet { coordIndex [0, 1, 7, -1] }\n}\n";
+  try {
+    generate_lod(read(text));
+    FAIL();
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(),
+                 "line 4: IndexedFaceSet coordIndex[2] = 7 is out of range (the current "
+                 "Coordinate3 has 3 points)");
+  }
+}
+
+}  // namespace
+}  // namespace lodforge

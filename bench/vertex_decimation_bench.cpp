@@ -1,0 +1,93 @@
+// Vertex decimation throughput: the Stanford bunny (69 451 triangles) and the
+// largest mesh of the shared corpus (igea.ply, 268 686 triangles) at 50 % and
+// 99 % reduction, and the bunny's whole chain of 10 % steps.
+//
+// Peer, in the same run: quadric edge collapse on the same input and target
+// (the target is "within 3x of quadric collapse"), when it is in the build.
+// meshopt_simplify is not linked into the benchmarks (bench/CMakeLists.txt
+// links `lodforge` only): measure it with a separate program.
+//
+//   vertex_decimation_bench [benchmark flags]
+// Counters: triangles = output triangle count.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "lodforge/mesh/mesh_io.h"
+#include "lodforge/simplify/vertex_decimation.h"
+#if __has_include("lodforge/simplify/quadric_collapse.h")
+#include "lodforge/simplify/quadric_collapse.h"
+#define LODFORGE_BENCH_QUADRIC 1
+#endif
+
+namespace {
+
+using namespace lodforge;
+
+// The shared corpus beside the repository ($LODFORGE_SHARED_DATA overrides).
+std::string mesh_dir() {
+  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
+  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+}
+
+const char* const kMeshes[] = {"bun_zipper.ply", "igea.ply"};
+
+/// The mesh, read once; nullptr if the corpus is missing.
+const TriangleMesh* mesh(int index) {
+  static std::map<int, TriangleMesh> cache;
+  auto it = cache.find(index);
+  if (it == cache.end()) {
+    std::string path = mesh_dir() + kMeshes[index];
+    if (!std::filesystem::exists(path)) return nullptr;
+    it = cache.emplace(index, read_mesh(path)).first;
+  }
+  return &it->second;
+}
+
+// Arguments: mesh index, reduction in percent.
+void BM_VertexDecimation(benchmark::State& state) {
+  const TriangleMesh* m = mesh(static_cast<int>(state.range(0)));
+  if (!m) return state.SkipWithError("shared corpus missing");
+  VertexDecimationOptions options{.target = {.ratio = float(100 - state.range(1)) / 100}};
+  std::size_t triangles = 0;
+  for (auto _ : state) triangles = vertex_decimation(*m, options).mesh.triangle_count();
+  state.SetLabel(kMeshes[state.range(0)]);
+  state.counters["triangles"] = double(triangles);
+}
+BENCHMARK(BM_VertexDecimation)
+    ->ArgsProduct({{0, 1}, {50, 99}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_VertexDecimationChain(benchmark::State& state) {
+  const TriangleMesh* m = mesh(0);
+  if (!m) return state.SkipWithError("shared corpus missing");
+  std::size_t levels = 0;
+  for (auto _ : state) levels = vertex_decimation_chain(*m).size();
+  state.counters["levels"] = double(levels);
+}
+BENCHMARK(BM_VertexDecimationChain)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+#ifdef LODFORGE_BENCH_QUADRIC
+void BM_QuadricCollapse(benchmark::State& state) {
+  const TriangleMesh* m = mesh(static_cast<int>(state.range(0)));
+  if (!m) return state.SkipWithError("shared corpus missing");
+  QuadricCollapseOptions options;
+  options.target.ratio = float(100 - state.range(1)) / 100;
+  std::size_t triangles = 0;
+  for (auto _ : state) triangles = quadric_collapse(*m, options).mesh.triangle_count();
+  state.SetLabel(kMeshes[state.range(0)]);
+  state.counters["triangles"] = double(triangles);
+}
+BENCHMARK(BM_QuadricCollapse)
+    ->ArgsProduct({{0, 1}, {50, 99}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+#endif
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -2,10 +2,10 @@
 // largest mesh of the shared corpus (igea.ply, 268 686 triangles) at 50 % and
 // 99 % reduction, and the bunny's whole chain of 10 % steps.
 //
-// Peer, in the same run: quadric edge collapse on the same input and target
-// (the target is "within 3x of quadric collapse"), when it is in the build.
-// meshopt_simplify is not linked into the benchmarks (bench/CMakeLists.txt
-// links `lodforge` only): measure it with a separate program.
+// Peers, in the same run: quadric edge collapse on the same input and target
+// (the target is "within 3x of quadric collapse"), when it is in the build,
+// and meshopt_simplify when bench/CMakeLists.txt links meshoptimizer into this
+// benchmark and defines LODFORGE_HAVE_MESHOPTIMIZER.
 //
 //   vertex_decimation_bench [benchmark flags]
 // Counters: triangles = output triangle count.
@@ -15,9 +15,13 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/simplify/vertex_decimation.h"
+#ifdef LODFORGE_HAVE_MESHOPTIMIZER
+#include <meshoptimizer.h>
+#endif
 #if __has_include("lodforge/simplify/quadric_collapse.h")
 #include "lodforge/simplify/quadric_collapse.h"
 #define LODFORGE_BENCH_QUADRIC 1
@@ -83,6 +87,27 @@ void BM_QuadricCollapse(benchmark::State& state) {
   state.counters["triangles"] = double(triangles);
 }
 BENCHMARK(BM_QuadricCollapse)
+    ->ArgsProduct({{0, 1}, {50, 99}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+#endif
+
+#ifdef LODFORGE_HAVE_MESHOPTIMIZER
+void BM_MeshoptSimplify(benchmark::State& state) {
+  const TriangleMesh* m = mesh(static_cast<int>(state.range(0)));
+  if (!m) return state.SkipWithError("shared corpus missing");
+  std::vector<unsigned> indices;
+  for (const Triangle& t : m->triangles) indices.insert(indices.end(), t.begin(), t.end());
+  std::vector<unsigned> out(indices.size());
+  std::size_t target = indices.size() * std::size_t(100 - state.range(1)) / 100 / 3 * 3;
+  std::size_t count = 0;
+  for (auto _ : state)
+    count = meshopt_simplify(out.data(), indices.data(), indices.size(), &m->positions[0].x,
+                             m->vertex_count(), sizeof(Vec3), target, 1e30f, 0, nullptr);
+  state.SetLabel(kMeshes[state.range(0)]);
+  state.counters["triangles"] = double(count / 3);
+}
+BENCHMARK(BM_MeshoptSimplify)
     ->ArgsProduct({{0, 1}, {50, 99}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

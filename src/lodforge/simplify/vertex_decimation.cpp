@@ -7,10 +7,12 @@
 // One pass, three steps per vertex:
 //   1. characterise the local geometry and topology (the fan around the vertex:
 //      one closed ring, one open fan, or anything else, plus its feature edges);
-//   2. evaluate the decimation criterion (distance to the average plane or to
-//      the feature/boundary line) and order the vertices in a priority queue;
-//   3. remove the vertex with the smallest criterion, re-triangulate its hole by
-//      recursive loop splitting, and re-evaluate its former neighbours.
+//   2. evaluate the decimation criterion d (distance to the average plane or to
+//      the feature/boundary line), plan the re-triangulation of the hole by
+//      recursive loop splitting, and queue the vertex by its priority (the
+//      volume between its fan and the planned triangles, or d itself);
+//   3. remove the vertex with the smallest priority, re-triangulate its hole,
+//      and re-evaluate its former neighbours.
 //
 // The state is a "vertex -> triangles" ring structure over a triangle array
 // (thesis §4.1.2): removal keeps everything local, a new hole never has more

@@ -1,6 +1,6 @@
 #pragma once
 /// Vertex decimation (Schroeder, Zarge, Lorensen 1992; seed 000 §3.1.2, §4.1.2):
-/// repeatedly remove the vertex that lies closest to its neighbourhood and
+/// repeatedly remove the vertex whose removal changes the surface least and
 /// re-triangulate the hole it leaves. Vertices are removed, never moved, so a
 /// level is a subset of the input's vertices with their attributes untouched.
 ///
@@ -73,7 +73,9 @@ enum class DecimationPriority {
   /// vertex, model units cubed): the criterion d weighted by the area it
   /// affects, measured on the actual re-triangulation. It minimises the added
   /// mean deviation per removal; on the Stanford bunny it lowers the mean
-  /// deviation by 25-50 % against kDistance at the same triangle count.
+  /// deviation by 30-50 % against kDistance at the same triangle count (50 %
+  /// reduction: 1.25e-5 instead of 2.47e-5). It costs a planned
+  /// re-triangulation per queued vertex.
   kErrorVolume,
   /// Schroeder's criterion d itself (distance to the average plane or the
   /// feature/boundary line), as in the 1992 paper and the thesis.
@@ -122,16 +124,20 @@ inline constexpr std::size_t kMaxDecimationValence = 64;
 /// every triangle carries e (0 for input triangles); when a vertex with
 /// criterion d is removed, each new triangle gets d + the largest e among the
 /// removed triangles; `error` is the largest e among the output triangles, in
-/// model units. It is an estimate of, in the spirit of an upper bound on, the
-/// distance from the original surface to the simplified one (it adds up the
-/// plane/line distances of the vertices removed beneath each triangle), not a
-/// measurement. `stop_detail` says why vertices could not be removed.
+/// model units. It is an estimate, in the spirit of an upper bound, of the
+/// distance between the original surface and the simplified one (it adds up
+/// the plane/line distances of the vertices removed beneath each triangle),
+/// not a measurement and not a proven bound: on the Stanford bunny it is 1.7 to
+/// 4 times the measured Hausdorff distance (50 %: 2.5e-3 vs 1.4e-3).
+/// `stop_detail` says why vertices could not be removed.
 SimplifyResult vertex_decimation(const TriangleMesh& mesh,
                                  const VertexDecimationOptions& options = {});
 
 /// The chain of levels of one decimation run (the original tool's "decimation
 /// step"): level k keeps at most floor((1 - step) x vertices of level k-1)
-/// vertices (level 0 is compared with the input's used vertices), except the
+/// vertices (level 0 is compared with the input's; vertices are counted as
+/// distinct positions used by triangles, which is the output vertex count
+/// unless attribute seams duplicate positions), except the
 /// last level, which holds as much as could be removed. Stops after the level
 /// that meets options.target (count, ratio, or as far as possible if neither is
 /// given) or when no vertex can be removed; every level's SimplifyResult is as

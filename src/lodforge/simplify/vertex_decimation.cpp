@@ -534,6 +534,13 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
       volume += std::abs(dot(cross(b - a, c - a), pos_[v] - a));
     }
   }
+  if (fan.cls == VertexClass::kBoundary || fan.cls == VertexClass::kInteriorEdge) {
+    // The border or feature line moves by d across the triangle (a_p, v, a_q)
+    // it cuts off: count that slab too, or flat border strips would look free.
+    int p = fan.cls == VertexClass::kBoundary ? 0 : fan.feature[0];
+    int q = fan.cls == VertexClass::kBoundary ? fan.n : fan.feature[1];
+    volume += 3 * fan.d * length(cross(pos_[fan.loop[p]] - pos_[v], pos_[fan.loop[q]] - pos_[v]));
+  }
   plan.priority = options_.priority == DecimationPriority::kErrorVolume ? volume / 6 : fan.d;
   if (!std::isfinite(plan.priority)) return Keep::kComplex;  // non-finite coordinates
   return Keep::kCandidate;

@@ -442,9 +442,10 @@ struct LevelContext {
 struct Scratch {
   std::vector<std::uint32_t> stamp;  ///< per triangle of the previous level
   std::vector<std::uint32_t> faces;
-  /// The two corners outside the cell of each triangle with one corner inside
-  /// (relative to the octree's corner): moving that corner to x gives
-  /// area(x, b, c). Triangles with two or three corners inside collapse.
+  /// Each triangle with one corner inside the cell, by its two corners p, r
+  /// outside (relative to the octree's corner) as p x r and r - p: moving the
+  /// inside corner to x gives area 0.5 |p x r - x x (r - p)|. Triangles with
+  /// two or three corners inside collapse.
   std::vector<std::array<double, 6>> edge;
   std::vector<Vec3> candidate;
   std::vector<std::uint32_t> candidate_orig;
@@ -501,7 +502,9 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
       if (in0 + in1 + in2 == 1) {
         auto p = rel(prev.pos[in0 ? t[1] : t[0]]);
         auto r = rel(prev.pos[in2 ? t[1] : t[2]]);
-        s.edge.push_back({p[0], p[1], p[2], r[0], r[1], r[2]});
+        // (p - x) x (r - x) = p x r - x x (r - p): store p x r and r - p.
+        s.edge.push_back({p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2],
+                          p[0] * r[1] - p[1] * r[0], r[0] - p[0], r[1] - p[1], r[2] - p[2]});
       }
     }
   }
@@ -559,12 +562,12 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
     if (use.area > 0) {
       double area_after = 0;
       for (const auto& e : s.edge) {
-        double ux = e[0] - r[0], uy = e[1] - r[1], uz = e[2] - r[2];
-        double vx = e[3] - r[0], vy = e[4] - r[1], vz = e[5] - r[2];
-        double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-        area_after += 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+        double nx = e[0] - (r[1] * e[5] - r[2] * e[4]);
+        double ny = e[1] - (r[2] * e[3] - r[0] * e[5]);
+        double nz = e[2] - (r[0] * e[4] - r[1] * e[3]);
+        area_after += std::sqrt(nx * nx + ny * ny + nz * nz);
       }
-      h[0] = std::abs(area_after - area_before);
+      h[0] = std::abs(0.5 * area_after - area_before);
     }
     if (use.volume > 0) {
       double volume = 0;

@@ -109,9 +109,12 @@ struct VertexClusteringOptions {
 /// own min_diff step was met; `stop_detail` gives the octree depth, cell
 /// diagonal and vertex drop of every level.
 ///
-/// Time O((V log V + F) x levels) at worst, O(V log V + F) in practice (the
-/// levels shrink geometrically). Throws DataError if an index is out of range
-/// or a used coordinate is not finite.
+/// Time O(V + F) for level 0 (radix-sorted Morton codes) plus O(V + F) per
+/// further level (cells with more than 64 vertices score 64 of them), so
+/// O(V + F) in practice as the levels shrink geometrically. The cells of a
+/// level are processed in parallel (TBB); the result does not depend on the
+/// thread count. Throws DataError if an index is out of range, a used
+/// coordinate is not finite or an attribute array has the wrong length.
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options = {});
 

@@ -104,17 +104,20 @@ TEST(VertexDecimation, EmptyTargetKeepsTheMesh) {
 // plane / border line, so with a tiny error budget the grid decimates to
 // exactly its 4 corners and 2 triangles, still one open region facing +z.
 TEST(VertexDecimation, PlanarGridDecimatesToTwoTriangles) {
-  for (int n : {1, 2, 5, 16}) {
-    TriangleMesh m = make_grid(n);
-    SimplifyResult r = vertex_decimation(m, {.target = {.max_error = kTiny}});
-    EXPECT_EQ(r.mesh.triangle_count(), 2u) << n << ": " << r.stop_detail;
-    EXPECT_EQ(r.mesh.vertex_count(), 4u) << n;
-    EXPECT_EQ(r.error, 0) << n;
-    expect_vertices_kept(m, r);
-    expect_clean(r.mesh);
-    for (const Triangle& t : r.mesh.triangles) EXPECT_GT(face_cross(r.mesh, t).z, 0);
-    if (n > 1) EXPECT_EQ(r.stop_reason, StopReason::kErrorBudgetReached) << r.stop_detail;
-  }
+  for (int n : {1, 2, 5, 16})
+    for (DecimationPriority priority :
+         {DecimationPriority::kErrorVolume, DecimationPriority::kDistance}) {
+      TriangleMesh m = make_grid(n);
+      SimplifyResult r =
+          vertex_decimation(m, {.target = {.max_error = kTiny}, .priority = priority});
+      EXPECT_EQ(r.mesh.triangle_count(), 2u) << n << ": " << r.stop_detail;
+      EXPECT_EQ(r.mesh.vertex_count(), 4u) << n;
+      EXPECT_EQ(r.error, 0) << n;
+      expect_vertices_kept(m, r);
+      expect_clean(r.mesh);
+      for (const Triangle& t : r.mesh.triangles) EXPECT_GT(face_cross(r.mesh, t).z, 0);
+      if (n > 1) EXPECT_EQ(r.stop_reason, StopReason::kErrorBudgetReached) << r.stop_detail;
+    }
 }
 
 // With a count target as small as possible the corners go too (each is
@@ -138,19 +141,22 @@ TEST(VertexDecimation, SubdividedCubeKeepsCornersAndEdges) {
   TriangleMesh m = make_subdivided_cube(4);
   ASSERT_EQ(m.vertex_count(), 6u * 16 + 2);
   // Without feature preservation the edge vertices go along their feature line.
-  SimplifyResult r =
-      vertex_decimation(m, {.target = {.max_error = kTiny}, .preserve_feature_edges = false});
-  EXPECT_EQ(r.mesh.vertex_count(), 8u) << r.stop_detail;
-  EXPECT_EQ(r.mesh.triangle_count(), 12u) << r.stop_detail;
-  EXPECT_EQ(r.error, 0);
-  expect_clean(r.mesh);
-  EXPECT_EQ(mesh_topology_report(r.mesh).euler_characteristic(), 2);
-  for (const Vec3& p : r.mesh.positions)
-    for (int c = 0; c < 3; ++c) EXPECT_TRUE(p[c] == 0 || p[c] == 1);
-  // Every triangle still lies in one cube face: its normal is an axis.
-  for (const Triangle& t : r.mesh.triangles) {
-    Vec3 c = normalized(face_cross(r.mesh, t));
-    EXPECT_NEAR(std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}), 1.0f, 1e-6f);
+  for (DecimationPriority priority :
+       {DecimationPriority::kErrorVolume, DecimationPriority::kDistance}) {
+    SimplifyResult r = vertex_decimation(
+        m, {.target = {.max_error = kTiny}, .preserve_feature_edges = false, .priority = priority});
+    EXPECT_EQ(r.mesh.vertex_count(), 8u) << r.stop_detail;
+    EXPECT_EQ(r.mesh.triangle_count(), 12u) << r.stop_detail;
+    EXPECT_EQ(r.error, 0);
+    expect_clean(r.mesh);
+    EXPECT_EQ(mesh_topology_report(r.mesh).euler_characteristic(), 2);
+    for (const Vec3& p : r.mesh.positions)
+      for (int c = 0; c < 3; ++c) EXPECT_TRUE(p[c] == 0 || p[c] == 1);
+    // Every triangle still lies in one cube face: its normal is an axis.
+    for (const Triangle& t : r.mesh.triangles) {
+      Vec3 c = normalized(face_cross(r.mesh, t));
+      EXPECT_NEAR(std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}), 1.0f, 1e-6f);
+    }
   }
   // With feature preservation the 12 edges keep all their vertices: 8 corners
   // + 12 x 3 edge vertices, every face interior gone.

@@ -91,8 +91,9 @@ struct VertexDecimationOptions {
   /// below): a vertex whose removal would exceed it is not removed.
   SimplifyTarget target;
   /// Dihedral angle (radians, between the normals of two adjacent triangles)
-  /// above which an edge is a feature edge. 1.2 rad (69 degrees) is the default
-  /// of the original tool's dialog (seed 000, Figure A.12).
+  /// above which an edge is a feature edge. 1.2 rad (69 degrees) is the value
+  /// of the original tool's dialog (seed 000, Figure A.12; the scan reads
+  /// "IU-1 2 radians", which we take for 1.2).
   float feature_angle = 1.2f;
   /// true: interior-edge and corner vertices are never removed. false:
   /// interior-edge vertices are removed by their distance to the feature line

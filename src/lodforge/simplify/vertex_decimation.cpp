@@ -69,6 +69,7 @@ struct Fan {
   std::array<std::uint32_t, kMaxLoop> loop{};
   std::array<std::uint32_t, kMaxLoop> tris{};
   std::array<Vec3, kMaxLoop> cross{};  // of tris[k]
+  float error = 0;                     // largest accumulated error of tris
   float d = 0;                         // criterion
 };
 
@@ -81,11 +82,12 @@ struct HeapEntry {
 };
 
 /// A triangle (v, a, b) as seen from its vertex v (counter-clockwise), with
-/// (a - v) x (b - v): twice its area times its normal. Each vertex keeps the
+/// (a - v) x (b - v): twice its area times its normal, and its error. Each vertex keeps the
 /// corners of its triangles, so that fans are read from one short array.
 struct Corner {
   std::uint32_t t, a, b;
   Vec3 cross;
+  float error;  // accumulated error of the triangle
 };
 
 /// One polygon to re-triangulate: the whole loop, or one side of a feature line.
@@ -131,10 +133,11 @@ class Decimator {
 
  private:
   /// Adds triangle t (tv_ set) to the corner lists of its vertices.
-  void link(std::uint32_t t) {
+  void link(std::uint32_t t, float error) {
     const Triangle& f = tv_[t];
     Vec3 c = cross(pos_[f[1]] - pos_[f[0]], pos_[f[2]] - pos_[f[0]]);
-    for (int r = 0; r < 3; ++r) corners_[f[r]].push_back({t, f[(r + 1) % 3], f[(r + 2) % 3], c});
+    for (int r = 0; r < 3; ++r)
+      corners_[f[r]].push_back({t, f[(r + 1) % 3], f[(r + 2) % 3], c, error});
   }
   bool classify(std::uint32_t v, Fan& fan) const;
   bool criterion(std::uint32_t v, Fan& fan) const;
@@ -177,7 +180,6 @@ class Decimator {
   std::vector<Triangle> ta_;  // attribute vertices
   std::vector<std::uint32_t> material_;
   std::vector<std::uint32_t> origin_;  // input triangle
-  std::vector<float> error_;
   std::vector<std::uint8_t> alive_;
 
   std::vector<HeapEntry> heap_;
@@ -212,6 +214,13 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
   removed_.assign(nv, 0);
   for (const Segment& s : lines_) locked_[pv[s[0]]] = locked_[pv[s[1]]] = 1;
 
+  // Reserve the corner lists (with room for a few more after removals).
+  std::vector<std::uint32_t> degree(nv, 0);
+  for (const Triangle& a : w1.mesh.triangles)
+    for (std::uint32_t i : a) ++degree[pv[i]];
+  for (std::size_t v = 0; v < nv; ++v) corners_[v].reserve(degree[v] + 4);
+  tv_.reserve(w1.mesh.triangles.size());
+  ta_.reserve(w1.mesh.triangles.size());
   for (std::size_t f = 0; f < w1.mesh.triangles.size(); ++f) {
     const Triangle& a = w1.mesh.triangles[f];
     Triangle p{pv[a[0]], pv[a[1]], pv[a[2]]};
@@ -221,9 +230,8 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
     ta_.push_back(a);
     material_.push_back(w1.mesh.has_materials() ? w1.mesh.materials[f] : 0);
     origin_.push_back(w1.face_origin[f]);
-    link(t);
+    link(t, 0);
   }
-  error_.assign(tv_.size(), 0.0f);
   alive_.assign(tv_.size(), 1);
   live_triangles_ = tv_.size();
   for (std::uint32_t v = 0; v < nv; ++v) {
@@ -246,6 +254,7 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
 // | closed                               | 1, >= 3, adjacent  | corner         |
 bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   fan.cls = VertexClass::kComplex;
+  fan.error = 0;
   fan.why = Keep::kComplex;
   fan.attribute_feature = false;
   const std::vector<Corner>& cs = corners_[v];
@@ -274,6 +283,7 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     fan.loop[s] = src[cur];
     fan.tris[s] = cs[cur].t;
     fan.cross[s] = cs[cur].cross;
+    fan.error = std::max(fan.error, cs[cur].error);
     if (s + 1 == n) break;
     int next = -1;
     for (int j = 0; j < n; ++j)
@@ -481,8 +491,7 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
 Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
   Fan& fan = plan.fan;
   if (!criterion(v, fan)) return fan.why;
-  float accumulated = 0;
-  for (int k = 0; k < fan.n; ++k) accumulated = std::max(accumulated, error_[fan.tris[k]]);
+  float accumulated = fan.error;
   accumulated += fan.d;
   if (accumulated > options_.target.max_error) return Keep::kErrorBudget;
   plan.accumulated = accumulated;
@@ -608,9 +617,8 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
       ta_[t] = {in.attribute[c[0]], in.attribute[c[1]], in.attribute[c[2]]};
       material_[t] = in.material[from];
       origin_[t] = in.origin[from];
-      error_[t] = accumulated;
       alive_[t] = 1;
-      link(t);
+      link(t, accumulated);
     }
   }
   max_error_ = std::max(max_error_, accumulated);

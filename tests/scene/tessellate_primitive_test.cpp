@@ -78,15 +78,17 @@ TEST(TessellatePrimitive, PartsSelectSidesAndCaps) {
   EXPECT_EQ(tessellate_primitive(cyl, {.segments = 10}).triangle_count(), 20u);
 }
 
-TEST(TessellatePrimitive, NegativeSizeIsAnError) {
+TEST(TessellatePrimitive, NegativeSizeIsItsAbsoluteValueAndNanIsAnError) {
   Node s = node("Sphere");
   s.first_line = 7;
-  s.set("radius", make_float(-1));
+  s.set("radius", make_float(-2));
+  EXPECT_FLOAT_EQ(tessellate_primitive(s).bounds().hi.y, 2.f);
+  s.set("radius", make_float(std::nanf("")));
   try {
     tessellate_primitive(s);
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_STREQ(e.what(), "line 7: Sphere field 'radius' must be a finite size >= 0, got -1");
+    EXPECT_STREQ(e.what(), "line 7: Sphere field 'radius' must be a finite size, got nan");
   }
 }
 

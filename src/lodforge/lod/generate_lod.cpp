@@ -315,22 +315,41 @@ class Pipeline {
     }
   }
 
+  // The measured deviation of a primitive's tessellation at `segments` from
+  // a fine one (64 segments, the smooth surface for all practical purposes).
+  // Scenes repeat the same primitives many times: results are cached by the
+  // primitive's fields.
+  double tessellation_error(const Node& shape, int segments) {
+    std::string key = fmt::format("{}/{}", shape.type, segments);
+    for (const char* f : {"radius", "bottomRadius", "height", "parts"}) {
+      const scene::FieldValue* v = scene::field_or_default(shape, f);
+      if (!v) continue;
+      for (float x : v->floats) key += fmt::format("/{}", x);
+      for (const auto& x : v->strings) key += "/" + x;
+    }
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex_);
+      auto it = tessellation_errors_.find(key);
+      if (it != tessellation_errors_.end()) return it->second;
+    }
+    TriangleMesh reference = scene::tessellate_primitive(shape, {.segments = 64});
+    TriangleMesh tess = scene::tessellate_primitive(shape, {.segments = segments});
+    CompareResult c = compare_meshes(
+        reference, tess,
+        {.samples = opt_.measure_samples ? opt_.measure_samples : 20000, .threads = 1, .per_vertex = false});
+    std::lock_guard<std::mutex> lock(cache_mutex_);
+    tessellation_errors_[key] = c.hausdorff;
+    return c.hausdorff;
+  }
+
   void primitive_levels(Job& j, std::size_t simplified_max) {
     j.stats.method = "tessellation";
-    TriangleMesh reference = scene::tessellate_primitive(*j.shape, {.segments = 96});
-    if (opt_.export_flavour == ExportFlavour::kReducer)
-      for (auto& p : reference.positions) p -= j.center;
     std::size_t previous = j.stats.levels.front().triangles;
     for (int seg : {16, 8, 4}) {
       if (simplified_max && j.level_nodes.size() - 1 >= simplified_max) break;
       TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = seg});
       if (double(tess.triangle_count()) > double(previous) * (1.0 - opt_.min_diff)) continue;
-      if (opt_.export_flavour == ExportFlavour::kReducer)
-        for (auto& p : tess.positions) p -= j.center;
-      CompareResult c = compare_meshes(reference, tess, {.samples = opt_.measure_samples,
-                                                         .threads = 1,
-                                                         .per_vertex = false});
-      const double error = kErrorMargin * c.hausdorff;
+      const double error = kErrorMargin * tessellation_error(*j.shape, seg);
       if (error >= vanishing_error(j.radius)) break;
       ShapeGeometry g = primitive_geometry(tess, j.state.texture2 != nullptr);
       j.level_nodes.push_back(shape_level_node(g, g.mesh, {}, {}, true));
@@ -454,6 +473,8 @@ class Pipeline {
   std::vector<const Node*> empty_path_;
   double camera_angle_ = 0.785398;
   double largest_radius_ = 0;
+  std::mutex cache_mutex_;
+  std::map<std::string, double> tessellation_errors_;
 };
 
 }  // namespace

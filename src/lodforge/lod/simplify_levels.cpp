@@ -57,6 +57,11 @@ std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChai
 
 }  // namespace
 
+std::size_t measure_samples_for(std::size_t triangles, std::size_t requested) {
+  if (requested) return requested;
+  return std::clamp<std::size_t>(20 * triangles, 5000, 500000);
+}
+
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options) {
   std::vector<MeasuredLevel> out;
@@ -72,7 +77,8 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
     MeasuredLevel m;
     if (!mesh.triangles.empty() && !level.mesh.triangles.empty()) {
       CompareResult c = compare_meshes(mesh, level.mesh,
-                                       {.samples = options.measure_samples,
+                                       {.samples = measure_samples_for(mesh.triangle_count(),
+                                                                       options.measure_samples),
                                         .threads = options.threads,
                                         .per_vertex = false});
       m.error = kErrorMargin * c.hausdorff;

@@ -22,7 +22,7 @@ struct LevelChainOptions {
   /// Explicit triangle counts per level instead of the min-diff progression
   /// (manual mode); decreasing.
   std::vector<std::size_t> triangle_targets;
-  std::size_t measure_samples = 0;  ///< compare_meshes samples (0: its default)
+  std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
   int threads = 1;                  ///< for the measurement
 };
 
@@ -39,6 +39,11 @@ struct MeasuredLevel {
   /// simplifier's own bound.
   double error = 0;
 };
+
+/// Area samples per direction for measuring a level of a mesh with
+/// `triangles` triangles: `requested` if non-zero, else 20 per triangle within
+/// [5 000, 500 000] (every vertex is sampled as well).
+std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
 /// Levels 1..n of `mesh` (level 0 is `mesh` itself). Stops when a level would
 /// not reduce by min_diff, when nothing is left, or at max_levels.

@@ -17,10 +17,11 @@ namespace {
 float float_field(const Node& n, std::string_view name) {
   const FieldValue* v = field_or_default(n, name);
   float f = (v && !v->floats.empty()) ? v->floats[0] : 0.f;
-  if (!(f >= 0) || !std::isfinite(f))
-    throw DataError(fmt::format("line {}: {} field '{}' must be a finite size >= 0, got {}",
+  if (!std::isfinite(f))
+    throw DataError(fmt::format("line {}: {} field '{}' must be a finite size, got {}",
                                 n.first_line, n.type, name, f));
-  return f;
+  // A negative size draws the same surface (mirrored, as Coin does): take |f|.
+  return std::fabs(f);
 }
 
 bool has_part(const Node& n, std::string_view part) {

@@ -14,8 +14,9 @@ struct TessellateOptions {
 };
 
 /// Tessellates a Cube, Sphere, Cone or Cylinder node (fields or their spec
-/// defaults; Cone and Cylinder honour `parts`). Throws DataError naming the
-/// node for any other type or for a negative size.
+/// defaults; Cone and Cylinder honour `parts`; a negative size counts as its
+/// absolute value, as real files have them). Throws DataError naming the node
+/// for any other type or a size that is not finite.
 TriangleMesh tessellate_primitive(const Node& node, const TessellateOptions& options = {});
 
 }  // namespace lodforge::scene

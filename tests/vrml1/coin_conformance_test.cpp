@@ -43,10 +43,14 @@
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/scene/statistics.h"
+#include "tools/coin_probe_runner.h"
 #include "vrml1/corpus.h"
 
 namespace lodforge::vrml1 {
 namespace {
+
+using testing::CoinResult;
+using testing::run_coin_probe;
 
 /// Why Coin rejects a file: the reason it gives (a substring of its read
 /// errors), and whether the file uses an extension (a node or field VRML 1.0
@@ -136,92 +140,6 @@ const std::map<std::string, Rejection>& coin_rejections() {
        {"Unknown field \"in\" in \"Info\"", /*extension=*/false}},
   };
   return kList;
-}
-
-struct CoinResult {
-  bool ran = false;     ///< the probe finished normally
-  std::string failure;  ///< why it did not (signal, timeout, bad output)
-  bool ok = false;      ///< Coin accepted the file
-  std::string error;    ///< Coin's read errors
-  std::map<std::string, std::size_t> node_counts;
-  std::size_t ifs_triangles = 0;
-  std::map<std::string, std::size_t> primitive_counts;
-
-  bool accepted() const { return ran && ok; }
-  std::string why_rejected() const { return ran ? error : failure; }
-};
-
-/// Runs coin_probe on `path` in a child process, killing it after `timeout`.
-CoinResult run_coin_probe(const std::string& path,
-                          std::chrono::seconds timeout = std::chrono::seconds(120)) {
-  CoinResult result;
-#ifdef LODFORGE_COIN_PROBE
-  int fds[2];
-  if (pipe(fds) != 0) {
-    result.failure = "pipe() failed";
-    return result;
-  }
-  const pid_t pid = fork();
-  if (pid < 0) {
-    result.failure = "fork() failed";
-    return result;
-  }
-  if (pid == 0) {
-    dup2(fds[1], STDOUT_FILENO);
-    const int null_fd = open("/dev/null", O_WRONLY);
-    if (null_fd >= 0) dup2(null_fd, STDERR_FILENO);
-    close(fds[0]);
-    close(fds[1]);
-    execl(LODFORGE_COIN_PROBE, "coin_probe", path.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fds[1]);
-  std::string out;
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  bool timed_out = false;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd p{fds[0], POLLIN, 0};
-    if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
-    char buf[65536];
-    const ssize_t n = read(fds[0], buf, sizeof buf);
-    if (n <= 0) break;
-    out.append(buf, static_cast<std::size_t>(n));
-  }
-  close(fds[0]);
-  if (timed_out) kill(pid, SIGKILL);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (timed_out) {
-    result.failure = "Coin timed out";
-  } else if (WIFSIGNALED(status)) {
-    result.failure = "Coin crashed (signal " + std::to_string(WTERMSIG(status)) + ")";
-  } else if (WEXITSTATUS(status) != 0) {
-    result.failure = "coin_probe exited with " + std::to_string(WEXITSTATUS(status));
-  } else {
-    const nlohmann::json j = nlohmann::json::parse(out, nullptr, false);
-    if (j.is_discarded()) {
-      result.failure = "coin_probe printed no JSON: " + out;
-      return result;
-    }
-    result.ran = true;
-    result.ok = j.at("ok").get<bool>();
-    result.error = j.at("error").get<std::string>();
-    result.node_counts = j.at("node_counts").get<std::map<std::string, std::size_t>>();
-    result.ifs_triangles = j.at("ifs_triangles").get<std::size_t>();
-    result.primitive_counts = j.at("primitive_counts").get<std::map<std::string, std::size_t>>();
-  }
-#else
-  (void)path;
-  (void)timeout;
-  result.failure = "coin_probe not built";
-#endif
-  return result;
 }
 
 std::string corpus_key(const std::string& path) {

@@ -351,7 +351,8 @@ class Pipeline {
       if (double(tess.triangle_count()) > double(previous) * (1.0 - opt_.min_diff)) continue;
       const double error = kErrorMargin * tessellation_error(*j.shape, seg);
       if (error >= vanishing_error(j.radius)) break;
-      ShapeGeometry g = primitive_geometry(tess, j.state.texture2 != nullptr);
+      ShapeGeometry g = primitive_geometry(tess, true);
+      mark_inherited_attributes(g, j.state);
       j.level_nodes.push_back(shape_level_node(g, g.mesh, {}, {}, true));
       j.errors.push_back(error);
       j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), error});
@@ -371,12 +372,22 @@ class Pipeline {
     if (j.remove) return make_node("Separator");
     auto sep = make_node("Separator");
     const ShapeGeometry& g = j.geometry;
+    const bool primitive = j.shape->type != "IndexedFaceSet" && j.shape->type != "IndexedLineSet";
     if (g.material_binding != AttributeBinding::kNone) {
       sep->children.push_back(g.material);
       sep->children.push_back(binding_node("MaterialBinding", g.material_binding));
+    } else if (g.override_material_binding ||
+               (primitive && j.state.material_binding && j.level_nodes.size() > 1)) {
+      // Primitive levels are IndexedFaceSets: a binding meant for the
+      // primitive's parts would index materials per face.
+      auto overall = make_node("MaterialBinding");
+      overall->set("value", scene::make_enum("OVERALL"));
+      sep->children.push_back(overall);
     }
     if (g.normal_binding != AttributeBinding::kNone)
       sep->children.push_back(binding_node("NormalBinding", g.normal_binding));
+    else if (primitive && j.level_nodes.size() > 1)
+      sep->children.push_back(binding_node("NormalBinding", AttributeBinding::kPerVertex));
     if (g.needs_convex_hint) {
       auto hints = std::make_shared<Node>(*j.state.shape_hints);
       hints->name.clear();

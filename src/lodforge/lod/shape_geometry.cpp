@@ -363,11 +363,20 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
   }
   if (g.material_binding == AttributeBinding::kPerVertex && lines)
     g.segment_material.clear();
+  mark_inherited_attributes(g, st);
   const Node* hints = st.shape_hints;
   const FieldValue* face_type = hints ? scene::field_or_default(*hints, "faceType") : nullptr;
   g.needs_convex_hint = !lines && face_type && !face_type->strings.empty() &&
                         face_type->strings[0] != "CONVEX";
   return g;
+}
+
+void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& st) {
+  g.override_normals = st.normal && g.normal_binding == AttributeBinding::kNone;
+  g.override_texcoords = st.texture_coordinate2 && !g.has_texcoords;
+  g.override_material_binding =
+      g.material_binding == AttributeBinding::kNone &&
+      binding_of(st.material_binding, Bind::kOverall) != Bind::kOverall;
 }
 
 }  // namespace lodforge
@@ -499,13 +508,13 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
   coord_node->type = "Coordinate3";
   coord_node->set("point", scene::make_floats(FieldKind::kVec3f, true, std::move(coords)));
   level->children.push_back(coord_node);
-  if (!normals.empty()) {
+  if (!normals.empty() || g.override_normals) {
     auto n = std::make_shared<scene::Node>();
     n->type = "Normal";
     n->set("vector", scene::make_floats(FieldKind::kVec3f, true, std::move(normals)));
     level->children.push_back(n);
   }
-  if (!texs.empty()) {
+  if (!texs.empty() || g.override_texcoords) {
     auto t = std::make_shared<scene::Node>();
     t->type = "TextureCoordinate2";
     t->set("point", scene::make_floats(FieldKind::kVec2f, true, std::move(texs)));

@@ -54,6 +54,14 @@ struct ShapeGeometry {
   /// The faceType of the input was not CONVEX (so an extra ShapeHints with
   /// faceType CONVEX is written: the output is triangles and convex quads).
   bool needs_convex_hint = false;
+  /// The state holds attribute nodes this geometry does not use (no binding,
+  /// or dropped for bad indices). Levels must then override them, or a
+  /// reader would index the inherited values with coordIndex (out of range:
+  /// Coin crashes): levels get an empty Normal / TextureCoordinate2 (the
+  /// browser generates them) and the subtree a MaterialBinding OVERALL.
+  bool override_normals = false;
+  bool override_texcoords = false;
+  bool override_material_binding = false;
   std::size_t input_faces = 0;       ///< polygons (or polylines) read
   std::size_t dropped_faces = 0;     ///< polygons with < 3 distinct corners
 };
@@ -69,6 +77,9 @@ struct ShapeGeometryOptions {
 /// warning in `log`.
 ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
                                   const ShapeGeometryOptions& options, Log& log);
+
+/// Sets the override_* flags of `g` from the state it will be drawn under.
+void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& state);
 
 /// One level as VRML: a Separator holding Coordinate3, [Normal],
 /// [TextureCoordinate2], the IndexedFaceSet (or IndexedLineSet) and, for

@@ -1,0 +1,93 @@
+// The LOD pipeline over the real corpus (../shared/data/vrml1) and the
+// examples: Coin3D reads every output it read the input of; level 0 draws the
+// input's triangles; levels shrink; LOD nodes are well formed; every index is
+// in range for its binding.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "lod/lod_test_support.h"
+#include "lodforge/core/error.h"
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/scene/statistics.h"
+#include "tools/coin_probe_runner.h"
+#include "vrml1/corpus.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+
+// IndexedFaceSet triangles a renderer draws (n - 2 per face of n >= 3
+// corners), leaving out faces the pipeline removes as degenerate: fewer than
+// three corners once consecutive repeats are dropped.
+std::size_t drawable_ifs_triangles(const scene::Scene& s) {
+  std::size_t total = 0;
+  scene::traverse(s, [&](const scene::ShapeVisit& v) {
+    if (v.shape.type != "IndexedFaceSet") return;
+    const auto& ci = scene::field_or_default(v.shape, "coordIndex")->ints;
+    const scene::FieldValue* pts =
+        v.state.coordinate3 ? scene::field_or_default(*v.state.coordinate3, "point") : nullptr;
+    auto same = [&](std::int32_t a, std::int32_t b) {
+      if (a == b) return true;
+      if (!pts || std::size_t(std::max(a, b)) * 3 + 2 >= pts->floats.size()) return false;
+      for (int k = 0; k < 3; ++k)
+        if (pts->floats[3 * a + k] != pts->floats[3 * b + k]) return false;
+      return true;
+    };
+    for (auto [b, e] : scene::split_index_runs(ci)) {
+      std::vector<std::int32_t> poly;
+      for (std::size_t i = b; i < e; ++i)
+        if (poly.empty() || !same(poly.back(), ci[i])) poly.push_back(ci[i]);
+      while (poly.size() > 1 && same(poly.front(), poly.back())) poly.pop_back();
+      if (poly.size() >= 3) total += poly.size() - 2;
+    }
+  });
+  return total;
+}
+
+class LodCorpus : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LodCorpus, OutputIsReadByCoinAndKeepsTheInputAtLevelZero) {
+  const std::string& path = GetParam();
+  vrml1::ReadResult in = vrml1::read_vrml1_file(path);
+  LodResult r;
+  try {
+    r = generate_lod(in.scene, {.measure_samples = 5000});
+  } catch (const DataError& e) {
+    // Only broken geometry may stop the pipeline, with the line named.
+    EXPECT_NE(std::string(e.what()).find("line "), std::string::npos) << e.what();
+    GTEST_SKIP() << "input has broken geometry: " << e.what();
+  }
+  fs::path out = fs::temp_directory_path() /
+                 ("lodforge_lod_corpus_" + std::to_string(getpid()) + "_" +
+                  lodforge::testing::test_name_for(path) + ".wrl");
+  vrml1::write_vrml1_file(r.scene, out.string());
+  scene::Scene written = vrml1::read_vrml1_file(out.string()).scene;
+
+  lodforge::testing::expect_lod_structure(written);
+  lodforge::testing::expect_indices_in_range(written);
+  // Level 0 of every LOD draws what the input drew.
+  EXPECT_EQ(scene::scene_statistics(written).ifs_triangles, drawable_ifs_triangles(in.scene));
+  for (const auto& s : r.shapes)
+    for (std::size_t k = 1; k < s.levels.size(); ++k)
+      EXPECT_LE(s.levels[k].triangles, s.levels[k - 1].triangles) << s.type << " line " << s.line;
+
+#ifdef LODFORGE_COIN_PROBE
+  lodforge::testing::CoinResult coin_in = lodforge::testing::run_coin_probe(path);
+  if (coin_in.accepted()) {
+    lodforge::testing::CoinResult coin_out = lodforge::testing::run_coin_probe(out.string());
+    EXPECT_TRUE(coin_out.accepted()) << "Coin rejects our output: " << coin_out.why_rejected();
+    EXPECT_EQ(coin_out.node_counts["LOD"], scene::scene_statistics(written).node_counts["LOD"]);
+  }
+#endif
+  fs::remove(out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, LodCorpus,
+                         ::testing::ValuesIn(lodforge::testing::all_vrml_test_files()),
+                         [](const auto& info) { return lodforge::testing::test_name_for(info.param); });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(LodCorpus);
+
+}  // namespace
+}  // namespace lodforge

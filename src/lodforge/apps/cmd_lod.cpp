@@ -79,6 +79,7 @@ LodOptions lod_options(const Settings& s) {
   o.max_levels = std::size_t(s.levels);
   o.differentiate_by_size = s.by_size;
   o.no_lines = s.no_lines;
+  o.join = s.join;
   o.triangulation.quad_split_angle = float(s.quad_split_angle);
   o.triangulation.keep_quads = !s.no_quads;
   o.export_flavour = s.export_flavour == "performer" ? ExportFlavour::kPerformer
@@ -210,8 +211,6 @@ void add_lod_command(CLI::App& app, Runner& run) {
         shown.push_back(c);
       }
       LodOptions options = lod_options(*s);
-      if (s->join)
-        fmt::print(stderr, "warning: --join is not implemented yet; shapes are processed one by one\n");
       const bool tty = isatty(STDERR_FILENO);
       int failures = 0;
       nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();

@@ -19,6 +19,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/lod/join_nodes.h"
 #include "lodforge/lod/shape_geometry.h"
 #include "lodforge/metrics/compare_meshes.h"
 #include "lodforge/scene/schema.h"
@@ -136,6 +137,10 @@ class Pipeline {
   }
 
   LodResult run() {
+    if (opt_.join) {
+      JoinStatistics js = join_nodes(result_.scene, {.max_faces = opt_.join_max_faces}, result_.log);
+      result_.joined = js.joined;
+    }
     collect();
     const int threads = opt_.threads > 0 ? opt_.threads : 0;
     std::optional<tbb::global_control> limit;

@@ -54,6 +54,10 @@ struct LodOptions {
   /// removes one level (at least 2 remain).
   bool differentiate_by_size = false;
   bool no_lines = false;            ///< drop faces that collapse to lines
+  /// Join runs of small IndexedFaceSets first (join_nodes.h), so a model
+  /// broken into many parts is simplified as one.
+  bool join = false;
+  std::size_t join_max_faces = 1000;
   TriangulateOptions triangulation; ///< quad split angle, keep_quads (--no-quads)
   ExportFlavour export_flavour = ExportFlavour::kSpec;
   /// Write only level K of every shape (0 = original); -1 = only clean and
@@ -92,6 +96,7 @@ struct LodResult {
   /// counted): the original's Statistic dialog.
   std::vector<std::pair<double, std::size_t>> triangles_by_distance;
   double camera_angle = 0;  ///< the height angle used
+  std::size_t joined = 0;   ///< IndexedFaceSets merged away by join
   Log log;
 };
 

@@ -15,5 +15,6 @@ void add_format_command(CLI::App& app, Runner& run);
 void add_lod_command(CLI::App& app, Runner& run);
 void add_render_command(CLI::App& app, Runner& run);
 void add_compare_command(CLI::App& app, Runner& run);
+void add_simplify_command(CLI::App& app, Runner& run);
 
 }  // namespace lodforge::apps

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   add_lod_command(app, run);
   add_render_command(app, run);
   add_compare_command(app, run);
+  add_simplify_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -7,8 +7,10 @@
 //  | a Separator is joinable when it                          |
 //  |----------------------------------------------------------|
 //  | has no DEF name, and nothing in it is shared or named     |
-//  | holds exactly one IndexedFaceSet with <= max_faces faces  |
-//  | holds its own Coordinate3                                 |
+//  | holds exactly one IndexedFaceSet with <= max_faces faces,  |
+//  |   possibly nested in Separators/Groups, and its own        |
+//  |   Coordinate3 before it                                    |
+//  | holds Info nodes (they move into the joined Separator)     |
 //  | holds otherwise only a one-row Material (binding OVERALL/ |
 //  |   DEFAULT or absent), Normal (binding per vertex indexed  |
 //  |   or DEFAULT or absent), TextureCoordinate2, ShapeHints   |
@@ -43,6 +45,7 @@ struct Piece {
   const Node* texcoords = nullptr;
   const Node* faces = nullptr;
   const Node* hints = nullptr;
+  std::vector<NodePtr> infos;  ///< Info nodes of the piece, kept in the joined one
 };
 
 class Joiner {
@@ -84,42 +87,66 @@ class Joiner {
       join_runs(*n);
   }
 
-  bool piece_of(const Node& sep, Piece& p) const {
-    if (sep.type != "Separator" || !private_node(&sep) || !sep.fields.empty()) return false;
-    for (const auto& c : sep.children) {
-      if (!private_node(c.get()) || !c->children.empty() || c->is_raw) return false;
+  // Walks a candidate piece with a local traversal state: group nodes
+  // (Separator scoping kept), the attribute nodes listed above, Info nodes
+  // (carried over), and exactly one IndexedFaceSet, which must come after its
+  // Coordinate3 inside the piece.
+  bool walk(const Node& n, Piece& state, Piece& p, bool& found) const {
+    for (const auto& cp : n.children) {
+      const Node* c = cp.get();
+      if (!private_node(c) || c->is_raw) return false;
       const std::string& t = c->type;
-      const Node** slot = t == "Material"             ? &p.material
-                          : t == "Coordinate3"        ? &p.coords
-                          : t == "Normal"             ? &p.normal
-                          : t == "TextureCoordinate2" ? &p.texcoords
-                          : t == "IndexedFaceSet"     ? &p.faces
-                          : t == "ShapeHints"         ? &p.hints
-                                                      : nullptr;
-      if (!slot) {
+      if (t == "Separator" || t == "Group") {
+        if (!c->fields.empty()) return false;
+        Piece inner = state;
+        if (!walk(*c, t == "Separator" ? inner : state, p, found)) return false;
+        continue;
+      }
+      if (!c->children.empty()) return false;
+      if (t == "Info") {
+        p.infos.push_back(cp);
+      } else if (t == "Material") {
+        // One material per piece (its faces all take it).
+        for (const char* f : kMaterialFields)
+          if (const FieldValue* v = c->value(f); v && v->count() > 1) return false;
+        state.material = c;
+      } else if (t == "Coordinate3") {
+        state.coords = c;
+      } else if (t == "Normal") {
+        state.normal = c;
+      } else if (t == "TextureCoordinate2") {
+        state.texcoords = c;
+      } else if (t == "ShapeHints") {
+        state.hints = c;
+      } else if (t == "MaterialBinding" || t == "NormalBinding") {
         // Bindings that mean the same in the joined set are allowed.
-        const FieldValue* v = t == "MaterialBinding" || t == "NormalBinding"
-                                  ? scene::field_or_default(*c, "value")
-                                  : nullptr;
-        const std::string b = v && !v->strings.empty() ? v->strings[0] : "";
-        if (t == "MaterialBinding" && (b == "OVERALL" || b == "DEFAULT")) continue;
-        if (t == "NormalBinding" && (b == "PER_VERTEX_INDEXED" || b == "DEFAULT")) continue;
+        const FieldValue* v = scene::field_or_default(*c, "value");
+        const std::string b = v->strings.empty() ? "" : v->strings[0];
+        bool same = t == "MaterialBinding" ? (b == "OVERALL" || b == "DEFAULT")
+                                           : (b == "PER_VERTEX_INDEXED" || b == "DEFAULT");
+        if (!same) return false;
+      } else if (t == "IndexedFaceSet") {
+        if (found || !state.coords) return false;
+        found = true;
+        const Node* faces = c;
+        p.material = state.material;
+        p.coords = state.coords;
+        p.normal = state.normal;
+        p.texcoords = state.texcoords;
+        p.hints = state.hints;
+        p.faces = faces;
+      } else {
         return false;
       }
-      if (*slot) return false;  // two of a kind: not a simple piece
-      *slot = c.get();
     }
-    // One material per piece (its faces all take it).
-    if (p.material)
-      for (const char* f : kMaterialFields)
-        if (const FieldValue* v = p.material->value(f); v && v->count() > 1) return false;
-    if (!p.coords || !p.faces) return false;
-    // Attributes must come before the faces (else the faces do not use them).
-    bool seen_faces = false;
-    for (const auto& c : sep.children) {
-      if (c.get() == p.faces) seen_faces = true;
-      else if (seen_faces) return false;
-    }
+    return true;
+  }
+
+  bool piece_of(const Node& sep, Piece& p) const {
+    if (sep.type != "Separator" || !private_node(&sep) || !sep.fields.empty()) return false;
+    Piece state;
+    bool found = false;
+    if (!walk(sep, state, p, found) || !found) return false;
     const FieldValue* ci = scene::field_or_default(*p.faces, "coordIndex");
     std::size_t faces = 0;
     for (std::int32_t i : ci->ints) faces += i < 0;
@@ -252,6 +279,8 @@ class Joiner {
       b->set("value", scene::make_enum("PER_FACE_INDEXED"));
       sep->children.push_back(b);
     }
+    for (const Piece& p : run)
+      for (const auto& info : p.infos) sep->children.push_back(info);
     if (run.front().hints) sep->children.push_back(std::make_shared<Node>(*run.front().hints));
     auto coords = std::make_shared<Node>();
     coords->type = "Coordinate3";

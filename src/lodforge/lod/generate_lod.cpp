@@ -92,6 +92,7 @@ struct Job {
   Vec3 center;
   double radius = 0;
   bool remove = false;   // quality 0
+  bool keep = false;     // nothing to simplify: the shape stays as it is
   bool no_lod = false;   // quality 1
   ShapeStatistics stats;
   Log log;
@@ -246,6 +247,14 @@ class Pipeline {
     if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
       j.geometry = read_shape_geometry(visit, {.triangulation = opt_.triangulation}, j.log);
       bounding_sphere(j.geometry.mesh.positions, j.center, j.radius);
+      if (j.geometry.mesh.triangles.empty() && j.geometry.mesh.lines.empty()) {
+        j.log.warn(LogCategory::kFace,
+                   fmt::format("line {}: {} has no {}; kept as it is", j.shape->first_line, t,
+                               t == "IndexedFaceSet" ? "faces" : "lines"));
+        j.keep = true;
+        j.stats.method = "none";
+        return;
+      }
     } else {
       TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = 32});
       bounding_sphere(tess.positions, j.center, j.radius);
@@ -448,11 +457,12 @@ class Pipeline {
   void replace() {
     for (const auto& o : occurrences_) {
       Job& j = jobs_[o.job];
+      ++occurrence_count_[o.job];
+      if (j.keep) continue;
       NodePtr s = subtree(j, o);
       if (!j.shape->name.empty()) s->name = j.shape->name;
       if (o.parent) o.parent->children[o.index] = s;
       else result_.scene.roots[o.index] = s;
-      ++occurrence_count_[o.job];
     }
   }
 

@@ -1,0 +1,122 @@
+// `lodforge lod` as a user runs it: one scene or several, statistics,
+// messages, bad input (exit 1, no output file), bad usage (exit 2).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/run_command.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::read_text;
+using testing::run_lodforge;
+
+class LodCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lodforge_lod_cli_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream((dir_ / name).string()) << text;
+    return (dir_ / name).string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+const std::string kPrimitives = std::string(LODFORGE_EXAMPLES) + "/primitives.wrl";
+
+TEST_F(LodCli, OneSceneWithStatistics) {
+  auto r = run_lodforge("lod " + kPrimitives + " -o " + path("out.wrl") + " --stats " +
+                        path("stats.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("triangles drawn"));
+  auto out = vrml1::read_vrml1_file(path("out.wrl"));
+  EXPECT_THAT(read_text(path("out.wrl")), HasSubstr("LOD {"));
+  auto j = nlohmann::json::parse(read_text(path("stats.json")));
+  ASSERT_TRUE(j.contains("shapes"));
+  for (const auto& s : j["shapes"]) {
+    EXPECT_TRUE(s.contains("levels"));
+    EXPECT_TRUE(s.contains("ranges"));
+  }
+  // Fewer triangles the farther away, ending at none.
+  const auto& table = j["triangles_by_distance"];
+  ASSERT_GE(table.size(), 2u);
+  for (std::size_t i = 1; i < table.size(); ++i)
+    EXPECT_LE(table[i]["triangles"].get<long>(), table[i - 1]["triangles"].get<long>());
+  EXPECT_EQ(table.back()["triangles"].get<long>(), 0);
+}
+
+TEST_F(LodCli, SeveralScenesOneBrokenGoOnAndExitOne) {
+  std::string good = write("good.wrl", "#VRML V1.0 ascii\nSeparator { Sphere {} }\n");
+  std::string bad = write("bad.wrl",
+                          "#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [0 0 0, 1 0 0] }\n"
+                          "IndexedFaceSet { coordIndex [0, 1, 5, -1] }\n}\n");
+  auto r = run_lodforge("lod " + bad + " " + good + " --out-dir " + path("out"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("bad.wrl: line 4: IndexedFaceSet coordIndex[2] = 5 is out of range"));
+  EXPECT_TRUE(fs::exists(path("out/good.wrl")));
+  EXPECT_FALSE(fs::exists(path("out/bad.wrl")));
+}
+
+TEST_F(LodCli, BrokenInputsAreErrorsWithoutOutput) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"#VRML V1.0 ascii\nSeparator { Cube { width } }\n", "case0.wrl:2:26: expected a number for SFFloat field 'width', got '}'"},
+      {"#VRML V1.0 ascii\nSeparator { Coordinate3 { point [0 0 0, 1 0 nan, 0 1 0] }\n"
+       "IndexedFaceSet { coordIndex [0, 1, 2] } }\n",
+       "line 2: Coordinate3 point 1 used by the IndexedFaceSet at line 3 is not finite"},
+      {"#VRML V1.0 ascii\nDEF A Separator { USE A }\n", "USE of undefined node name 'A'"},
+  };
+  int n = 0;
+  for (const auto& [text, message] : cases) {
+    std::string in = write("case" + std::to_string(n) + ".wrl", text);
+    std::string out = path("case" + std::to_string(n++) + ".out.wrl");
+    auto r = run_lodforge("lod " + in + " -o " + out);
+    EXPECT_EQ(r.exit_code, 1) << text;
+    EXPECT_THAT(r.err, HasSubstr(message));
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+TEST_F(LodCli, EmptyFaceSetIsAWarningNamingItsLine) {
+  std::string in = write("empty.wrl",
+                         "#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [0 0 0] }\n"
+                         "IndexedFaceSet { coordIndex [] }\n}\n");
+  auto r = run_lodforge("lod " + in + " -o " + path("empty.out.wrl"));
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.err, HasSubstr("warning: line 4: IndexedFaceSet has no faces; kept as it is"));
+}
+
+TEST_F(LodCli, BadUsageIsExitTwo) {
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives).exit_code, 2);  // no -o
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " " + kPrimitives + " -o x.wrl").exit_code, 2);
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --quality teapot=3").exit_code, 2);
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --method magic").exit_code, 2);
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --ranges 5,2").exit_code, 2);
+  EXPECT_FALSE(fs::exists(path("x.wrl")));
+}
+
+TEST_F(LodCli, OptionsOfTheOriginalAreAccepted) {
+  for (const std::string opts :
+       {"--method cluster --min-diff 50", "--method decimate --levels 3", "--export reducer --no-quads",
+        "--export performer --no-lines --quad-split-angle 0.3", "--extract 1", "--extract -1",
+        "--quality sphere=0 --quality cone=1 --quality cylinder=3 --ranges cube=5", "--join",
+        "--error-range 0.1 --camera-angle 0.5 --minimize"}) {
+    auto r = run_lodforge("lod " + kPrimitives + " -o " + path("o.wrl") + " " + opts);
+    EXPECT_EQ(r.exit_code, 0) << opts << ": " << r.err;
+    EXPECT_NO_THROW(vrml1::read_vrml1_file(path("o.wrl"))) << opts;
+  }
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -153,17 +153,105 @@ struct Collapse {
   D3 w;
 };
 
+/// A queued collapse of edge {a, b}: 16 bytes, so that the four children of a
+/// node of the 4-ary heap below span at most two cache lines. `key` orders
+/// entries (see heap_key()). `stamp` is the sum of the versions of a and b
+/// when it was pushed; versions only grow, so the sum is unchanged exactly
+/// when neither end changed.
 struct HeapEntry {
-  float cost;
+  std::uint32_t key;
   std::uint32_t a, b;
-  std::uint32_t va;  // version of a when pushed
-  std::uint32_t vb;  // version of b when pushed, kDeferred set for a deferred sliver
+  std::uint32_t stamp;
 };
-constexpr std::uint32_t kDeferred = 0x80000000u;
-struct HeapGreater {
-  bool operator()(const HeapEntry& x, const HeapEntry& y) const {
-    return x.cost > y.cost || (x.cost == y.cost && (x.vb & kDeferred) > (y.vb & kDeferred));
+
+/// The heap key of a cost: the bits of the float cost (non-negative floats
+/// order like their bit patterns, and their sign bit is free), shifted up to
+/// make room for the deferred flag, so that a deferred sliver goes after an
+/// ordinary collapse of the same cost.
+inline std::uint32_t heap_key(double cost, bool deferred) {
+  float f = static_cast<float>(cost);
+  std::uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return u << 1 | std::uint32_t{deferred};
+}
+inline bool is_deferred(const HeapEntry& e) {
+  return (e.key & 1) != 0;
+}
+
+/// Min-heap of HeapEntry by (cost, deferred last), 4-ary: half the depth of a
+/// binary heap and its children side by side in memory. Entries are deleted
+/// lazily (see run()), so pops dominate; a pop moves the hole down to a leaf
+/// and then sifts the last entry up from there (Floyd), which saves one
+/// comparison per level since the last entry usually belongs near the bottom.
+class EdgeHeap {
+ public:
+  bool empty() const { return v_.empty(); }
+  void clear() { v_.clear(); }
+  /// Appends without ordering; call make() before the next push or pop.
+  void append(const HeapEntry& e) { v_.push_back(e); }
+  void make() {
+    if (v_.size() < 2) return;
+    for (std::size_t i = (v_.size() - 2) / 4 + 1; i-- > 0;) sift_down(i);
   }
+  void push(const HeapEntry& e) {
+    v_.push_back(e);
+    sift_up(v_.size() - 1, e);
+  }
+  HeapEntry pop() {
+    const HeapEntry top = v_[0];
+    const HeapEntry last = v_.back();
+    v_.pop_back();
+    const std::size_t n = v_.size();
+    if (n == 0) return top;
+    std::size_t i = 0;
+    HeapEntry* h = v_.data();
+    // Full families first, with a branch-free minimum of four.
+    for (std::size_t c = 1; c + 4 <= n; c = 4 * i + 1) {
+      std::size_t b01 = h[c + 1].key < h[c].key ? c + 1 : c;
+      std::size_t b23 = h[c + 3].key < h[c + 2].key ? c + 3 : c + 2;
+      std::size_t best = h[b23].key < h[b01].key ? b23 : b01;
+      h[i] = h[best];
+      i = best;
+    }
+    if (std::size_t c = 4 * i + 1; c < n) {
+      std::size_t best = c;
+      for (std::size_t j = c + 1; j < n; ++j)
+        if (h[j].key < h[best].key) best = j;
+      h[i] = h[best];
+      i = best;
+    }
+    sift_up(i, last);
+    return top;
+  }
+
+ private:
+  void sift_up(std::size_t i, const HeapEntry& x) {
+    while (i > 0) {
+      std::size_t p = (i - 1) / 4;
+      if (v_[p].key <= x.key) break;
+      v_[i] = v_[p];
+      i = p;
+    }
+    v_[i] = x;
+  }
+  void sift_down(std::size_t i) {
+    const HeapEntry x = v_[i];
+    const std::size_t n = v_.size();
+    for (;;) {
+      std::size_t c = 4 * i + 1;
+      if (c >= n) break;
+      std::size_t end = std::min(c + 4, n), best = c;
+      std::uint32_t kb = v_[c].key;
+      for (std::size_t j = c + 1; j < end; ++j)
+        if (v_[j].key < kb) kb = v_[j].key, best = j;
+      if (kb >= x.key) break;
+      v_[i] = v_[best];
+      i = best;
+    }
+    v_[i] = x;
+  }
+
+  std::vector<HeapEntry> v_;
 };
 
 /// What try_collapse decided.
@@ -243,7 +331,7 @@ class Collapser {
   std::vector<float> tri_error_;  // the bound e(T)
   std::size_t live_triangles_ = 0;
 
-  std::vector<HeapEntry> heap_;
+  EdgeHeap heap_;
   std::size_t collapses_since_fill_ = 0;
   std::size_t budget_rejections_ = 0;
   // Rejected collapses are retried when their neighbourhood changes; a full
@@ -429,60 +517,57 @@ void Collapser::build() {
   new_list_.reserve(64);
 }
 
-// Feature edges around each vertex decide its kind (table above).
+// Feature edges around each vertex decide its kind (table above). Each
+// triangle of the fan contributes its two edges at p; an edge's triangles are
+// counted by scanning the fan (a few entries), which is cheaper than sorting
+// it.
 void Collapser::compute_kinds() {
   const std::size_t np = pos_.size();
-  struct Half {
-    std::uint32_t other, tri;
-    bool forward;  // the triangle runs p -> other
+  struct Corner {
+    std::uint32_t next, prev;  // the corners after and before p
+    std::uint32_t base;        // 3 * triangle
+    std::uint32_t k;           // p's corner in it
   };
-  std::vector<Half> halves;
+  std::vector<Corner> fan;
+  const bool materials = mesh_.has_materials();
   for (std::uint32_t p = 0; p < np; ++p) {
     if (ref_count_[p] == 0) {
       kind_[p] = kLocked;
       continue;
     }
-    halves.clear();
+    fan.clear();
     const std::uint32_t* ts = tris_begin(p);
     for (std::uint32_t i = 0; i < ref_count_[p]; ++i) {
-      std::uint32_t t = ts[i];
-      int k = tv_[3 * t] == p ? 0 : tv_[3 * t + 1] == p ? 1 : 2;
-      halves.push_back({tv_[3 * t + (k + 1) % 3], t, true});
-      halves.push_back({tv_[3 * t + (k + 2) % 3], t, false});
+      std::uint32_t base = 3 * ts[i];
+      std::uint32_t k = tv_[base] == p ? 0 : tv_[base + 1] == p ? 1 : 2;
+      fan.push_back({tv_[base + (k + 1) % 3], tv_[base + (k + 2) % 3], base, k});
     }
-    std::sort(halves.begin(), halves.end(),
-              [](const Half& x, const Half& y) { return x.other < y.other; });
+    const std::uint32_t s = ++stamp_;
     int features = 0;
     bool border = false, locked = false;
-    for (std::size_t i = 0; i < halves.size();) {
-      std::size_t j = i;
-      while (j < halves.size() && halves[j].other == halves[i].other) ++j;
-      std::size_t n = j - i;
-      if (n == 1) {
-        ++features;
-        border = true;
-      } else if (n == 2) {
-        const Half& h0 = halves[i];
-        const Half& h1 = halves[i + 1];
-        if (h0.forward == h1.forward) {
-          locked = true;  // inconsistent orientation (or the same triangle twice)
+    for (const Corner& c : fan)
+      for (std::uint32_t o : {c.next, c.prev}) {
+        if (mark_[o] == s) continue;
+        mark_[o] = s;
+        // Triangles on edge {p, o}: running p -> o (fwd) and o -> p (bwd).
+        int fwd = 0, bwd = 0;
+        const Corner *f = nullptr, *b = nullptr;
+        for (const Corner& d : fan) {
+          if (d.next == o) ++fwd, f = &d;
+          if (d.prev == o) ++bwd, b = &d;
+        }
+        if (fwd + bwd == 1) {
+          ++features;
+          border = true;
+        } else if (fwd + bwd > 2 || fwd != 1) {
+          locked = true;  // non-manifold, or inconsistently oriented
         } else {
-          auto wedge_at = [&](std::uint32_t t, std::uint32_t q) {
-            for (int k = 0; k < 3; ++k)
-              if (tv_[3 * t + k] == q) return tw_[3 * t + k];
-            return kNone;
-          };
-          bool seam = wedge_at(h0.tri, p) != wedge_at(h1.tri, p) ||
-                      wedge_at(h0.tri, h0.other) != wedge_at(h1.tri, h0.other);
-          bool material =
-              mesh_.has_materials() && mesh_.materials[h0.tri] != mesh_.materials[h1.tri];
+          bool seam = tw_[f->base + f->k] != tw_[b->base + b->k] ||
+                      tw_[f->base + (f->k + 1) % 3] != tw_[b->base + (b->k + 2) % 3];
+          bool material = materials && mesh_.materials[f->base / 3] != mesh_.materials[b->base / 3];
           if (seam || material) ++features;
         }
-      } else {
-        locked = true;  // non-manifold edge
       }
-      i = j;
-    }
     if (locked || (features != 0 && features != 2) || (border && options_.lock_border))
       kind_[p] = kLocked;
     else if (features == 2)
@@ -592,7 +677,6 @@ int Collapser::edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* t
   const std::uint32_t* ts = tris_begin(a);
   for (std::uint32_t i = 0; i < ref_count_[a]; ++i) {
     std::uint32_t t = ts[i];
-    if (!tri_alive_[t]) continue;
     if (tv_[3 * t] == b || tv_[3 * t + 1] == b || tv_[3 * t + 2] == b) {
       if (n < 3) tris[n] = t;
       ++n;
@@ -625,7 +709,6 @@ void Collapser::collect_wedge_pairs(std::uint32_t u, std::uint32_t v) {
   const std::uint32_t* ts = tris_begin(u);
   for (std::uint32_t i = 0; i < ref_count_[u]; ++i) {
     std::uint32_t t = ts[i];
-    if (!tri_alive_[t]) continue;
     std::uint32_t wu = kNone, wv = kNone;
     for (int k = 0; k < 3; ++k) {
       if (tv_[3 * t + k] == u) wu = tw_[3 * t + k];
@@ -777,7 +860,6 @@ void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_reje
   mark_[a] = s;
   for (std::uint32_t i = 0; i < n; ++i) {
     std::uint32_t t = ts[i];
-    if (!tri_alive_[t]) continue;
     for (int k = 0; k < 3; ++k) {
       std::uint32_t b = tv_[3 * t + k];
       if (mark_[b] == s || (only_greater && b < a)) continue;
@@ -785,8 +867,11 @@ void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_reje
       if (collect_rejected && rejected_[b]) requeue_.push_back(b);
       Collapse c;
       if (!evaluate(a, b, c)) continue;
-      heap_.push_back({static_cast<float>(c.cost), a, b, version_[a], version_[b]});
-      if (!only_greater) std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+      HeapEntry e{heap_key(c.cost, false), a, b, version_[a] + version_[b]};
+      if (only_greater)
+        heap_.append(e);
+      else
+        heap_.push(e);
     }
   }
 }
@@ -795,7 +880,7 @@ void Collapser::fill_heap() {
   heap_.clear();
   for (std::uint32_t p = 0; p < pos_.size(); ++p)
     if (vertex_alive_[p] && ref_count_[p] > 0) push_edges(p, true);
-  std::make_heap(heap_.begin(), heap_.end(), HeapGreater{});
+  heap_.make();
   collapses_since_fill_ = 0;
   budget_rejections_ = 0;
 }
@@ -817,7 +902,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   int edge_tris = 0;
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    if (!tri_alive_[t]) continue;
     bool has_v = false;
     for (int k = 0; k < 3; ++k) {
       std::uint32_t x = tv_[3 * t + k];
@@ -829,7 +913,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   int common = 0;
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (!tri_alive_[t]) continue;
     for (int k = 0; k < 3; ++k) {
       std::uint32_t x = tv_[3 * t + k];
       if (x != v && x != u && mark_[x] == s_u) {
@@ -857,16 +940,19 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     if (area2_new <= 0 && area2_old > 0) return false;
     if (dot(n_old, n_new) < 0) return false;
     if (min_q > 0) {
-      // quality = 2 sqrt(3) |n| / sum of squared edge lengths
+      // quality = 2 sqrt(3) |n| / l (l = sum of squared edge lengths), so
+      // q_new < min_q  <=>  12 |n_new|^2 < min_q^2 l_new^2 and
+      // q_new < q_old  <=>  |n_new|^2 l_old^2 < |n_old|^2 l_new^2.
       double l_new = norm2(q[1] - q[0]) + norm2(q[2] - q[1]) + norm2(q[0] - q[2]);
       double l_old = norm2(p1 - p0) + norm2(p2 - p1) + norm2(p0 - p2);
-      double q_new = l_new > 0 ? 2 * std::sqrt(3.0) * std::sqrt(area2_new) / l_new : 0;
-      double q_old = l_old > 0 ? 2 * std::sqrt(3.0) * std::sqrt(area2_old) / l_old : 0;
-      if (q_new < min_q && q_new < q_old) sliver = true;
+      if (12 * area2_new < min_q * min_q * l_new * l_new &&
+          area2_new * l_old * l_old < area2_old * l_new * l_new)
+        sliver = true;
     }
+    // Rounded up to float: the relative rounding error of float (2^-24) is
+    // below the 1e-6 added first.
     double e = tri_error_[t] + std::sqrt(distance2_to_triangle(w, p0, p1, p2));
-    auto ef = static_cast<float>(e);
-    if (ef < e) ef = std::nextafter(ef, std::numeric_limits<float>::infinity());
+    auto ef = static_cast<float>(e * (1 + 1e-6));
     if (ef > max_error) {
       over_budget = true;
       return false;
@@ -876,7 +962,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   };
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    if (!tri_alive_[t]) continue;
     std::uint32_t x = kNone, y = kNone;
     bool has_v = false;
     for (int k = 0; k < 3; ++k) {
@@ -891,7 +976,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     if (mark_[x] == s_common && mark_[y] == s_common)
       for (std::uint32_t j = 0; j < nv; ++j) {
         std::uint32_t t2 = tvv[j];
-        if (!tri_alive_[t2]) continue;
         int hits = 0;
         for (int k = 0; k < 3; ++k) hits += tv_[3 * t2 + k] == x || tv_[3 * t2 + k] == y;
         if (hits == 2) return Outcome::kRejected;
@@ -900,7 +984,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   }
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (!tri_alive_[t]) continue;
     if (tv_[3 * t] == u || tv_[3 * t + 1] == u || tv_[3 * t + 2] == u) continue;
     if (!check(t, v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
@@ -931,33 +1014,39 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   first_wedge_[u] = kNone;
 
   for (auto& [t, e] : new_errors_) tri_error_[t] = e;
+  // v's new list: its own triangles but the edge ones, then u's that stay.
+  // The edge triangles die and leave the lists of their third corners too,
+  // so that every list holds live triangles only.
   new_list_.clear();
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (tri_alive_[t]) new_list_.push_back(t);
+    if (tv_[3 * t] != u && tv_[3 * t + 1] != u && tv_[3 * t + 2] != u) new_list_.push_back(t);
   }
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    if (!tri_alive_[t]) continue;
-    bool has_v = tv_[3 * t] == v || tv_[3 * t + 1] == v || tv_[3 * t + 2] == v;
-    if (has_v) {
+    std::uint32_t* c = &tv_[3 * t];
+    if (c[0] == v || c[1] == v || c[2] == v) {
       tri_alive_[t] = 0;
       --live_triangles_;
+      std::uint32_t x = c[0] != u && c[0] != v ? c[0] : c[1] != u && c[1] != v ? c[1] : c[2];
+      std::uint32_t* xs = tris_begin(x);
+      std::uint32_t nx = ref_count_[x];
+      for (std::uint32_t j = 0; j < nx; ++j)
+        if (xs[j] == t) {
+          xs[j] = xs[--nx];
+          break;
+        }
+      ref_count_[x] = nx;
       continue;
     }
     for (int k = 0; k < 3; ++k)
-      if (tv_[3 * t + k] == u) {
-        tv_[3 * t + k] = v;
+      if (c[k] == u) {
+        c[k] = v;
         std::uint32_t wu = tw_[3 * t + k];
         tw_[3 * t + k] = wedge_parent_[wu] != wu ? wedge_parent_[wu] : wu;
       }
     new_list_.push_back(t);
   }
-  // Drop the edge triangles from v's list as well (they died above).
-  std::size_t kept = 0;
-  for (std::uint32_t t : new_list_)
-    if (tri_alive_[t]) new_list_[kept++] = t;
-  new_list_.resize(kept);
   if (new_list_.size() <= ref_count_[v]) {
     std::copy(new_list_.begin(), new_list_.end(), refs_.begin() + ref_start_[v]);
   } else {
@@ -1018,11 +1107,9 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       if (heap_.empty()) break;
       continue;
     }
-    std::pop_heap(heap_.begin(), heap_.end(), HeapGreater{});
-    HeapEntry e = heap_.back();
-    heap_.pop_back();
-    const bool deferred = (e.vb & kDeferred) != 0;
-    if (version_[e.a] != e.va || version_[e.b] != (e.vb & ~kDeferred)) continue;
+    const HeapEntry e = heap_.pop();
+    const bool deferred = is_deferred(e);
+    if (version_[e.a] + version_[e.b] != e.stamp) continue;
     Collapse c;
     if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than
@@ -1030,8 +1117,7 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     // the alternative is a worse shape.
     Outcome outcome = try_collapse(c, deferred);
     if (outcome == Outcome::kSliver) {
-      heap_.push_back({static_cast<float>(2 * c.cost), e.a, e.b, e.va, e.vb | kDeferred});
-      std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+      heap_.push({heap_key(2 * c.cost, true), e.a, e.b, e.stamp});
       continue;
     }
     if (outcome == Outcome::kOverBudget) {

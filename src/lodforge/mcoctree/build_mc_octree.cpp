@@ -83,6 +83,12 @@ class SignedDistance {
       for (auto t : adjacency_.triangles_of_edge(static_cast<std::uint32_t>(e)))
         edge_normal_[e] += face_normal_[t];
     vertex_normal_ = vertex_normal;
+    open_vertex_.assign(P.size(), 0);
+    open_edge_.assign(adjacency_.edges.size(), 0);
+    for (auto e : adjacency_.boundary_edges) {
+      open_edge_[e] = 1;
+      open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = 1;
+    }
     if (!mesh_.has_normals()) {
       mesh_.normals.resize(P.size());
       for (std::size_t v = 0; v < P.size(); ++v) mesh_.normals[v] = normalized(vertex_normal[v]);
@@ -101,24 +107,46 @@ class SignedDistance {
     constexpr float kTol = 1e-5f;
     int zeros = (b[0] < kTol) + (b[1] < kTol) + (b[2] < kTol);
     Vec3 n = face_normal_[cp.triangle];
+    bool open = false;
     if (zeros >= 2) {
       int k = b[0] >= b[1] && b[0] >= b[2] ? 0 : b[1] >= b[2] ? 1 : 2;
       n = vertex_normal_[f[k]];
+      open = open_vertex_[f[k]];
     } else if (zeros == 1) {
       int side = b[2] < kTol ? 0 : b[0] < kTol ? 1 : 2;
       auto e = adjacency_.triangle_edges[cp.triangle][side];
-      if (e != MeshAdjacency::kNoEdge) n = edge_normal_[e];
+      if (e != MeshAdjacency::kNoEdge) n = edge_normal_[e], open = open_edge_[e];
     }
     float d = std::sqrt(cp.distance_squared);
-    return {dot(p - cp.point, n) < 0 ? -d : d, cp};
+    // Nearest to a hole's rim the pseudo-normal's side is a half-plane that
+    // runs off to infinity; the generalized winding number (Jacobson et al.
+    // 2013) says which side of the hole the point is on.
+    bool inside = open ? winding_number(p) > 0.5 : dot(p - cp.point, n) < 0;
+    return {inside ? -d : d, cp};
   }
   const TriangleMesh& mesh() const { return mesh_; }
   const TriangleBvh& bvh() const { return *bvh_; }
+
+  // Sum of the signed solid angles of the triangles seen from p, over 4 pi
+  // (Van Oosterom & Strackee). O(F): only for points nearest an open rim.
+  double winding_number(const Vec3& p) const {
+    double total = 0;
+    for (const auto& f : mesh_.triangles) {
+      Vec3 a = mesh_.positions[f[0]] - p, b = mesh_.positions[f[1]] - p,
+           c = mesh_.positions[f[2]] - p;
+      double la = length(a), lb = length(b), lc = length(c);
+      double num = dot(a, cross(b, c));
+      double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+      total += 2 * std::atan2(num, den);
+    }
+    return total / (4 * 3.14159265358979323846);
+  }
 
  private:
   TriangleMesh mesh_;
   MeshAdjacency adjacency_;
   std::vector<Vec3> face_normal_, vertex_normal_, edge_normal_;
+  std::vector<std::uint8_t> open_vertex_, open_edge_;
   std::unique_ptr<TriangleBvh> bvh_;
 };
 

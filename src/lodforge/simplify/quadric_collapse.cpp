@@ -810,22 +810,19 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
     D3 mid = (pa + pb) * 0.5;
     double l2 = norm2(pb - pa);
     bool solved = false;
-    double det = q.a00 * (q.a11 * q.a22 - q.a12 * q.a12) - q.a01 * (q.a01 * q.a22 - q.a12 * q.a02) +
-                 q.a02 * (q.a01 * q.a12 - q.a11 * q.a02);
+    // Adjugate of the symmetric A: six cofactors give both det and A^-1.
+    const double c00 = q.a11 * q.a22 - q.a12 * q.a12, c01 = q.a12 * q.a02 - q.a01 * q.a22,
+                 c02 = q.a01 * q.a12 - q.a11 * q.a02, c11 = q.a00 * q.a22 - q.a02 * q.a02,
+                 c12 = q.a01 * q.a02 - q.a00 * q.a12, c22 = q.a00 * q.a11 - q.a01 * q.a01;
+    double det = q.a00 * c00 + q.a01 * c01 + q.a02 * c02;
     double tr = q.a00 + q.a11 + q.a22;
     if (std::abs(det) > 1e-9 * tr * tr * tr) {
-      // Solve A x = -b relative to the midpoint for accuracy.
-      D3 rhs = (q.apply_a(mid) + D3{q.b0, q.b1, q.b2}) * -1.0;
-      double inv = 1 / det;
-      D3 x{(rhs.x * (q.a11 * q.a22 - q.a12 * q.a12) - q.a01 * (rhs.y * q.a22 - q.a12 * rhs.z) +
-            q.a02 * (rhs.y * q.a12 - q.a11 * rhs.z)) *
-               inv,
-           (q.a00 * (rhs.y * q.a22 - q.a12 * rhs.z) - rhs.x * (q.a01 * q.a22 - q.a12 * q.a02) +
-            q.a02 * (q.a01 * rhs.z - rhs.y * q.a02)) *
-               inv,
-           (q.a00 * (q.a11 * rhs.z - rhs.y * q.a12) - q.a01 * (q.a01 * rhs.z - rhs.y * q.a02) +
-            rhs.x * (q.a01 * q.a12 - q.a11 * q.a02)) *
-               inv};
+      // Solve A x = -(A mid + b) relative to the midpoint for accuracy.
+      D3 rhs = q.apply_a(mid) + D3{q.b0, q.b1, q.b2};
+      double inv = -1 / det;
+      D3 x{(c00 * rhs.x + c01 * rhs.y + c02 * rhs.z) * inv,
+           (c01 * rhs.x + c11 * rhs.y + c12 * rhs.z) * inv,
+           (c02 * rhs.x + c12 * rhs.y + c22 * rhs.z) * inv};
       if (norm2(x) <= l2) {
         w = mid + x;
         solved = true;
@@ -991,7 +988,13 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
 
   // Allowed: perform it. Wedges of u merge into the wedges of v they meet on
   // the edge triangles; others move to v as they are.
-  if (attr_stride_ > 0 || first_wedge_[u] != kNone) collect_wedge_pairs(u, v);
+  const std::uint32_t fu = first_wedge_[u], fv = first_wedge_[v];
+  if (attr_stride_ == 0 && next_wedge_[fu] == kNone && next_wedge_[fv] == kNone) {
+    // One wedge on each side (no attribute seams here): they merge.
+    wedge_pairs_.assign(1, {fu, fv});
+  } else {
+    collect_wedge_pairs(u, v);
+  }
   for (std::uint32_t wu = first_wedge_[u]; wu != kNone;) {
     std::uint32_t next = next_wedge_[wu];
     std::uint32_t target = kNone;

@@ -56,6 +56,9 @@
 #include <utility>
 
 #include <fmt/core.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -219,8 +222,6 @@ struct Cut {
   std::vector<Triangle> tris;
   std::vector<std::uint32_t> tri_origin;  ///< input triangle of each triangle
   std::vector<Segment> lines;
-  std::vector<std::uint32_t> vt_offsets;  ///< vertex -> triangles (CSR)
-  std::vector<std::uint32_t> vt_tris;
   int depth = kMaxDepth + 1;  ///< cut depth (level 0: below the finest cell)
 
   std::size_t size() const { return pos.size(); }
@@ -256,11 +257,15 @@ class SegmentSet {
   std::size_t mask_ = 0;
 };
 
-/// Remaps the triangles and lines of `from` through `vertex_map` (vertex ->
-/// new vertex < new_count) into `to` (which holds the new vertices), applies
-/// the face rules, drops the new vertices nothing uses and builds the
-/// vertex -> triangle lists. Returns the compaction map (new vertex -> kept
-/// index or kNone).
+/// Builds the faces of `to` (which holds the new vertices, new_count of them)
+/// from the previous level's faces: `mapped(i)` for i < count is the i-th
+/// triangle with its corners already mapped to new vertices, and the triangles
+/// with three distinct corners must come sorted by their smallest corner (they
+/// do: the previous level's triangles are sorted by smallest vertex and the
+/// map to cells is monotone); `origin(i)` is its input triangle. Applies the
+/// face rules, drops the new vertices nothing uses and returns the compaction
+/// map (new vertex -> kept index or kNone). `line_candidates` holds the lines
+/// found before (they come first); the remapped `lines` follow.
 ///
 /// | remapped triangle          | becomes                                    |
 /// |----------------------------|--------------------------------------------|
@@ -270,97 +275,97 @@ class SegmentSet {
 /// | remapped line, 2 vertices  | a line                                     |
 /// | line, 1 vertex             | dropped                                    |
 /// | line equal to a kept line or to an edge of a kept triangle | dropped    |
-std::vector<std::uint32_t> remap_faces(std::span<const Triangle> tris,
-                                       std::span<const std::uint32_t> tri_origin,
-                                       std::span<const Segment> lines,
+///
+/// A doublet has the same smallest corner, so it lies in the same run of
+/// consecutive triangles: each run is sorted by its canonical rotation (the
+/// smallest corner first, orientation kept) and the first of equal keys kept.
+/// The output stays sorted by smallest vertex, so that neighbours in memory
+/// are neighbours in space for the levels to come.
+template <class Mapped, class Origin>
+std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
+                                       const Origin& origin, std::span<const Segment> lines,
                                        std::span<const std::uint32_t> vertex_map,
-                                       std::size_t new_count, bool no_lines, Cut& to) {
+                                       std::size_t new_count, bool no_lines,
+                                       std::vector<Segment>& line_candidates, Cut& to) {
   to.tris.clear();
   to.tri_origin.clear();
   to.lines.clear();
-  std::vector<Segment> line_candidates;
-  // Triangles with three distinct vertices, in canonical rotation (smallest
-  // index first, orientation kept), bucketed by that smallest index: a doublet
-  // is in the same bucket, so each bucket is sorted and compared in place.
-  std::vector<Triangle> key(tris.size());
-  std::vector<std::uint32_t>& off = to.vt_offsets;
-  off.assign(new_count + 1, 0);
-  std::size_t candidates = 0;
-  for (std::size_t f = 0; f < tris.size(); ++f) {
-    std::uint32_t a = vertex_map[tris[f][0]], b = vertex_map[tris[f][1]],
-                  c = vertex_map[tris[f][2]];
-    if (a != b && b != c && c != a) {
-      key[f] = a < b ? (a < c ? Triangle{a, b, c} : Triangle{c, a, b})
-                     : (b < c ? Triangle{b, c, a} : Triangle{c, a, b});
-      ++off[key[f][0] + 1];
-      ++candidates;
-    } else {
-      key[f] = {kNone, kNone, kNone};
-      if (!no_lines && (a != b || b != c)) {
-        std::uint32_t other = a != b ? b : c;
-        line_candidates.push_back({std::min(a, other), std::max(a, other)});
+  to.tris.reserve(count);
+  to.tri_origin.reserve(count);
+  struct Entry {
+    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; index < count
+    Triangle tri;
+  };
+  std::vector<Entry> run;
+  std::uint32_t run_vertex = kNone;
+  auto flush = [&] {
+    if (run.size() > 1) {
+      auto less = [](const Entry& a, const Entry& b) {
+        if (a.k1 != b.k1) return a.k1 < b.k1;
+        if (a.k2 != b.k2) return a.k2 < b.k2;
+        return a.index < b.index;
+      };
+      if (run.size() <= 16) {
+        for (std::size_t i = 1; i < run.size(); ++i)  // insertion sort
+          for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j)
+            std::swap(run[j], run[j - 1]);
+      } else {
+        std::sort(run.begin(), run.end(), less);
       }
     }
-  }
-  for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
-  std::vector<std::uint32_t> bucket(candidates);
-  {
-    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-    for (std::size_t f = 0; f < tris.size(); ++f)
-      if (key[f][0] != kNone) bucket[fill[key[f][0]]++] = static_cast<std::uint32_t>(f);
-  }
-  auto key_less = [&](std::uint32_t f, std::uint32_t g) {
-    if (key[f][1] != key[g][1]) return key[f][1] < key[g][1];
-    if (key[f][2] != key[g][2]) return key[f][2] < key[g][2];
-    return f < g;
-  };
-  std::vector<char> doublet(tris.size(), 0);
-  to.tris.reserve(candidates);
-  to.tri_origin.reserve(candidates);
-  for (std::size_t v = 0; v < new_count; ++v) {
-    std::uint32_t* first = bucket.data() + off[v];
-    std::uint32_t* last = bucket.data() + off[v + 1];
-    if (last - first < 2) continue;
-    if (last - first <= 16) {
-      for (std::uint32_t* it = first + 1; it < last; ++it)  // insertion sort
-        for (std::uint32_t* jt = it; jt > first && key_less(*jt, jt[-1]); --jt)
-          std::swap(*jt, jt[-1]);
-    } else {
-      std::sort(first, last, key_less);
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
+      to.tris.push_back(run[i].tri);
+      to.tri_origin.push_back(origin(run[i].index));
     }
-    for (std::uint32_t* it = first + 1; it < last; ++it)
-      if (key[*it][1] == key[it[-1]][1] && key[*it][2] == key[it[-1]][2]) doublet[*it] = 1;
+    run.clear();
+  };
+  for (std::size_t f = 0; f < count; ++f) {
+    const Triangle t = mapped(f);
+    const std::uint32_t a = t[0], b = t[1], c = t[2];
+    if (a != b && b != c && c != a) {
+      std::uint32_t lo = std::min({a, b, c});
+      Entry e{0, 0, static_cast<std::uint32_t>(f), t};
+      if (lo == a)
+        e.k1 = b, e.k2 = c;
+      else if (lo == b)
+        e.k1 = c, e.k2 = a;
+      else
+        e.k1 = a, e.k2 = b;
+      if (lo != run_vertex) {
+        assert(run_vertex == kNone || lo > run_vertex);
+        flush();
+        run_vertex = lo;
+      }
+      run.push_back(e);
+    } else if (!no_lines && (a != b || b != c)) {
+      std::uint32_t other = a != b ? b : c;
+      line_candidates.push_back({std::min(a, other), std::max(a, other)});
+    }
   }
-  // Kept triangles in bucket order, i.e. by smallest vertex in octree order:
-  // neighbours in memory are neighbours in space for the levels to come.
-  for (std::uint32_t f : bucket) {
-    if (doublet[f]) continue;
-    to.tris.push_back({vertex_map[tris[f][0]], vertex_map[tris[f][1]], vertex_map[tris[f][2]]});
-    to.tri_origin.push_back(tri_origin[f]);
-  }
+  flush();
   for (const Segment& s : lines) {
     std::uint32_t a = vertex_map[s[0]], b = vertex_map[s[1]];
     if (a != b) line_candidates.push_back({std::min(a, b), std::max(a, b)});
   }
 
-  // vertex -> triangles over the new vertices (before compaction).
-  off.assign(new_count + 1, 0);
-  for (const Triangle& t : to.tris)
-    for (std::uint32_t v : t) ++off[v + 1];
-  for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
-  to.vt_tris.resize(off[new_count]);
-  {
-    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-    for (std::size_t f = 0; f < to.tris.size(); ++f)
-      for (std::uint32_t v : to.tris[f]) to.vt_tris[fill[v]++] = static_cast<std::uint32_t>(f);
-  }
-
   if (!line_candidates.empty()) {
+    // vertex -> kept triangles, for "a line equal to an edge of a triangle".
+    std::vector<std::uint32_t> off(new_count + 1, 0);
+    for (const Triangle& t : to.tris)
+      for (std::uint32_t v : t) ++off[v + 1];
+    for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
+    std::vector<std::uint32_t> vt(off[new_count]);
+    {
+      std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
+      for (std::size_t f = 0; f < to.tris.size(); ++f)
+        for (std::uint32_t v : to.tris[f]) vt[fill[v]++] = static_cast<std::uint32_t>(f);
+    }
     SegmentSet seen_lines(line_candidates.size());
     for (const Segment& s : line_candidates) {
       bool is_edge = false;
       for (std::uint32_t k = off[s[0]]; k < off[s[0] + 1] && !is_edge; ++k) {
-        const Triangle& t = to.tris[to.vt_tris[k]];
+        const Triangle& t = to.tris[vt[k]];
         is_edge = t[0] == s[1] || t[1] == s[1] || t[2] == s[1];
       }
       if (!is_edge && seen_lines.insert(s)) to.lines.push_back(s);
@@ -369,18 +374,12 @@ std::vector<std::uint32_t> remap_faces(std::span<const Triangle> tris,
 
   // Compact: keep the vertices a triangle or line uses, in order.
   std::vector<std::uint32_t> keep(new_count, kNone);
-  for (std::size_t v = 0; v < new_count; ++v)
-    if (off[v + 1] > off[v]) keep[v] = 0;
+  for (const Triangle& t : to.tris) keep[t[0]] = keep[t[1]] = keep[t[2]] = 0;
   for (const Segment& s : to.lines) keep[s[0]] = keep[s[1]] = 0;
   std::uint32_t kept = 0;
-  for (std::size_t v = 0; v < new_count; ++v) {
-    if (keep[v] == kNone) continue;
-    keep[v] = kept;
-    off[kept] = off[v];
-    ++kept;
-  }
-  off[kept] = off[new_count];
-  off.resize(kept + 1);
+  for (std::size_t v = 0; v < new_count; ++v)
+    if (keep[v] != kNone) keep[v] = kept++;
+  if (kept == new_count) return keep;  // every vertex used: the identity
   for (Triangle& t : to.tris)
     for (std::uint32_t& v : t) v = keep[v];
   for (Segment& s : to.lines)
@@ -405,60 +404,187 @@ struct Weights {
   double area = 0, volume = 0, mean = 0, quadric = 0;
 };
 
-/// Per triangle of a level, relative to the octree's corner: n = a x b + b x c
-/// + c x a (twice the area normal), d = a . (b x c), and the area, so that
-/// 6 x volume(a, b, c, x) = |d - n . x|.
-using TrianglePlane = std::array<double, 5>;
+/// Per triangle of a level: n = (b - a) x (c - a) (twice the area normal) and
+/// |n|. Single precision: only differences of nearby float positions enter.
+using TriangleNormal = std::array<float, 4>;
 
-std::vector<TrianglePlane> triangle_planes(const Cut& cut, const Vec3& origin) {
-  std::vector<TrianglePlane> planes(cut.tris.size());
-  const double ox = origin.x, oy = origin.y, oz = origin.z;
-  for (std::size_t f = 0; f < cut.tris.size(); ++f) {
-    const Vec3& pa = cut.pos[cut.tris[f][0]];
-    const Vec3& pb = cut.pos[cut.tris[f][1]];
-    const Vec3& pc = cut.pos[cut.tris[f][2]];
-    const double ax = pa.x - ox, ay = pa.y - oy, az = pa.z - oz;
-    const double bx = pb.x - ox, by = pb.y - oy, bz = pb.z - oz;
-    const double cx = pc.x - ox, cy = pc.y - oy, cz = pc.z - oz;
-    // n = (b - a) x (c - a) = a x b + b x c + c x a.
-    const double ux = bx - ax, uy = by - ay, uz = bz - az;
-    const double vx = cx - ax, vy = cy - ay, vz = cz - az;
-    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    planes[f] = {nx, ny, nz, nx * ax + ny * ay + nz * az,
-                 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz)};
+/// The triangles of a level around each cell of the next: for cell j, the
+/// entries [start[j], start[j + 1]) of `entry`, each 4 x triangle + the index
+/// of its one corner inside the cell (0, 1, 2), or + 3 when two or three
+/// corners are inside (it collapses). One pass over the triangles, in
+/// triangle order, so each cell's list is sorted.
+struct CellFaces {
+  std::vector<std::uint32_t> start;
+  std::vector<std::uint32_t> entry;
+
+  void build(std::span<const Triangle> tris, std::span<const std::uint32_t> cell_of,
+             std::size_t cells) {
+    start.assign(cells + 1, 0);
+    auto visit = [&](auto&& add) {
+      for (std::size_t f = 0; f < tris.size(); ++f) {
+        const auto g = static_cast<std::uint32_t>(4 * f);
+        const std::uint32_t a = cell_of[tris[f][0]], b = cell_of[tris[f][1]],
+                            c = cell_of[tris[f][2]];
+        if (a == b) {
+          add(a, g + 3);
+          if (c != a) add(c, g + 2);
+        } else if (b == c) {
+          add(b, g + 3);
+          add(a, g + 0);
+        } else if (a == c) {
+          add(a, g + 3);
+          add(b, g + 1);
+        } else {
+          add(a, g + 0);
+          add(b, g + 1);
+          add(c, g + 2);
+        }
+      }
+    };
+    visit([&](std::uint32_t cell, std::uint32_t) { ++start[cell + 1]; });
+    for (std::size_t j = 0; j < cells; ++j) start[j + 1] += start[j];
+    entry.resize(start[cells]);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    visit([&](std::uint32_t cell, std::uint32_t e) { entry[fill[cell]++] = e; });
   }
-  return planes;
-}
+};
 
 /// What every cell of a level reads.
 struct LevelContext {
   const Cut& prev;
-  std::span<const TrianglePlane> planes;  ///< empty unless area or volume is weighted
-  Vec3 origin;                            ///< the octree's corner
+  std::span<const TriangleNormal> normals;  ///< empty unless area or volume is weighted
+  const CellFaces& faces;
   Weights weights;
 };
 
-/// Scratch buffers reused over the cells of a level (one per thread).
+/// Four floats, one per candidate: the unit of the scoring loops (SSE where
+/// the target has it; the library sqrt may set errno, which keeps compilers
+/// from vectorising it in plain loops).
+struct F4 {
+#if defined(__SSE2__)
+  __m128 v;
+  static F4 load(const float* p) {
+    return {_mm_loadu_ps(p)};
+  }
+  static F4 splat(float x) {
+    return {_mm_set1_ps(x)};
+  }
+  void store(float* p) const {
+    _mm_storeu_ps(p, v);
+  }
+  friend F4 operator+(F4 a, F4 b) {
+    return {_mm_add_ps(a.v, b.v)};
+  }
+  friend F4 operator-(F4 a, F4 b) {
+    return {_mm_sub_ps(a.v, b.v)};
+  }
+  friend F4 operator*(F4 a, F4 b) {
+    return {_mm_mul_ps(a.v, b.v)};
+  }
+  friend F4 sqrt(F4 a) {
+    return {_mm_sqrt_ps(a.v)};
+  }
+  friend F4 abs(F4 a) {
+    return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)};
+  }
+#else
+  std::array<float, 4> v;
+  template <class Op>
+  static F4 map(Op op) {
+    F4 r;
+    for (int l = 0; l < 4; ++l) r.v[l] = op(l);
+    return r;
+  }
+  static F4 load(const float* p) {
+    return map([&](int l) { return p[l]; });
+  }
+  static F4 splat(float x) {
+    return map([&](int) { return x; });
+  }
+  void store(float* p) const {
+    std::copy(v.begin(), v.end(), p);
+  }
+  friend F4 operator+(F4 a, F4 b) {
+    return map([&](int l) { return a.v[l] + b.v[l]; });
+  }
+  friend F4 operator-(F4 a, F4 b) {
+    return map([&](int l) { return a.v[l] - b.v[l]; });
+  }
+  friend F4 operator*(F4 a, F4 b) {
+    return map([&](int l) { return a.v[l] * b.v[l]; });
+  }
+  friend F4 sqrt(F4 a) {
+    return map([&](int l) { return std::sqrt(a.v[l]); });
+  }
+  friend F4 abs(F4 a) {
+    return map([&](int l) { return std::abs(a.v[l]); });
+  }
+#endif
+};
+constexpr std::size_t kLanes = 4;
+
+/// Scratch buffers reused over the cells (one per thread), in
+/// structure-of-arrays layout, single precision, relative to the cell's
+/// weighted mean (small numbers).
 struct Scratch {
-  std::vector<std::uint32_t> stamp;  ///< per triangle of the previous level
-  std::vector<std::uint32_t> faces;
-  /// Each triangle with one corner inside the cell, by its two corners p, r
-  /// outside (relative to the octree's corner) as p x r and r - p: moving the
-  /// inside corner to x gives area 0.5 |p x r - x x (r - p)|. Triangles with
-  /// two or three corners inside collapse.
-  std::vector<std::array<double, 6>> edge;
+  /// Each triangle around the cell (`tris` of them): its normal n (twice the
+  /// area) and d = n . a, so that 6 x volume(a, b, c, x) = |d - n . x|.
+  std::vector<float> nx, ny, nz, nd;
+  /// Each triangle with one corner inside the cell (`edges` of them), by its
+  /// two corners p, r outside as p x r and r - p: moving the inside corner to
+  /// x gives area 0.5 |p x r - x x (r - p)|. Triangles with two or three
+  /// corners inside collapse.
+  std::vector<float> ex, ey, ez, rx, ry, rz;
+  std::size_t tris = 0, edges = 0;
+  std::vector<std::uint32_t> order;
   std::vector<Vec3> candidate;
   std::vector<std::uint32_t> candidate_orig;
-  std::vector<std::uint32_t> order;
+  std::vector<float> cx, cy, cz;    ///< candidates, padded to a multiple of kLanes
+  std::vector<float> area, volume;  ///< per padded candidate
   std::vector<std::array<double, 4>> score;
+
+  void reserve_faces(std::size_t n) {
+    if (nx.size() >= n) return;
+    for (auto* v : {&nx, &ny, &nz, &nd, &ex, &ey, &ez, &rx, &ry, &rz}) v->resize(2 * n);
+  }
 };
 
-/// The representative of the cell holding vertices [begin, end) of the
+/// For each padded candidate k: area[k] = sum over the edges of
+/// |p x r - x_k x (r - p)| and volume[k] = sum over the triangles of
+/// |d - n . x_k|.
+void score_faces(Scratch& s, bool area, bool volume) {
+  const std::size_t n = s.cx.size();
+  s.area.resize(n);
+  s.volume.resize(n);
+  for (std::size_t g = 0; g < n; g += kLanes) {
+    const F4 x = F4::load(&s.cx[g]), y = F4::load(&s.cy[g]), z = F4::load(&s.cz[g]);
+    if (area) {
+      F4 acc = F4::splat(0);
+      for (std::size_t e = 0; e < s.edges; ++e) {
+        const F4 rx = F4::splat(s.rx[e]), ry = F4::splat(s.ry[e]), rz = F4::splat(s.rz[e]);
+        const F4 ax = F4::splat(s.ex[e]) - (y * rz - z * ry);
+        const F4 ay = F4::splat(s.ey[e]) - (z * rx - x * rz);
+        const F4 az = F4::splat(s.ez[e]) - (x * ry - y * rx);
+        acc = acc + sqrt(ax * ax + ay * ay + az * az);
+      }
+      acc.store(&s.area[g]);
+    }
+    if (volume) {
+      F4 acc = F4::splat(0);
+      for (std::size_t f = 0; f < s.tris; ++f)
+        acc = acc + abs(F4::splat(s.nd[f]) -
+                        (F4::splat(s.nx[f]) * x + F4::splat(s.ny[f]) * y + F4::splat(s.nz[f]) * z));
+      acc.store(&s.volume[g]);
+    }
+  }
+}
+
+/// The representative of cell `cell` holding vertices [begin, end) of the
 /// previous level: its position and the input vertex whose attributes it
 /// takes. `cell_lo` and `cell_size` bound the cell (for clamping Lindstrom's
-/// point); `cell_id` is unique per cell of the level.
-std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, std::uint32_t begin,
-                                                     std::uint32_t end, std::uint32_t cell_id,
+/// point).
+std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, std::uint32_t cell,
+                                                     std::uint32_t begin, std::uint32_t end,
                                                      const Vec3& cell_lo, float cell_size,
                                                      const Quadric& q, Scratch& s) {
   const Cut& prev = ctx.prev;
@@ -478,34 +604,33 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
     double dx = p.x - mx, dy = p.y - my, dz = p.z - mz;
     return std::sqrt(dx * dx + dy * dy + dz * dz);
   };
-  auto rel = [&](const Vec3& p) {
-    return std::array<double, 3>{double(p.x) - ctx.origin.x, double(p.y) - ctx.origin.y,
-                                 double(p.z) - ctx.origin.z};
-  };
+  const Vec3 origin{float(mx), float(my), float(mz)};
 
   // The triangles of the previous level that use a vertex of the cell.
-  s.faces.clear();
-  s.edge.clear();
+  const std::uint32_t first = ctx.faces.start[cell], last = ctx.faces.start[cell + 1];
+  const bool faces = last > first;
   double area_before = 0;
-  const bool measure_faces = !ctx.planes.empty();
-  for (std::uint32_t i = begin; i < end; ++i) {
-    for (std::uint32_t k = prev.vt_offsets[i]; k < prev.vt_offsets[i + 1]; ++k) {
-      std::uint32_t f = prev.vt_tris[k];
-      if (s.stamp[f] == cell_id) continue;
-      s.stamp[f] = cell_id;
-      s.faces.push_back(f);
-      if (!measure_faces) continue;
-      area_before += ctx.planes[f][4];
+  const bool measure_faces = faces && !ctx.normals.empty();
+  if (measure_faces) {
+    s.reserve_faces(last - first);
+    s.tris = s.edges = 0;
+    for (std::uint32_t k = first; k < last; ++k) {
+      const std::uint32_t f = ctx.faces.entry[k] >> 2, inside = ctx.faces.entry[k] & 3;
+      const TriangleNormal& n = ctx.normals[f];
       const Triangle& t = prev.tris[f];
-      bool in0 = t[0] >= begin && t[0] < end, in1 = t[1] >= begin && t[1] < end,
-           in2 = t[2] >= begin && t[2] < end;
-      if (in0 + in1 + in2 == 1) {
-        auto p = rel(prev.pos[in0 ? t[1] : t[0]]);
-        auto r = rel(prev.pos[in2 ? t[1] : t[2]]);
-        // (p - x) x (r - x) = p x r - x x (r - p): store p x r and r - p.
-        s.edge.push_back({p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2],
-                          p[0] * r[1] - p[1] * r[0], r[0] - p[0], r[1] - p[1], r[2] - p[2]});
-      }
+      area_before += 0.5 * double(n[3]);
+      const Vec3 a = prev.pos[t[0]] - origin;
+      const std::size_t i = s.tris++;
+      s.nx[i] = n[0], s.ny[i] = n[1], s.nz[i] = n[2];
+      s.nd[i] = n[0] * a.x + n[1] * a.y + n[2] * a.z;
+      if (inside == 3) continue;
+      // The corners after and before the inside one keep the orientation.
+      const Vec3 p = prev.pos[t[inside == 0 ? 1 : 0]] - origin;
+      const Vec3 r = prev.pos[t[inside == 2 ? 1 : 2]] - origin;
+      const Vec3 pr = cross(p, r), d = r - p;
+      const std::size_t e = s.edges++;
+      s.ex[e] = pr.x, s.ey[e] = pr.y, s.ez[e] = pr.z;
+      s.rx[e] = d.x, s.ry[e] = d.y, s.rz[e] = d.z;
     }
   }
 
@@ -533,7 +658,6 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
   // | no (line set)      | any            | weighted mean alone                     |
   // | yes                | 0              | area, volume, mean (the thesis)         |
   // | yes                | > 0            | all four, Lindstrom's point a candidate |
-  const bool faces = !s.faces.empty();
   const Weights use = faces ? ctx.weights : Weights{0, 0, 1, 0};
   if (use.quadric > 0) {
     auto x = quadric_minimum(q, {mx, my, mz});
@@ -553,30 +677,24 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
   }
 
   const std::size_t n = s.candidate.size();
+  if (measure_faces && (use.area > 0 || use.volume > 0)) {
+    const std::size_t padded = (n + kLanes - 1) / kLanes * kLanes;
+    s.cx.resize(padded);
+    s.cy.resize(padded);
+    s.cz.resize(padded);
+    for (std::size_t k = 0; k < padded; ++k) {
+      const Vec3 r = s.candidate[std::min(k, n - 1)] - origin;
+      s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
+    }
+    score_faces(s, use.area > 0, use.volume > 0);
+  }
   s.score.assign(n, {0, 0, 0, 0});
   std::array<double, 4> largest{0, 0, 0, 0};
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& x = s.candidate[k];
-    const auto r = rel(x);
     auto& h = s.score[k];
-    if (use.area > 0) {
-      double area_after = 0;
-      for (const auto& e : s.edge) {
-        double nx = e[0] - (r[1] * e[5] - r[2] * e[4]);
-        double ny = e[1] - (r[2] * e[3] - r[0] * e[5]);
-        double nz = e[2] - (r[0] * e[4] - r[1] * e[3]);
-        area_after += std::sqrt(nx * nx + ny * ny + nz * nz);
-      }
-      h[0] = std::abs(0.5 * area_after - area_before);
-    }
-    if (use.volume > 0) {
-      double volume = 0;
-      for (std::uint32_t f : s.faces) {
-        const auto& pl = ctx.planes[f];
-        volume += std::abs(pl[3] - (pl[0] * r[0] + pl[1] * r[1] + pl[2] * r[2]));
-      }
-      h[1] = volume / 6;
-    }
+    if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[k]) - area_before);
+    if (use.volume > 0) h[1] = double(s.volume[k]) / 6;
     if (use.mean > 0) h[2] = mean_distance(x);
     if (use.quadric > 0) h[3] = q(x.x, x.y, x.z);
     for (int i = 0; i < 4; ++i) largest[i] = std::max(largest[i], h[i]);
@@ -594,6 +712,20 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
 }
 
 // ------------------------------------------------------------------- the chain
+
+/// Runs body(lo, hi) over [0, n) in chunks, in parallel when there is enough
+/// work: chunks of kChunk items keep the tasks coarse (a level's cells cost
+/// a few microseconds each at most).
+template <class Body>
+void for_chunks(std::size_t n, const Body& body) {
+  constexpr std::size_t kChunk = 2048;
+  if (n <= kChunk) {
+    body(std::size_t(0), n);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
 
 struct Octree {
   Vec3 lo;          ///< corner of the bounding cube
@@ -642,19 +774,28 @@ SimplifyResult make_result(const TriangleMesh& input, const Cut& cut, float erro
   return r;
 }
 
-void validate(const TriangleMesh& mesh) {
+/// Checks the input and marks the vertices a triangle or line uses.
+void validate(const TriangleMesh& mesh, std::vector<char>& used) {
   const std::size_t n = mesh.vertex_count();
-  auto check = [&](std::uint32_t v, const char* what, std::size_t i) {
-    if (v >= n)
-      throw DataError(
-          fmt::format("vertex clustering: {} {} uses vertex {} of only {}", what, i, v, n));
-    if (!is_finite(mesh.positions[v]))
-      throw DataError(fmt::format("vertex clustering: vertex {} has a non-finite coordinate", v));
+  used.assign(n, 0);
+  auto out_of_range = [&](const char* what, std::size_t i, std::uint32_t v) {
+    return DataError(
+        fmt::format("vertex clustering: {} {} uses vertex {} of only {}", what, i, v, n));
   };
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-    for (std::uint32_t v : mesh.triangles[f]) check(v, "triangle", f);
-  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
-    for (std::uint32_t v : mesh.lines[l]) check(v, "line", l);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (std::max({t[0], t[1], t[2]}) >= n)
+      throw out_of_range("triangle", f, std::max({t[0], t[1], t[2]}));
+    used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const Segment& s = mesh.lines[l];
+    if (std::max(s[0], s[1]) >= n) throw out_of_range("line", l, std::max(s[0], s[1]));
+    used[s[0]] = used[s[1]] = 1;
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    if (used[v] && !is_finite(mesh.positions[v]))
+      throw DataError(fmt::format("vertex clustering: vertex {} has a non-finite coordinate", v));
   auto check_size = [&](std::size_t size, std::size_t want, const char* what) {
     if (size != 0 && size != want)
       throw DataError(fmt::format("vertex clustering: {} {} for {}", size, what, want));
@@ -669,7 +810,8 @@ void validate(const TriangleMesh& mesh) {
 
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options) {
-  validate(mesh);
+  std::vector<char> used;
+  validate(mesh, used);
   const std::size_t nv = mesh.vertex_count();
   const float min_diff = std::clamp(options.min_diff, 0.0f, 1.0f);
   Weights weights{
@@ -678,10 +820,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   const bool quadrics = weights.quadric > 0;
 
   // Level 0: the used coordinates, sorted into octree order, equal ones merged.
-  std::vector<char> used(nv, 0);
-  for (const Triangle& t : mesh.triangles)
-    for (std::uint32_t v : t) used[v] = 1;
-  for (const Segment& s : mesh.lines) used[s[0]] = used[s[1]] = 1;
   Octree octree;
   Box3 box;
   for (std::size_t v = 0; v < nv; ++v)
@@ -734,16 +872,39 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     }
     node_of[v] = static_cast<std::uint32_t>(cut.pos.size() - 1);
   }
-  std::vector<std::uint32_t> identity(mesh.triangles.size());
-  std::iota(identity.begin(), identity.end(), 0u);
   {
-    std::size_t count = cut.pos.size();
-    std::vector<std::uint32_t> keep =
-        remap_faces(mesh.triangles, identity, mesh.lines, node_of, count, options.no_lines, cut);
+    // The input's triangles are in any order: sort those with three distinct
+    // corners by their smallest corner (a stable counting sort); the others
+    // become line candidates in input order.
+    const std::size_t count = cut.pos.size();
+    auto mapped = [&](const Triangle& t) {
+      return Triangle{node_of[t[0]], node_of[t[1]], node_of[t[2]]};
+    };
+    std::vector<Segment> line_candidates;
+    std::vector<std::uint32_t> start(count + 1, 0);
+    for (const Triangle& input : mesh.triangles) {
+      const Triangle t = mapped(input);
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
+        ++start[std::min({t[0], t[1], t[2]}) + 1];
+      } else if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
+        std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
+        line_candidates.push_back({std::min(t[0], other), std::max(t[0], other)});
+      }
+    }
+    for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> sorted(start[count]);
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+      const Triangle t = mapped(mesh.triangles[f]);
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+        sorted[start[std::min({t[0], t[1], t[2]})]++] = static_cast<std::uint32_t>(f);
+    }
+    std::vector<std::uint32_t> keep = remap_faces(
+        sorted.size(), [&](std::size_t i) { return mapped(mesh.triangles[sorted[i]]); },
+        [&](std::size_t i) { return sorted[i]; }, mesh.lines, node_of, count, options.no_lines,
+        line_candidates, cut);
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
   }
-  identity = {};
   // The input vertices still represented, in octree order, with their
   // positions and current vertex (for the displacement of each level).
   std::vector<Vec3> input_pos;
@@ -791,6 +952,9 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
 
   std::vector<std::uint32_t> cell_of;
   std::vector<std::uint32_t> cell_begin;
+  std::vector<TriangleNormal> normals;
+  CellFaces cell_faces;
+  tbb::enumerable_thread_specific<Scratch> scratches;
   std::array<std::size_t, kMaxDepth + 1> histogram{};
   while (true) {
     const std::size_t n_prev = cut.size();
@@ -835,42 +999,56 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     next.orig.resize(cells);
     next.code.resize(cells);
     if (quadrics) next.quadric.resize(cells);
-    std::vector<TrianglePlane> planes;
-    if (weights.area > 0 || weights.volume > 0) planes = triangle_planes(cut, octree.lo);
-    const LevelContext ctx{cut, planes, octree.lo, weights};
+    const bool measure = !cut.tris.empty() && (weights.area > 0 || weights.volume > 0);
+    if (measure) {
+      normals.resize(cut.tris.size());
+      for_chunks(cut.tris.size(), [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t f = lo; f < hi; ++f) {
+          const Triangle& t = cut.tris[f];
+          const Vec3 n = cross(cut.pos[t[1]] - cut.pos[t[0]], cut.pos[t[2]] - cut.pos[t[0]]);
+          normals[f] = {n.x, n.y, n.z, length(n)};
+        }
+      });
+    } else {
+      normals.clear();
+    }
+    cell_faces.build(cut.tris, cell_of, cells);
+    const LevelContext ctx{cut, normals, cell_faces, weights};
     const float cell_size = static_cast<float>(octree.cell_side(depth));
     // Cells are independent: each reads the previous level and writes its own slot.
-    tbb::enumerable_thread_specific<Scratch> scratches;
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(cells), 512),
-                      [&](const tbb::blocked_range<std::uint32_t>& range) {
-                        Scratch& scratch = scratches.local();
-                        if (scratch.stamp.size() != cut.tris.size())
-                          scratch.stamp.assign(cut.tris.size(), kNone);
-                        for (std::uint32_t j = range.begin(); j < range.end(); ++j) {
-                          std::uint32_t b = cell_begin[j], e = cell_begin[j + 1];
-                          next.code[j] = cut.code[b];
-                          std::uint32_t weight = 0;
-                          for (std::uint32_t i = b; i < e; ++i) weight += cut.weight[i];
-                          next.weight[j] = weight;
-                          Quadric q;
-                          if (quadrics) {
-                            for (std::uint32_t i = b; i < e; ++i) q += cut.quadric[i];
-                            next.quadric[j] = q;
-                          }
-                          if (e - b == 1) {
-                            next.pos[j] = cut.pos[b];
-                            next.orig[j] = cut.orig[b];
-                            continue;
-                          }
-                          auto [p, o] = choose_representative(ctx, b, e, j,
-                                                              octree.cell_lo(cut.code[b], depth),
-                                                              cell_size, q, scratch);
-                          next.pos[j] = p;
-                          next.orig[j] = o;
-                        }
-                      });
-    std::vector<std::uint32_t> keep =
-        remap_faces(cut.tris, cut.tri_origin, cut.lines, cell_of, cells, options.no_lines, next);
+    for_chunks(cells, [&](std::size_t lo, std::size_t hi) {
+      Scratch& scratch = scratches.local();
+      for (auto j = static_cast<std::uint32_t>(lo); j < hi; ++j) {
+        std::uint32_t b = cell_begin[j], e = cell_begin[j + 1];
+        next.code[j] = cut.code[b];
+        std::uint32_t weight = 0;
+        for (std::uint32_t i = b; i < e; ++i) weight += cut.weight[i];
+        next.weight[j] = weight;
+        Quadric q;
+        if (quadrics) {
+          for (std::uint32_t i = b; i < e; ++i) q += cut.quadric[i];
+          next.quadric[j] = q;
+        }
+        if (e - b == 1) {
+          next.pos[j] = cut.pos[b];
+          next.orig[j] = cut.orig[b];
+          continue;
+        }
+        auto [p, o] = choose_representative(ctx, j, b, e, octree.cell_lo(cut.code[b], depth),
+                                            cell_size, q, scratch);
+        next.pos[j] = p;
+        next.orig[j] = o;
+      }
+    });
+    std::vector<Segment> line_candidates;
+    std::vector<std::uint32_t> keep = remap_faces(
+        cut.tris.size(),
+        [&](std::size_t f) {
+          const Triangle& t = cut.tris[f];
+          return Triangle{cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
+        },
+        [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
+        options.no_lines, line_candidates, next);
     if (next.tris.empty() && next.lines.empty())
       return finish(StopReason::kCannotSimplify,
                     fmt::format("the level at octree depth {} would be empty", depth));

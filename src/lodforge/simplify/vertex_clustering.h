@@ -112,9 +112,11 @@ struct VertexClusteringOptions {
 /// Time O(V + F) for level 0 (radix-sorted Morton codes) plus O(V + F) per
 /// further level (cells with more than 64 vertices score 64 of them), so
 /// O(V + F) in practice as the levels shrink geometrically. The cells of a
-/// level are processed in parallel (TBB); the result does not depend on the
-/// thread count. Throws DataError if an index is out of range, a used
-/// coordinate is not finite or an attribute array has the wrong length.
+/// level are processed in parallel (TBB, in chunks of 2048 cells; smaller
+/// levels run on the calling thread); the result does not depend on the
+/// thread count. The area and volume heuristics are summed in single
+/// precision relative to the cell's mean, four candidates at a time. Throws DataError if an index
+/// is out of range, a used coordinate is not finite or an attribute array has the wrong length.
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options = {});
 

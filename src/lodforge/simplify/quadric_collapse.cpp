@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -186,7 +187,14 @@ inline bool is_deferred(const HeapEntry& e) {
 class EdgeHeap {
  public:
   bool empty() const { return v_.empty(); }
+  std::size_t size() const { return v_.size(); }
   void clear() { v_.clear(); }
+  /// Drops the entries for which `stale` holds and re-orders the rest.
+  template <class Stale>
+  void drop_if(Stale stale) {
+    std::erase_if(v_, stale);
+    make();
+  }
   /// Appends without ordering; call make() before the next push or pop.
   void append(const HeapEntry& e) { v_.push_back(e); }
   void make() {
@@ -252,6 +260,86 @@ class EdgeHeap {
   }
 
   std::vector<HeapEntry> v_;
+};
+
+/// The queue of collapses: a radix heap (Ahuja, Mehlhorn, Orlin, Tarjan,
+/// "Faster algorithms for the shortest path problem", JACM 1990) on the 32-bit
+/// keys. Bucket i > 0 holds the keys whose highest bit differing from the last
+/// popped key is bit i - 1, bucket 0 the keys equal to it; a push is an
+/// append, and a pop redistributes one bucket when bucket 0 is empty, so each
+/// entry moves at most 32 times and mostly sequentially. It needs pushes not
+/// below the last pop, which the quadric costs nearly always satisfy (merged
+/// quadrics only grow); the rare key below it goes to a small 4-ary heap that
+/// is emptied first, so the order stays exact. Stale entries (see run()) cost
+/// an append and a pop, no sift.
+class CollapseQueue {
+ public:
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
+  void clear() {
+    for (auto& b : buckets_) b.clear();
+    low_.clear();
+    size_ = 0;
+    last_ = 0;
+    used_ = 0;
+  }
+  void push(const HeapEntry& e) {
+    ++size_;
+    if (e.key < last_) {
+      low_.push(e);
+    } else {
+      std::size_t b = bucket(e.key);
+      buckets_[b].push_back(e);
+      used_ |= std::uint64_t{1} << b;
+    }
+  }
+  HeapEntry pop() {
+    assert(size_ > 0);
+    --size_;
+    if (!low_.empty()) return low_.pop();
+    if (buckets_[0].empty()) {
+      auto i = static_cast<std::size_t>(std::countr_zero(used_));
+      std::vector<HeapEntry>& from = buckets_[i];
+      std::uint32_t m = from[0].key;
+      for (const HeapEntry& e : from) m = std::min(m, e.key);
+      last_ = m;
+      used_ &= ~(std::uint64_t{1} << i);
+      for (const HeapEntry& e : from) {
+        std::size_t b = bucket(e.key);
+        buckets_[b].push_back(e);
+        used_ |= std::uint64_t{1} << b;
+      }
+      from.clear();
+    }
+    HeapEntry e = buckets_[0].back();
+    buckets_[0].pop_back();
+    if (buckets_[0].empty()) used_ &= ~std::uint64_t{1};
+    return e;
+  }
+  /// Drops the entries for which `stale` holds.
+  template <class Stale>
+  void drop_if(Stale stale) {
+    size_ = 0;
+    used_ = 0;
+    for (std::size_t i = 0; i < buckets_.size(); ++i) {
+      std::erase_if(buckets_[i], stale);
+      size_ += buckets_[i].size();
+      if (!buckets_[i].empty()) used_ |= std::uint64_t{1} << i;
+    }
+    low_.drop_if(stale);
+    size_ += low_.size();
+  }
+
+ private:
+  std::size_t bucket(std::uint32_t key) const {
+    return static_cast<std::size_t>(std::bit_width(key ^ last_));
+  }
+
+  std::array<std::vector<HeapEntry>, 33> buckets_;
+  EdgeHeap low_;
+  std::uint32_t last_ = 0;
+  std::uint64_t used_ = 0;  // bit i: bucket i is not empty
+  std::size_t size_ = 0;
 };
 
 /// What try_collapse decided.
@@ -331,7 +419,7 @@ class Collapser {
   std::vector<float> tri_error_;  // the bound e(T)
   std::size_t live_triangles_ = 0;
 
-  EdgeHeap heap_;
+  CollapseQueue heap_;
   std::size_t collapses_since_fill_ = 0;
   std::size_t budget_rejections_ = 0;
   // Rejected collapses are retried when their neighbourhood changes; a full
@@ -865,10 +953,7 @@ void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_reje
       Collapse c;
       if (!evaluate(a, b, c)) continue;
       HeapEntry e{heap_key(c.cost, false), a, b, version_[a] + version_[b]};
-      if (only_greater)
-        heap_.append(e);
-      else
-        heap_.push(e);
+      heap_.push(e);
     }
   }
 }
@@ -877,7 +962,6 @@ void Collapser::fill_heap() {
   heap_.clear();
   for (std::uint32_t p = 0; p < pos_.size(); ++p)
     if (vertex_alive_[p] && ref_count_[p] > 0) push_edges(p, true);
-  heap_.make();
   collapses_since_fill_ = 0;
   budget_rejections_ = 0;
 }
@@ -1109,6 +1193,11 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       fill_heap();
       if (heap_.empty()) break;
       continue;
+    }
+    if (heap_.size() > 8 * live_triangles_ + 1024) {
+      // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
+      // dropping them keeps the heap shallow and in cache as the mesh shrinks.
+      heap_.drop_if([&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; });
     }
     const HeapEntry e = heap_.pop();
     const bool deferred = is_deferred(e);

@@ -16,5 +16,6 @@ void add_lod_command(CLI::App& app, Runner& run);
 void add_render_command(CLI::App& app, Runner& run);
 void add_compare_command(CLI::App& app, Runner& run);
 void add_simplify_command(CLI::App& app, Runner& run);
+void add_mco_command(CLI::App& app, Runner& run);
 
 }  // namespace lodforge::apps

@@ -370,7 +370,7 @@ class Collapser {
   void compute_kinds();
   void compute_quadrics();
   void fill_heap();
-  void push_edges(std::uint32_t a, bool only_greater, bool collect_rejected = false);
+  void push_edges(std::uint32_t a, bool collect_rejected = false);
   bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out);
   Outcome try_collapse(const Collapse& c, bool allow_slivers);
   int edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* tris) const;
@@ -606,9 +606,9 @@ void Collapser::build() {
 }
 
 // Feature edges around each vertex decide its kind (table above). Each
-// triangle of the fan contributes its two edges at p; an edge's triangles are
-// counted by scanning the fan (a few entries), which is cheaper than sorting
-// it.
+// triangle of the fan contributes its two edges at p; per neighbour o, the
+// triangles running p -> o and o -> p are counted in scratch arrays indexed by
+// o (reset lazily by stamps), so a vertex costs O(valence).
 void Collapser::compute_kinds() {
   const std::size_t np = pos_.size();
   struct Corner {
@@ -617,6 +617,9 @@ void Collapser::compute_kinds() {
     std::uint32_t k;           // p's corner in it
   };
   std::vector<Corner> fan;
+  // Per neighbour: counts (p -> o in the low half, o -> p in the high half)
+  // and the fan index of the last triangle of each direction.
+  std::vector<std::uint32_t> count(np), fwd_at(np), bwd_at(np);
   const bool materials = mesh_.has_materials();
   for (std::uint32_t p = 0; p < np; ++p) {
     if (ref_count_[p] == 0) {
@@ -630,29 +633,35 @@ void Collapser::compute_kinds() {
       std::uint32_t k = tv_[base] == p ? 0 : tv_[base + 1] == p ? 1 : 2;
       fan.push_back({tv_[base + (k + 1) % 3], tv_[base + (k + 2) % 3], base, k});
     }
-    const std::uint32_t s = ++stamp_;
+    const std::uint32_t counted = ++stamp_;
+    for (std::uint32_t i = 0; i < fan.size(); ++i) {
+      const Corner& c = fan[i];
+      for (std::uint32_t o : {c.next, c.prev})
+        if (mark_[o] != counted) mark_[o] = counted, count[o] = 0;
+      count[c.next] += 1;
+      fwd_at[c.next] = i;
+      count[c.prev] += 1u << 16;
+      bwd_at[c.prev] = i;
+    }
+    const std::uint32_t seen = ++stamp_;
     int features = 0;
     bool border = false, locked = false;
     for (const Corner& c : fan)
       for (std::uint32_t o : {c.next, c.prev}) {
-        if (mark_[o] == s) continue;
-        mark_[o] = s;
-        // Triangles on edge {p, o}: running p -> o (fwd) and o -> p (bwd).
-        int fwd = 0, bwd = 0;
-        const Corner *f = nullptr, *b = nullptr;
-        for (const Corner& d : fan) {
-          if (d.next == o) ++fwd, f = &d;
-          if (d.prev == o) ++bwd, b = &d;
-        }
+        if (mark_[o] == seen) continue;
+        mark_[o] = seen;
+        const std::uint32_t fwd = count[o] & 0xffffu, bwd = count[o] >> 16;
         if (fwd + bwd == 1) {
           ++features;
           border = true;
         } else if (fwd + bwd > 2 || fwd != 1) {
           locked = true;  // non-manifold, or inconsistently oriented
         } else {
-          bool seam = tw_[f->base + f->k] != tw_[b->base + b->k] ||
-                      tw_[f->base + (f->k + 1) % 3] != tw_[b->base + (b->k + 2) % 3];
-          bool material = materials && mesh_.materials[f->base / 3] != mesh_.materials[b->base / 3];
+          const Corner& f = fan[fwd_at[o]];
+          const Corner& b = fan[bwd_at[o]];
+          bool seam = tw_[f.base + f.k] != tw_[b.base + b.k] ||
+                      tw_[f.base + (f.k + 1) % 3] != tw_[b.base + (b.k + 2) % 3];
+          bool material = materials && mesh_.materials[f.base / 3] != mesh_.materials[b.base / 3];
           if (seam || material) ++features;
         }
       }
@@ -936,9 +945,9 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
   return true;
 }
 
-/// Queues the edges of `a` (only towards higher indices when filling the
-/// heap); `collect_rejected` notes neighbours flagged in rejected_.
-void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_rejected) {
+/// Queues the edges of `a`; `collect_rejected` notes neighbours flagged in
+/// rejected_.
+void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
   std::uint32_t s = ++stamp_;
   const std::uint32_t* ts = tris_begin(a);
   const std::uint32_t n = ref_count_[a];
@@ -947,7 +956,7 @@ void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_reje
     std::uint32_t t = ts[i];
     for (int k = 0; k < 3; ++k) {
       std::uint32_t b = tv_[3 * t + k];
-      if (mark_[b] == s || (only_greater && b < a)) continue;
+      if (mark_[b] == s) continue;
       mark_[b] = s;
       if (collect_rejected && rejected_[b]) requeue_.push_back(b);
       Collapse c;
@@ -960,8 +969,28 @@ void Collapser::push_edges(std::uint32_t a, bool only_greater, bool collect_reje
 
 void Collapser::fill_heap() {
   heap_.clear();
-  for (std::uint32_t p = 0; p < pos_.size(); ++p)
-    if (vertex_alive_[p] && ref_count_[p] > 0) push_edges(p, true);
+  // Every edge once, from the triangles: a half-edge a -> b stands for its
+  // edge when a < b, or when there is no b -> a (an open border, which only
+  // joins vertices that are not free).
+  const std::size_t nf = tri_alive_.size();
+  for (std::size_t t = 0; t < nf; ++t) {
+    if (!tri_alive_[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
+      if (a > b) {
+        if (kind_[a] == kFree || kind_[b] == kFree) continue;
+        bool twin = false;
+        const std::uint32_t* ts = tris_begin(b);
+        for (std::uint32_t i = 0; i < ref_count_[b] && !twin; ++i) {
+          const std::uint32_t* c = &tv_[3 * ts[i]];
+          twin = (c[0] == b && c[1] == a) || (c[1] == b && c[2] == a) || (c[2] == b && c[0] == a);
+        }
+        if (twin) continue;
+      }
+      Collapse c;
+      if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
+    }
+  }
   collapses_since_fill_ = 0;
   budget_rejections_ = 0;
 }
@@ -1224,11 +1253,11 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     }
     ++collapses_since_fill_;
     requeue_.clear();
-    push_edges(c.v, false, true);
+    push_edges(c.v, true);
     for (std::size_t i = 0; i < requeue_.size(); ++i) {
       std::uint32_t n = requeue_[i];
       rejected_[n] = 0;
-      push_edges(n, false);
+      push_edges(n);
     }
   }
   if (live_triangles_ <= target) {

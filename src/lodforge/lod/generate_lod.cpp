@@ -303,7 +303,7 @@ class Pipeline {
     c.min_diff = opt_.min_diff;
     c.max_levels = simplified_max;
     c.measure_samples = opt_.measure_samples;
-    c.threads = 1;
+    c.threads = opt_.threads;
     if (quality >= 2) {
       // Manual mode: quality-2 levels, halving the triangles each time.
       double tcount = double(j.geometry.mesh.triangle_count());

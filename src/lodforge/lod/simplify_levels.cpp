@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "lodforge/metrics/compare_meshes.h"
 #include "lodforge/simplify/quadric_collapse.h"
 #include "lodforge/simplify/vertex_clustering.h"
@@ -59,7 +61,7 @@ std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChai
 
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested) {
   if (requested) return requested;
-  return std::clamp<std::size_t>(20 * triangles, 5000, 500000);
+  return std::clamp<std::size_t>(20 * triangles, 1000, 200000);
 }
 
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
@@ -67,29 +69,32 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
   std::vector<MeasuredLevel> out;
   if (options.min_diff >= 1.0f && options.triangle_targets.empty()) return out;
   std::vector<SimplifyResult> chain = run_method(mesh, options);
-  std::size_t previous = mesh.triangles.empty() ? mesh.lines.size() : mesh.triangle_count();
+  const bool lines_only = mesh.triangles.empty();
+  std::size_t previous = lines_only ? mesh.lines.size() : mesh.triangle_count();
   const bool manual = !options.triangle_targets.empty();
   for (auto& level : chain) {
-    std::size_t count = mesh.triangles.empty() ? level.mesh.lines.size() : level.mesh.triangle_count();
+    std::size_t count = lines_only ? level.mesh.lines.size() : level.mesh.triangle_count();
     // A level must be smaller by min diff (manual targets: smaller at all).
     double limit = manual ? double(previous) - 1 : double(previous) * (1.0 - options.min_diff);
     if (double(count) > limit + 1e-9 || count == 0) break;
-    MeasuredLevel m;
-    if (!mesh.triangles.empty() && !level.mesh.triangles.empty()) {
-      CompareResult c = compare_meshes(mesh, level.mesh,
-                                       {.samples = measure_samples_for(mesh.triangle_count(),
-                                                                       options.measure_samples),
-                                        .threads = options.threads,
-                                        .per_vertex = false});
-      m.error = kErrorMargin * c.hausdorff;
-    } else {
-      m.error = level.error;
-    }
-    m.level = std::move(level);
-    out.push_back(std::move(m));
+    out.push_back({std::move(level), 0.0});
     previous = count;
     if (options.max_levels && out.size() >= options.max_levels) break;
   }
+  // The measurements are independent: run them side by side.
+  tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
+    MeasuredLevel& m = out[i];
+    if (lines_only || m.level.mesh.triangles.empty()) {
+      m.error = m.level.error;
+      return;
+    }
+    CompareResult c = compare_meshes(
+        mesh, m.level.mesh,
+        {.samples = measure_samples_for(mesh.triangle_count(), options.measure_samples),
+         .threads = options.threads,
+         .per_vertex = false});
+    m.error = kErrorMargin * c.hausdorff;
+  });
   return out;
 }
 

@@ -23,7 +23,7 @@ struct LevelChainOptions {
   /// (manual mode); decreasing.
   std::vector<std::size_t> triangle_targets;
   std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
-  int threads = 1;                  ///< for the measurement
+  int threads = 0;                  ///< for the measurements (0: all cores)
 };
 
 /// Sampling finds the largest distance between two surfaces only up to the
@@ -42,7 +42,7 @@ struct MeasuredLevel {
 
 /// Area samples per direction for measuring a level of a mesh with
 /// `triangles` triangles: `requested` if non-zero, else 20 per triangle within
-/// [5 000, 500 000] (every vertex is sampled as well).
+/// [1 000, 200 000] (every vertex is sampled as well).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
 /// Levels 1..n of `mesh` (level 0 is `mesh` itself). Stops when a level would

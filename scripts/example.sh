@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds lodforge and runs it on the example scene of the repository.
+# Builds lodforge and runs its main job on the example scene of the
+# repository: every shape of examples/scene.wrl becomes an LOD node.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -7,5 +8,8 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2 --target lodforge_cli
 mkdir -p out
 ./build/lodforge info examples/scene.wrl
-./build/lodforge format examples/scene.wrl -o out/scene.formatted.wrl
-echo "wrote out/scene.formatted.wrl" >&2
+./build/lodforge lod examples/scene.wrl -o out/scene.lod.wrl --stats out/scene.lod.json
+./build/lodforge render out/scene.lod.wrl -o out/scene.lod.png --size 800x600
+./build/lodforge lod examples/primitives.wrl -o out/primitives.lod.wrl -q
+./build/lodforge render out/primitives.lod.wrl -o out/primitives.levels.png --levels --size 240x240
+echo "wrote out/scene.lod.wrl (statistics: out/scene.lod.json) and pictures out/*.png" >&2

@@ -16,9 +16,14 @@
 // so attribute seams stay sharp.
 //
 // Implementation notes (meshoptimizer's simplifier is the speed model): flat
-// arrays, a per-position list of triangles rewritten by appending, a binary
-// heap with lazy deletion (entries carry the version stamps of their two
-// vertices), and no allocation per collapse beyond amortised vector growth.
+// arrays, a per-position list of live triangles rewritten by appending, a
+// radix heap of 16-byte edge entries with lazy deletion (an entry carries the
+// sum of the version stamps of its two vertices; stale entries are dropped in
+// bulk when they outnumber the live edges), set-up in a few linear passes
+// without maps or sorting, and no allocation per collapse beyond amortised
+// vector growth. Per collapse the work is: one pop that is valid (plus the
+// stale ones, an O(1) pop each), the checks over the two fans, and one
+// evaluation and push per edge of the merged vertex.
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <algorithm>
@@ -99,38 +104,6 @@ struct Quadric {
     return std::max(0.0, dot(p, ap) + 2 * (b0 * p.x + b1 * p.y + b2 * p.z) + c);
   }
 };
-
-/// Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision
-/// Detection, 5.1.5).
-double distance2_to_triangle(D3 p, D3 a, D3 b, D3 c) {
-  D3 ab = b - a, ac = c - a, ap = p - a;
-  double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return norm2(ap);
-  D3 bp = p - b;
-  double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return norm2(bp);
-  double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    double t = d1 / (d1 - d3);
-    return norm2(p - (a + ab * t));
-  }
-  D3 cp = p - c;
-  double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return norm2(cp);
-  double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    double t = d2 / (d2 - d6);
-    return norm2(p - (a + ac * t));
-  }
-  double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return norm2(p - (b + (c - b) * t));
-  }
-  double denom = 1 / (va + vb + vc);
-  D3 q = a + ab * (vb * denom) + ac * (vc * denom);
-  return norm2(p - q);
-}
 
 /// Vertex (welded position) kinds. A vertex moves only as its kind allows:
 ///
@@ -1039,13 +1012,18 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   bool sliver = false;
   const double max_error = options_.target.max_error;
   bool over_budget = false;
-  auto check = [&](std::uint32_t t, std::uint32_t moved) {
-    int k = tv_[3 * t] == moved ? 0 : tv_[3 * t + 1] == moved ? 1 : 2;
-    D3 p0 = pos_[tv_[3 * t]], p1 = pos_[tv_[3 * t + 1]], p2 = pos_[tv_[3 * t + 2]];
-    D3 n_old = cross(p1 - p0, p2 - p0);
-    D3 q[3] = {p0, p1, p2};
-    q[k] = w;
-    D3 n_new = cross(q[1] - q[0], q[2] - q[0]);
+  // The bound of a triangle that keeps its place in the mesh grows by the
+  // distance its moved corner travels (see the header).
+  const D3 pu = pos_[u], pv = pos_[v];
+  const double move_u = std::sqrt(norm2(w - pu)), move_v = std::sqrt(norm2(w - pv));
+  auto check = [&](std::uint32_t t, std::uint32_t moved, D3 pk, double move) {
+    const std::uint32_t* c = &tv_[3 * t];
+    int k = c[0] == moved ? 0 : c[1] == moved ? 1 : 2;
+    // Corners (moved, a, b) in the triangle's order; both normals are taken
+    // against the edge a -> b that stays.
+    const D3 pa = pos_[c[(k + 1) % 3]], pb = pos_[c[(k + 2) % 3]];
+    const D3 e = pb - pa, da_old = pa - pk, da_new = pa - w;
+    const D3 n_old = cross(da_old, e), n_new = cross(da_new, e);
     double area2_new = norm2(n_new), area2_old = norm2(n_old);
     if (area2_new <= 0 && area2_old > 0) return false;
     if (dot(n_old, n_new) < 0) return false;
@@ -1053,16 +1031,16 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       // quality = 2 sqrt(3) |n| / l (l = sum of squared edge lengths), so
       // q_new < min_q  <=>  12 |n_new|^2 < min_q^2 l_new^2 and
       // q_new < q_old  <=>  |n_new|^2 l_old^2 < |n_old|^2 l_new^2.
-      double l_new = norm2(q[1] - q[0]) + norm2(q[2] - q[1]) + norm2(q[0] - q[2]);
-      double l_old = norm2(p1 - p0) + norm2(p2 - p1) + norm2(p0 - p2);
+      double ee = norm2(e);
+      double l_new = ee + norm2(da_new) + norm2(pb - w);
+      double l_old = ee + norm2(da_old) + norm2(pb - pk);
       if (12 * area2_new < min_q * min_q * l_new * l_new &&
           area2_new * l_old * l_old < area2_old * l_new * l_new)
         sliver = true;
     }
     // Rounded up to float: the relative rounding error of float (2^-24) is
     // below the 1e-6 added first.
-    double e = tri_error_[t] + std::sqrt(distance2_to_triangle(w, p0, p1, p2));
-    auto ef = static_cast<float>(e * (1 + 1e-6));
+    auto ef = static_cast<float>((tri_error_[t] + move) * (1 + 1e-6));
     if (ef > max_error) {
       over_budget = true;
       return false;
@@ -1090,12 +1068,12 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
         for (int k = 0; k < 3; ++k) hits += tv_[3 * t2 + k] == x || tv_[3 * t2 + k] == y;
         if (hits == 2) return Outcome::kRejected;
       }
-    if (!check(t, u)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
+    if (!check(t, u, pu, move_u)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
     if (tv_[3 * t] == u || tv_[3 * t + 1] == u || tv_[3 * t + 2] == u) continue;
-    if (!check(t, v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
+    if (!check(t, v, pv, move_v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
   if (sliver) return Outcome::kSliver;
 

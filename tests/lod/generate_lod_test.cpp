@@ -7,7 +7,10 @@
 
 #include "lod/lod_test_support.h"
 #include "lodforge/core/error.h"
+#include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
+
+#include <filesystem>
 #include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/statistics.h"
 #include "mesh/test_meshes.h"
@@ -61,6 +64,18 @@ TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {
     // Level 0 is the input, triangle for triangle.
     EXPECT_EQ(scene::flatten_scene(out, {.lod_level = 0}).triangle_count(), 5120u);
   }
+}
+
+TEST(GenerateLod, BunnySceneLevelsStayWithinTheErrorRangeOnScreen) {
+  const std::string path = std::string(LODFORGE_SHARED_DATA) + "/meshes/bun_zipper.ply";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+  const std::string text = scene_of(read_mesh(path), "Scale { scaleFactor 10 10 10 }");
+  LodResult r = generate_lod(read(text), {.measure_samples = 30000});
+  ASSERT_EQ(r.shapes.size(), 1u);
+  EXPECT_GE(r.shapes[0].levels.size(), 5u);
+  scene::Scene out = read(vrml1::write_vrml1(r.scene));
+  testing::expect_indices_in_range(out);
+  expect_errors_bounded(r, out, 0.02, 0.785398, 30000);
 }
 
 TEST(GenerateLod, MinDiffControlsTheNumberOfLevels) {

@@ -20,6 +20,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/lod/join_nodes.h"
+#include "lodforge/lod/measure_deviation.h"
 #include "lodforge/lod/shape_geometry.h"
 #include "lodforge/metrics/compare_meshes.h"
 #include "lodforge/scene/schema.h"
@@ -348,12 +349,12 @@ class Pipeline {
     }
     TriangleMesh reference = scene::tessellate_primitive(shape, {.segments = 64});
     TriangleMesh tess = scene::tessellate_primitive(shape, {.segments = segments});
-    CompareResult c = compare_meshes(
-        reference, tess,
-        {.samples = opt_.measure_samples ? opt_.measure_samples : 20000, .threads = 1, .per_vertex = false});
+    const double h =
+        DeviationMeter(reference, {.samples = opt_.measure_samples ? opt_.measure_samples : 20000})
+            .hausdorff(tess);
     std::lock_guard<std::mutex> lock(cache_mutex_);
-    tessellation_errors_[key] = c.hausdorff;
-    return c.hausdorff;
+    tessellation_errors_[key] = h;
+    return h;
   }
 
   void primitive_levels(Job& j, std::size_t simplified_max) {

@@ -446,7 +446,9 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
   };
 
   // Triangles of a polygon kept as a quad become the quad again when both
-  // survive and still share their diagonal.
+  // survive, still share their diagonal, and no corner moved: a reader may
+  // split a quad along either diagonal, which for moved corners would draw a
+  // surface other than the one measured.
   std::unordered_map<std::uint32_t, std::vector<std::size_t>> by_polygon;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     std::uint32_t poly = g.triangle_polygon.empty() ? 0 : g.triangle_polygon[origin_face(t)];
@@ -463,6 +465,10 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
         if (b[j] == v && b[(j + 1) % 3] == u) {
           std::uint32_t y = b[(j + 2) % 3];
           if (y == x) continue;
+          bool moved = false;
+          for (std::uint32_t q : {v, x, u, y})
+            moved = moved || !(mesh.positions[q] == g.mesh.positions[origin(q)]);
+          if (moved) continue;
           for (std::uint32_t q : {v, x, u, y}) corner(q);
           end_face(tris[0]);
           done[tris[0]] = done[tris[1]] = true;

@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/lod/measure_deviation.h"
 #include "lodforge/simplify/quadric_collapse.h"
 #include "lodforge/simplify/vertex_clustering.h"
 #include "lodforge/simplify/vertex_decimation.h"
@@ -61,7 +61,7 @@ std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChai
 
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested) {
   if (requested) return requested;
-  return std::clamp<std::size_t>(20 * triangles, 1000, 200000);
+  return std::clamp<std::size_t>(20 * triangles, 20000, 200000);
 }
 
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
@@ -81,19 +81,21 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
     previous = count;
     if (options.max_levels && out.size() >= options.max_levels) break;
   }
-  // The measurements are independent: run them side by side.
+  // The measurements are independent: run them side by side against one
+  // reference (level 0 sampled once).
+  if (out.empty()) return out;
+  std::unique_ptr<DeviationMeter> meter;
+  if (!lines_only)
+    meter = std::make_unique<DeviationMeter>(
+        mesh, DeviationOptions{.samples = measure_samples_for(mesh.triangle_count(),
+                                                               options.measure_samples)});
   tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
     MeasuredLevel& m = out[i];
     if (lines_only || m.level.mesh.triangles.empty()) {
       m.error = m.level.error;
       return;
     }
-    CompareResult c = compare_meshes(
-        mesh, m.level.mesh,
-        {.samples = measure_samples_for(mesh.triangle_count(), options.measure_samples),
-         .threads = options.threads,
-         .per_vertex = false});
-    m.error = kErrorMargin * c.hausdorff;
+    m.error = kErrorMargin * meter->hausdorff(m.level.mesh);
   });
   return out;
 }

@@ -42,7 +42,7 @@ struct MeasuredLevel {
 
 /// Area samples per direction for measuring a level of a mesh with
 /// `triangles` triangles: `requested` if non-zero, else 20 per triangle within
-/// [1 000, 200 000] (every vertex is sampled as well).
+/// [20 000, 200 000] (every vertex is sampled as well).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
 /// Levels 1..n of `mesh` (level 0 is `mesh` itself). Stops when a level would

@@ -1,0 +1,41 @@
+#pragma once
+/// The geometric error of LOD levels: the two-sided Hausdorff distance
+/// between level 0 and a simplified level, measured by sampling and then
+/// refined where it is largest, so the switching ranges rest on the real
+/// maximum and not on where samples happened to fall.
+#include <cstddef>
+#include <memory>
+
+#include "lodforge/mesh/triangle_mesh.h"
+
+namespace lodforge {
+
+struct DeviationOptions {
+  std::size_t samples = 20000;  ///< area samples per direction (plus vertices and edges)
+  std::uint64_t seed = 1;
+  /// The farthest samples of each direction whose neighbourhood is searched
+  /// for a larger distance (hill climbing inside their triangle).
+  std::size_t refine = 64;
+};
+
+/// Measures many levels against one reference (level 0); the reference's
+/// samples and search structure are built once. Thread-safe for concurrent
+/// hausdorff() calls.
+class DeviationMeter {
+ public:
+  /// `reference` must outlive the meter.
+  DeviationMeter(const TriangleMesh& reference, const DeviationOptions& options = {});
+  ~DeviationMeter();
+  DeviationMeter(const DeviationMeter&) = delete;
+  DeviationMeter& operator=(const DeviationMeter&) = delete;
+
+  /// Two-sided Hausdorff distance between the reference and `level`, in model
+  /// units; 0 if either has no triangles.
+  double hausdorff(const TriangleMesh& level) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lodforge

@@ -168,6 +168,13 @@ class EdgeHeap {
     std::erase_if(v_, stale);
     make();
   }
+  /// Becomes the entries of `from` (this heap must be empty); `from` is left
+  /// empty, with this heap's old storage.
+  void take(std::vector<HeapEntry>& from) {
+    assert(v_.empty());
+    v_.swap(from);
+    make();
+  }
   /// Appends without ordering; call make() before the next push or pop.
   void append(const HeapEntry& e) { v_.push_back(e); }
   void make() {
@@ -235,83 +242,73 @@ class EdgeHeap {
   std::vector<HeapEntry> v_;
 };
 
-/// The queue of collapses: a radix heap (Ahuja, Mehlhorn, Orlin, Tarjan,
-/// "Faster algorithms for the shortest path problem", JACM 1990) on the 32-bit
-/// keys. Bucket i > 0 holds the keys whose highest bit differing from the last
-/// popped key is bit i - 1, bucket 0 the keys equal to it; a push is an
-/// append, and a pop redistributes one bucket when bucket 0 is empty, so each
-/// entry moves at most 32 times and mostly sequentially. It needs pushes not
-/// below the last pop, which the quadric costs nearly always satisfy (merged
-/// quadrics only grow); the rare key below it goes to a small 4-ary heap that
-/// is emptied first, so the order stays exact. Stale entries (see run()) cost
-/// an append and a pop, no sift.
+/// The queue of collapses: a bucket queue in front of a small exact heap.
+/// Keys are bucketed by their top bits (the float exponent and a few mantissa
+/// bits, so a bucket spans a few percent of cost); a push beyond the current
+/// bucket is an append, and only the current bucket is kept in heap order,
+/// so the heap holds a few hundred entries instead of all of them and stale
+/// entries (see run()) cost an append and a pop in that small heap. The order
+/// stays exact: a push into the current bucket or below goes into the heap.
 class CollapseQueue {
  public:
+  static constexpr int kShift = 18;  // key bits below the bucket index
+  static constexpr std::size_t kBuckets = std::size_t{1} << (32 - kShift);
+
+  CollapseQueue() : buckets_(kBuckets), used_(kBuckets / 64) {}
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
   void clear() {
-    for (auto& b : buckets_) b.clear();
-    low_.clear();
+    for (std::size_t w = 0; w < used_.size(); ++w)
+      for (std::uint64_t bits = used_[w]; bits != 0; bits &= bits - 1)
+        buckets_[64 * w + static_cast<std::size_t>(std::countr_zero(bits))].clear();
+    std::fill(used_.begin(), used_.end(), 0);
+    heap_.clear();
+    current_ = 0;
     size_ = 0;
-    last_ = 0;
-    used_ = 0;
   }
   void push(const HeapEntry& e) {
     ++size_;
-    if (e.key < last_) {
-      low_.push(e);
+    std::size_t b = e.key >> kShift;
+    if (b <= current_) {
+      heap_.push(e);
     } else {
-      std::size_t b = bucket(e.key);
       buckets_[b].push_back(e);
-      used_ |= std::uint64_t{1} << b;
+      used_[b / 64] |= std::uint64_t{1} << (b % 64);
     }
   }
   HeapEntry pop() {
     assert(size_ > 0);
     --size_;
-    if (!low_.empty()) return low_.pop();
-    if (buckets_[0].empty()) {
-      auto i = static_cast<std::size_t>(std::countr_zero(used_));
-      std::vector<HeapEntry>& from = buckets_[i];
-      std::uint32_t m = from[0].key;
-      for (const HeapEntry& e : from) m = std::min(m, e.key);
-      last_ = m;
-      used_ &= ~(std::uint64_t{1} << i);
-      for (const HeapEntry& e : from) {
-        std::size_t b = bucket(e.key);
-        buckets_[b].push_back(e);
-        used_ |= std::uint64_t{1} << b;
-      }
-      from.clear();
+    if (heap_.empty()) {
+      // The next bucket in use becomes the heap.
+      std::size_t w = (current_ + 1) / 64;
+      std::uint64_t bits = used_[w] & (~std::uint64_t{0} << ((current_ + 1) % 64));
+      while (bits == 0) bits = used_[++w];
+      current_ = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+      used_[w] &= ~(std::uint64_t{1} << (current_ % 64));
+      heap_.take(buckets_[current_]);
     }
-    HeapEntry e = buckets_[0].back();
-    buckets_[0].pop_back();
-    if (buckets_[0].empty()) used_ &= ~std::uint64_t{1};
-    return e;
+    return heap_.pop();
   }
   /// Drops the entries for which `stale` holds.
   template <class Stale>
   void drop_if(Stale stale) {
-    size_ = 0;
-    used_ = 0;
-    for (std::size_t i = 0; i < buckets_.size(); ++i) {
-      std::erase_if(buckets_[i], stale);
-      size_ += buckets_[i].size();
-      if (!buckets_[i].empty()) used_ |= std::uint64_t{1} << i;
-    }
-    low_.drop_if(stale);
-    size_ += low_.size();
+    heap_.drop_if(stale);
+    size_ = heap_.size();
+    for (std::size_t w = 0; w < used_.size(); ++w)
+      for (std::uint64_t bits = used_[w]; bits != 0; bits &= bits - 1) {
+        std::size_t b = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+        std::erase_if(buckets_[b], stale);
+        size_ += buckets_[b].size();
+        if (buckets_[b].empty()) used_[w] &= ~(std::uint64_t{1} << (b % 64));
+      }
   }
 
  private:
-  std::size_t bucket(std::uint32_t key) const {
-    return static_cast<std::size_t>(std::bit_width(key ^ last_));
-  }
-
-  std::array<std::vector<HeapEntry>, 33> buckets_;
-  EdgeHeap low_;
-  std::uint32_t last_ = 0;
-  std::uint64_t used_ = 0;  // bit i: bucket i is not empty
+  std::vector<std::vector<HeapEntry>> buckets_;
+  std::vector<std::uint64_t> used_;  // bit b: bucket b is not empty
+  EdgeHeap heap_;                    // the current bucket and anything below it
+  std::size_t current_ = 0;
   std::size_t size_ = 0;
 };
 

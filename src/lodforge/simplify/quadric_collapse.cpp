@@ -17,13 +17,14 @@
 //
 // Implementation notes (meshoptimizer's simplifier is the speed model): flat
 // arrays, a per-position list of live triangles rewritten by appending, a
-// radix heap of 16-byte edge entries with lazy deletion (an entry carries the
+// bucket queue of 16-byte edge entries with lazy deletion (an entry carries the
 // sum of the version stamps of its two vertices; stale entries are dropped in
 // bulk when they outnumber the live edges), set-up in a few linear passes
 // without maps or sorting, and no allocation per collapse beyond amortised
-// vector growth. Per collapse the work is: one pop that is valid (plus the
-// stale ones, an O(1) pop each), the checks over the two fans, and one
-// evaluation and push per edge of the merged vertex.
+// vector growth. Per collapse the work is: one valid pop (plus the stale
+// ones, cheap pops from the small heap of the current bucket), the checks
+// over the two fans, and one evaluation and push per edge of the merged
+// vertex.
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <algorithm>

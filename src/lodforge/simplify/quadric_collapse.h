@@ -46,10 +46,11 @@
 /// measure it with metrics/compare_meshes (the LOD pipeline may use either;
 /// the bound is the safe default).
 ///
-/// Costs: O(V + F) time times the valence (each collapse re-evaluates the
-/// edges of the merged vertex; the radix heap moves an entry at most 32
-/// times), O(V + F) memory (plus O(F) per chain level for its output). Single
-/// threaded; about 2-3.5x the time of meshopt_simplify (see docs/RESULTS.md).
+/// Costs: O((V + F) log F) time, about ten edge evaluations and queue entries
+/// per collapse (each collapse re-evaluates the edges of the merged vertex),
+/// O(V + F) memory (plus O(F) per chain level for its output). Single
+/// threaded; 2.5-4x the time of meshopt_simplify, which places vertices at
+/// edge ends and has no attribute quadrics (figures in docs/RESULTS.md).
 #include <cstddef>
 #include <vector>
 

@@ -94,39 +94,11 @@ Row& row(const std::string& key) {
   return g_rows[g_index.at(key)];
 }
 
-/// The meshopt peers' outputs index the input's vertex buffer: keep only the
-/// vertices used, so that the quality step does not sample unused ones.
-TriangleMesh compact(const TriangleMesh& input, const std::vector<unsigned>& indices,
-                     std::size_t count) {
-  TriangleMesh m;
-  std::vector<std::uint32_t> remap(input.vertex_count(), UINT32_MAX);
-  for (std::size_t i = 0; i + 2 < count; i += 3) {
-    Triangle t;
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t& r = remap[indices[i + k]];
-      if (r == UINT32_MAX) {
-        r = std::uint32_t(m.positions.size());
-        m.positions.push_back(input.positions[indices[i + k]]);
-      }
-      t[k] = r;
-    }
-    m.triangles.push_back(t);
-  }
-  return m;
-}
-
 /// CPU time of the whole process (every thread), in milliseconds.
 double process_cpu_ms() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
-std::vector<unsigned> flat_indices(const TriangleMesh& m) {
-  std::vector<unsigned> indices;
-  indices.reserve(m.triangle_count() * 3);
-  for (const Triangle& t : m.triangles) indices.insert(indices.end(), t.begin(), t.end());
-  return indices;
 }
 
 /// Runs the row's simplifier in the benchmark loop, timing each run by wall
@@ -191,6 +163,34 @@ TriangleMesh run_cluster(const Row& r) {
 }
 
 #ifdef LODFORGE_HAVE_MESHOPTIMIZER
+/// The meshopt peers' outputs index the input's vertex buffer: keep only the
+/// vertices used, so that the quality step does not sample unused ones.
+TriangleMesh compact(const TriangleMesh& input, const std::vector<unsigned>& indices,
+                     std::size_t count) {
+  TriangleMesh m;
+  std::vector<std::uint32_t> remap(input.vertex_count(), UINT32_MAX);
+  for (std::size_t i = 0; i + 2 < count; i += 3) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t& r = remap[indices[i + k]];
+      if (r == UINT32_MAX) {
+        r = std::uint32_t(m.positions.size());
+        m.positions.push_back(input.positions[indices[i + k]]);
+      }
+      t[k] = r;
+    }
+    m.triangles.push_back(t);
+  }
+  return m;
+}
+
+std::vector<unsigned> flat_indices(const TriangleMesh& m) {
+  std::vector<unsigned> indices;
+  indices.reserve(m.triangle_count() * 3);
+  for (const Triangle& t : m.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  return indices;
+}
+
 template <bool kSloppy>
 TriangleMesh run_meshopt(const Row& r) {
   static std::map<const TriangleMesh*, std::vector<unsigned>> indices_of;
@@ -225,7 +225,7 @@ void register_rows(const std::map<std::string, TriangleMesh>& meshes) {
       const std::size_t target = mesh.triangle_count() * std::size_t(100 - reduction) / 100;
       const std::string red = fmt::format("{} %", reduction);
       auto key = [&](const char* method) { return std::string(method) + " " + name + " " + red; };
-      const std::size_t clustered = cluster_count(mesh, target);
+      [[maybe_unused]] const std::size_t clustered = cluster_count(mesh, target);
 #ifdef LODFORGE_HAVE_MESHOPTIMIZER
       register_row({kSimplify, name, red, &mesh, target}, run_meshopt<false>);
       register_row({kSloppy, name, red, &mesh, clustered}, run_meshopt<true>);
@@ -234,7 +234,7 @@ void register_rows(const std::map<std::string, TriangleMesh>& meshes) {
       register_row({"decimate", name, red, &mesh, target, key("qem")}, run_decimate);
       register_row({"cluster", name, red, &mesh, target, key(kSloppy)}, run_cluster);
     }
-    const std::size_t lowest = cluster_count(mesh, 0);
+    [[maybe_unused]] const std::size_t lowest = cluster_count(mesh, 0);
 #ifdef LODFORGE_HAVE_MESHOPTIMIZER
     register_row({kSloppy, name, "chain", &mesh, lowest}, run_meshopt<true>);
 #endif

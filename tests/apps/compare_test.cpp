@@ -17,17 +17,14 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using testing::run_lodforge;
 
-class CompareCli : public ::testing::Test {
+class CompareCli : public testing::TempDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("lodforge_compare_cli_" + std::to_string(getpid()));
-    fs::create_directories(dir_);
-    scene_ = (dir_ / "lod.wrl").string();
-    std::ofstream(scene_) << "#VRML V1.0 ascii\nSeparator { Translation { translation 5 0 0 }\n"
-                             "LOD { range [ 10 ] Cube { } Cube { width 1 } } }\n";
+    TempDirTest::SetUp();
+    scene_ = write("lod.wrl",
+                   "#VRML V1.0 ascii\nSeparator { Translation { translation 5 0 0 }\n"
+                   "LOD { range [ 10 ] Cube { } Cube { width 1 } } }\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
   std::string scene_;
 };
 

@@ -18,21 +18,7 @@ using ::testing::HasSubstr;
 using testing::read_text;
 using testing::run_lodforge;
 
-class LodCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("lodforge_lod_cli_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream((dir_ / name).string()) << text;
-    return (dir_ / name).string();
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class LodCli : public testing::TempDirTest {};
 
 const std::string kPrimitives = std::string(LODFORGE_EXAMPLES) + "/primitives.wrl";
 

@@ -1,11 +1,14 @@
-// `lodforge mco build MESH -o MODEL.mco [--resolution N] [--threads T]`
+// `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
+// `lodforge mco scan MESH --views K -o DIR [--resolution N]`
 // The marching-cube octree (SPEC §5): build once, extract any level later.
 // Human text goes to stderr; `info --json` prints JSON on stdout.
 #include <fmt/core.h>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -15,9 +18,31 @@
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mco_file.h"
+#include "lodforge/mcoctree/range_scan.h"
+#include "lodforge/mcoctree/scan_mesh.h"
 #include "lodforge/mesh/mesh_io.h"
 
 namespace lodforge::apps {
+namespace {
+
+// Range scans rather than a mesh: a directory, a .conf, or a PLY whose header
+// declares a range_grid element.
+bool is_range_input(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return true;
+  fs::path p(path);
+  if (p.extension() == ".conf") return true;
+  if (p.extension() != ".ply") return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string header(4096, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(header.size()));
+  header.resize(static_cast<std::size_t>(in.gcount()));
+  auto end = header.find("end_header");
+  return header.substr(0, end).find("element range_grid") != std::string::npos;
+}
+
+}  // namespace
 
 void add_mco_command(CLI::App& app, Runner& run) {
   CLI::App* mco = app.add_subcommand("mco", "Marching-cube octree: continuous levels of detail");
@@ -30,7 +55,11 @@ void add_mco_command(CLI::App& app, Runner& run) {
   };
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
-  build->add_option("MESH", b->input, "Mesh (PLY, OBJ, OFF, STL) or VRML 1.0 scene")->required();
+  build
+      ->add_option("INPUT", b->input,
+                   "Mesh (PLY, OBJ, OFF, STL), VRML 1.0 scene, or range scans: a .conf, a "
+                   "directory of range-grid PLYs (with its .conf) or one range-grid PLY")
+      ->required();
   build->add_option("-o,--output", b->output, "Model file to write (.mco)")->required();
   build->add_option("--resolution", b->resolution, "Finest cells across the longest side (2..1000)")
       ->check(CLI::Range(2, 1000));
@@ -39,16 +68,28 @@ void add_mco_command(CLI::App& app, Runner& run) {
   build->callback([b, &run] {
     run = [b] {
       auto t0 = std::chrono::steady_clock::now();
-      TriangleMesh mesh = load_geometry(b->input);
-      auto r = build_mc_octree(mesh, {.resolution = b->resolution, .threads = b->threads});
+      McBuildOptions options{.resolution = b->resolution, .threads = b->threads};
+      McBuildResult r;
+      std::string what;
+      if (is_range_input(b->input)) {
+        auto scans = read_range_scans(b->input);
+        std::size_t points = 0;
+        for (const auto& sc : scans)
+          for (auto g : sc.grid) points += g >= 0;
+        r = build_mc_octree(scans, options);
+        what = fmt::format("{} range scans ({} points)", scans.size(), points);
+      } else {
+        TriangleMesh mesh = load_geometry(b->input);
+        r = build_mc_octree(mesh, options);
+        what = fmt::format("{} triangles", mesh.triangle_count());
+      }
       write_mco_file(r.tree, b->output);
       double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print(
-          stderr,
-          "{}: {} triangles -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "
-          "full resolution; {:.2f} s\n",
-          b->output, mesh.triangle_count(), r.tree.nodes.size(), r.stats.leaves,
-          r.tree.positions.size(), r.tree.lod.size(), r.tree.full_triangles(), s);
+      fmt::print(stderr,
+                 "{}: {} -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "
+                 "full resolution; {:.2f} s\n",
+                 b->output, what, r.tree.nodes.size(), r.stats.leaves, r.tree.positions.size(),
+                 r.tree.lod.size(), r.tree.full_triangles(), s);
       return 0;
     };
   });
@@ -132,6 +173,33 @@ void add_mco_command(CLI::App& app, Runner& run) {
       for (const auto& l : levels)
         fmt::print(stderr, "  {:3}%: priority {:8}, {:9} triangles\n", l["percent"].get<int>(),
                    l["priority"].get<std::uint32_t>(), l["triangles"].get<std::uint64_t>());
+      return 0;
+    };
+  });
+
+  struct Scan {
+    std::string input, output;
+    int views = 6, resolution = 256;
+  };
+  auto sc = std::make_shared<Scan>();
+  CLI::App* scan = mco->add_subcommand(
+      "scan", "Synthetic range scans of a mesh: range-grid PLYs and a .conf in DIR");
+  scan->add_option("MESH", sc->input, "Mesh (PLY, OBJ, OFF, STL) or VRML 1.0 scene")->required();
+  scan->add_option("-o,--output", sc->output, "Directory to write the scans to")->required();
+  scan->add_option("--views", sc->views, "Viewing directions, spread on the sphere (1..1000)")
+      ->check(CLI::Range(1, 1000));
+  scan->add_option("--resolution", sc->resolution, "Grid points across each view (4..4096)")
+      ->check(CLI::Range(4, 4096));
+  scan->callback([sc, &run] {
+    run = [sc] {
+      TriangleMesh mesh = load_geometry(sc->input);
+      auto scans = scan_mesh(mesh, {.views = sc->views, .resolution = sc->resolution});
+      write_range_scans(scans, sc->output);
+      std::size_t points = 0;
+      for (const auto& s : scans) points += s.points.size();
+      fmt::print(stderr, "{}: {} scans of {}x{}, {} points{}, scans.conf\n", sc->output,
+                 scans.size(), sc->resolution, sc->resolution, points,
+                 mesh.has_colors() ? " (coloured)" : "");
       return 0;
     };
   });

@@ -45,6 +45,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/cell_mesh.h"
+#include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/adjacency.h"
 #include "lodforge/mesh/weld.h"
 #include "lodforge/metrics/triangle_bvh.h"
@@ -196,9 +197,8 @@ void measure(Lattice& lat, const SignedDistance& sd, const std::vector<std::int6
   }
 }
 
-Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats) {
-  const TriangleMesh& m = sd.mesh();
-  Box3 box = m.bounds();
+// An empty lattice whose root cube holds `box` with one cell to spare.
+Lattice empty_lattice(const Box3& box, int resolution) {
   Vec3 size = box.size();
   float extent = std::max({size.x, size.y, size.z});
   if (!(extent > 0)) throw DataError("mcoctree: all vertices of the mesh are at one point");
@@ -209,6 +209,38 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   lat.h = extent / static_cast<float>(resolution);
   lat.origin = box.center() - Vec3{1, 1, 1} * (lat.h * static_cast<float>(1 << lat.depth) * 0.5f);
   lat.state.assign(static_cast<std::size_t>(lat.n * lat.n * lat.n), 0);
+  return lat;
+}
+
+template <class Fn>
+void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
+  const std::int64_t step[3] = {1, lat.n, lat.n * lat.n};
+  std::int64_t c[3] = {idx % lat.n, (idx / lat.n) % lat.n, idx / (lat.n * lat.n)};
+  for (int a = 0; a < 3; ++a) {
+    if (c[a] > 0) fn(idx - step[a]);
+    if (c[a] + 1 < lat.n) fn(idx + step[a]);
+  }
+}
+
+// Breadth-first flood fill from the assigned points: every unassigned point
+// takes the sign of the nearest assigned one (in lattice steps).
+void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildStats& stats) {
+  std::deque<std::int64_t> queue(seeds.begin(), seeds.end());
+  while (!queue.empty()) {
+    auto idx = queue.front();
+    queue.pop_front();
+    lattice_neighbours(lat, idx, [&](std::int64_t q) {
+      if (lat.state[q] & kAssigned) return;
+      lat.state[q] = kAssigned | (lat.state[idx] & kInside);
+      ++stats.flooded_points;
+      queue.push_back(q);
+    });
+  }
+}
+
+Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats) {
+  const TriangleMesh& m = sd.mesh();
+  Lattice lat = empty_lattice(m.bounds(), resolution);
 
   // Band: lattice points within one cell of a triangle's bounding box.
   std::vector<std::int64_t> band;
@@ -237,25 +269,8 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   stats.band_points = band.size();
 
   // Flood fill the rest from the band, breadth first (nearest band sign wins).
-  const std::int64_t step[3] = {1, lat.n, lat.n * lat.n};
-  auto neighbours = [&](std::int64_t idx, auto&& fn) {
-    std::int64_t c[3] = {idx % lat.n, (idx / lat.n) % lat.n, idx / (lat.n * lat.n)};
-    for (int a = 0; a < 3; ++a) {
-      if (c[a] > 0) fn(idx - step[a]);
-      if (c[a] + 1 < lat.n) fn(idx + step[a]);
-    }
-  };
-  std::deque<std::int64_t> queue(band.begin(), band.end());
-  while (!queue.empty()) {
-    auto idx = queue.front();
-    queue.pop_front();
-    neighbours(idx, [&](std::int64_t q) {
-      if (lat.state[q] & kAssigned) return;
-      lat.state[q] = kAssigned | (lat.state[idx] & kInside);
-      ++stats.flooded_points;
-      queue.push_back(q);
-    });
-  }
+  flood_fill(lat, band, stats);
+  auto neighbours = [&](std::int64_t idx, auto&& fn) { lattice_neighbours(lat, idx, fn); };
   // Repair: a flooded point that disagrees with a neighbour gets an exact sign
   // (an open mesh: the inside leaks through a hole), until none disagrees.
   std::vector<std::int64_t> work;
@@ -277,6 +292,187 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
     next.erase(std::unique(next.begin(), next.end()), next.end());
     work = std::move(next);
   }
+  std::sort(lat.distance.begin(), lat.distance.end());
+  return lat;
+}
+
+// Range points merged from several scans (no zippering) and the signed
+// distance they define (Kim, sec. 4.2, after Hoppe et al. 1992): the distance
+// of x to the tangent plane of the nearest range point, whose normal comes
+// from its 4 lattice neighbours. One nearest point makes the sign flicker
+// where two scans overlap slightly out of register, so the distance is the
+// Gaussian-weighted mean over the nearby points whose normals agree with the
+// nearest one's (same sheet), within two cells.
+class ScanField {
+ public:
+  explicit ScanField(const std::vector<RangeScan>& scans) {
+    for (const auto& s : scans) {
+      if (s.grid.size() != static_cast<std::size_t>(s.cols) * s.rows)
+        throw DataError("mcoctree: " + s.name + ": grid size is not num_cols x num_rows");
+      std::vector<Vec3> n = s.normals();
+      std::vector<std::uint8_t> used(s.points.size(), 0);
+      for (auto g : s.grid)
+        if (g >= 0) used[g] = 1;
+      for (std::size_t i = 0; i < s.points.size(); ++i) {
+        if (!used[i]) continue;
+        if (!is_finite(s.points[i]))
+          throw DataError("mcoctree: " + s.name + ": a non-finite coordinate");
+        points_.push_back(s.to_world(s.points[i]));
+        normals_.push_back(normalized(s.rotate(n[i])));
+        colored_ = colored_ || !s.colors.empty();
+        colors_.push_back(s.colors.empty() ? Rgb8{200, 200, 200} : s.colors[i]);
+      }
+    }
+    if (points_.empty()) throw DataError("mcoctree: the range scans hold no point");
+    for (const auto& p : points_) bounds_.add(p);
+  }
+  const Box3& bounds() const { return bounds_; }
+  bool colored() const { return colored_; }
+  std::size_t size() const { return points_.size(); }
+  const Vec3& point(std::size_t i) const { return points_[i]; }
+
+  void index(const Vec3& origin, float h) {
+    origin_ = origin, h_ = h;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points_.size());
+    for (std::uint32_t i = 0; i < points_.size(); ++i) keyed[i] = {key(cell_of(points_[i])), i};
+    std::sort(keyed.begin(), keyed.end());
+    order_.resize(keyed.size());
+    for (std::size_t i = 0; i < keyed.size(); ++i) {
+      order_[i] = keyed[i].second;
+      if (i == 0 || keyed[i].first != keyed[i - 1].first)
+        cells_[keyed[i].first] = {static_cast<std::uint32_t>(i), 0};
+      ++cells_[keyed[i].first].second;
+    }
+  }
+  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor((p.x - origin_.x) / h_)),
+            static_cast<std::int64_t>(std::floor((p.y - origin_.y) / h_)),
+            static_cast<std::int64_t>(std::floor((p.z - origin_.z) / h_))};
+  }
+
+  struct Estimate {
+    bool found = false;
+    float distance = 0;  // signed: negative inside
+    Vec3 normal;
+    Vec3 color;
+  };
+  // The weighted tangent-plane distance at x from the points within `reach`
+  // cells (per axis) of x's cell.
+  Estimate estimate(const Vec3& x, int reach) const {
+    auto c = cell_of(x);
+    float best = INFINITY;
+    std::uint32_t nearest = 0;
+    visit(c, reach, [&](std::uint32_t i) {
+      float d = length_squared(points_[i] - x);
+      if (d < best) best = d, nearest = i;
+    });
+    Estimate e;
+    if (best == INFINITY) return e;
+    e.found = true;
+    const Vec3 n0 = normals_[nearest];
+    double wsum = 0, dsum = 0;
+    Vec3 nsum{}, csum{};
+    const float inv = 1.0f / (h_ * h_);
+    visit(c, reach, [&](std::uint32_t i) {
+      if (dot(normals_[i], n0) <= 0.5f) return;
+      float d2 = length_squared(points_[i] - x);
+      if (d2 > best + 4 * h_ * h_) return;
+      float w = std::exp(-(d2 - best) * inv);
+      wsum += w;
+      dsum += w * dot(x - points_[i], normals_[i]);
+      nsum += normals_[i] * w;
+      csum += Vec3{colors_[i][0] * 1.0f, colors_[i][1] * 1.0f, colors_[i][2] * 1.0f} * w;
+    });
+    e.distance = static_cast<float>(dsum / wsum);
+    e.normal = normalized(nsum);
+    e.color = csum / static_cast<float>(wsum);
+    return e;
+  }
+
+ private:
+  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+    return static_cast<std::uint64_t>(c[0] & 0x1fffff) |
+           static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21 |
+           static_cast<std::uint64_t>(c[2] & 0x1fffff) << 42;
+  }
+  template <class Fn>
+  void visit(const std::array<std::int64_t, 3>& c, int reach, Fn&& fn) const {
+    for (auto k = c[2] - reach; k <= c[2] + reach; ++k)
+      for (auto j = c[1] - reach; j <= c[1] + reach; ++j)
+        for (auto i = c[0] - reach; i <= c[0] + reach; ++i) {
+          if (i < 0 || j < 0 || k < 0) continue;
+          auto it = cells_.find(key({i, j, k}));
+          if (it == cells_.end()) continue;
+          for (std::uint32_t a = 0; a < it->second.second; ++a) fn(order_[it->second.first + a]);
+        }
+  }
+  std::vector<Vec3> points_, normals_;
+  std::vector<Rgb8> colors_;
+  bool colored_ = false;
+  Box3 bounds_;
+  Vec3 origin_;
+  float h_ = 1;
+  std::vector<std::uint32_t> order_;
+  std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> cells_;
+};
+
+// The sign lattice of range scans. Band: the lattice points within two cells
+// of a range point get the weighted tangent-plane distance. The box's outer
+// faces are outside (the root cube has a free cell all round). Every other
+// point takes the sign of the nearest band or border point by flood fill:
+// where no scan saw anything (under the Stanford bunny, which stood on the
+// turntable) the inside and the outside meet about half way between the
+// rim of the unseen region and the box, which closes the model with a cap.
+Lattice make_scan_lattice(ScanField& field, int resolution, McBuildStats& stats) {
+  Lattice lat = empty_lattice(field.bounds(), resolution);
+  field.index(lat.origin, lat.h);
+  std::vector<std::int64_t> band;
+  for (std::size_t i = 0; i < field.size(); ++i) {
+    auto c = field.cell_of(field.point(i));
+    for (auto k = c[2] - 1; k <= c[2] + 2; ++k)
+      for (auto j = c[1] - 1; j <= c[1] + 2; ++j)
+        for (auto a = c[0] - 1; a <= c[0] + 2; ++a) {
+          if (a < 0 || j < 0 || k < 0 || a >= lat.n || j >= lat.n || k >= lat.n) continue;
+          auto idx = lat.index(a, j, k);
+          if (lat.state[idx] & kAssigned) continue;
+          lat.state[idx] = kAssigned;
+          band.push_back(idx);
+        }
+  }
+  std::sort(band.begin(), band.end());
+  std::vector<ScanField::Estimate> est(band.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        est[i] = field.estimate(lat.point(band[i]), 2);
+                    });
+  std::vector<std::int64_t> seeds;
+  for (std::size_t i = 0; i < band.size(); ++i) {
+    if (!est[i].found) {
+      lat.state[band[i]] = 0;
+      continue;
+    }
+    float d = est[i].distance == 0 ? 1e-6f * lat.h : est[i].distance;
+    lat.state[band[i]] = kExact | kAssigned | (d < 0 ? kInside : 0);
+    lat.distance.emplace_back(band[i], d);
+    seeds.push_back(band[i]);
+  }
+  stats.band_points = seeds.size();
+  for (std::int64_t k = 0; k < lat.n; ++k)
+    for (std::int64_t j = 0; j < lat.n; ++j)
+      for (std::int64_t i = 0; i < lat.n; ++i) {
+        bool border =
+            i == 0 || j == 0 || k == 0 || i == lat.n - 1 || j == lat.n - 1 || k == lat.n - 1;
+        if (!border) {
+          i = std::max<std::int64_t>(i, lat.n - 2);  // skip to the far face
+          continue;
+        }
+        auto idx = lat.index(i, j, k);
+        if (lat.state[idx] & kAssigned) continue;
+        lat.state[idx] = kAssigned;
+        seeds.push_back(idx);
+      }
+  flood_fill(lat, seeds, stats);
   std::sort(lat.distance.begin(), lat.distance.end());
   return lat;
 }
@@ -323,7 +519,10 @@ class Builder {
  public:
   Builder(McOctree& t, McBuildStats& stats) : t_(t), stats_(stats) {}
 
-  void build_tree(const Lattice& lat, const SignedDistance& sd) {
+  // attr(x, hint, normal, colour) gives the normal (and the colour when
+  // `colored`) of the surface point x; hint is per-thread scratch.
+  template <class Attr>
+  void build_tree(const Lattice& lat, bool colored, Attr&& attr) {
     const int D = lat.depth;
     t_.depth = D;
     t_.origin = lat.origin;
@@ -343,7 +542,6 @@ class Builder {
       throw DataError("mcoctree: the surface crosses no lattice edge (resolution too low?)");
     t_.positions.resize(edge_keys.size());
     t_.normals.resize(edge_keys.size());
-    const bool colored = sd.mesh().has_colors();
     if (colored) t_.colors.resize(edge_keys.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -358,18 +556,9 @@ class Builder {
                           Vec3 a = lat.point(p), b = lat.point(q);
                           Vec3 x = a + (b - a) * ratio;
                           t_.positions[v] = x;
-                          ClosestPoint cp = sd.bvh().closest_point(x, hint);
-                          hint = cp.triangle;
-                          t_.normals[v] = sd.bvh().normal_at(cp);
-                          if (colored) {
-                            const auto& f = sd.mesh().triangles[cp.triangle];
-                            Vec3 col{};
-                            for (int k = 0; k < 3; ++k)
-                              col += sd.mesh().colors[f[k]] * cp.barycentric[k];
-                            for (int k = 0; k < 3; ++k)
-                              t_.colors[v][k] = static_cast<std::uint8_t>(
-                                  std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
-                          }
+                          // Fallback normal: along the edge, from inside to outside.
+                          t_.normals[v] = normalized(lat.inside(p) ? b - a : a - b);
+                          attr(x, hint, t_.normals[v], colored ? &t_.colors[v] : nullptr);
                         }
                       });
     auto vertex_of = [&](std::int64_t p, int axis) {
@@ -660,7 +849,53 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);
-  builder.build_tree(lat, sd);
+  builder.build_tree(lat, sd.mesh().has_colors(),
+                     [&](const Vec3& x, std::uint32_t& hint, Vec3& normal, Rgb8* color) {
+                       ClosestPoint cp = sd.bvh().closest_point(x, hint);
+                       hint = cp.triangle;
+                       normal = sd.bvh().normal_at(cp);
+                       if (!color) return;
+                       const auto& f = sd.mesh().triangles[cp.triangle];
+                       Vec3 col{};
+                       for (int k = 0; k < 3; ++k)
+                         col += sd.mesh().colors[f[k]] * cp.barycentric[k];
+                       for (int k = 0; k < 3; ++k)
+                         (*color)[k] = static_cast<std::uint8_t>(
+                             std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
+                     });
+  result.stats.seconds_tree = since(t1);
+  auto t2 = Clock::now();
+  builder.number();
+  result.stats.seconds_priorities = since(t2);
+  return result;
+}
+
+McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuildOptions& options) {
+  if (options.resolution < 2 || options.resolution > 1000)
+    throw std::invalid_argument("mcoctree: resolution must be in 2..1000");
+  if (scans.empty()) throw DataError("mcoctree: no range scans");
+  std::unique_ptr<tbb::global_control> limit;
+  if (options.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(options.threads));
+  McBuildResult result;
+  auto t0 = Clock::now();
+  ScanField field(scans);
+  Lattice lat = make_scan_lattice(field, options.resolution, result.stats);
+  result.stats.seconds_signs = since(t0);
+  auto t1 = Clock::now();
+  Builder builder(result.tree, result.stats);
+  builder.build_tree(
+      lat, field.colored(), [&](const Vec3& x, std::uint32_t&, Vec3& normal, Rgb8* color) {
+        auto e = field.estimate(x, 2);
+        if (!e.found) e = field.estimate(x, 4);
+        if (!e.found) return;  // a cap far from the data: the edge's direction
+        normal = e.normal;
+        if (color)
+          for (int k = 0; k < 3; ++k)
+            (*color)[k] =
+                static_cast<std::uint8_t>(std::lround(std::clamp(e.color[k], 0.0f, 255.0f)));
+      });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
   builder.number();

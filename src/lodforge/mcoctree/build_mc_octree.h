@@ -4,7 +4,10 @@
 /// bottom-up, priority numbering, the LOD array and the accumulation table.
 #include <cstddef>
 
+#include <vector>
+
 #include "lodforge/mcoctree/mc_octree.h"
+#include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/triangle_mesh.h"
 
 namespace lodforge {
@@ -49,5 +52,26 @@ struct McBuildResult {
 /// coordinates, with all vertices at one point, or whose surface crosses no
 /// lattice edge; std::invalid_argument for a resolution out of range.
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options = {});
+
+/// Builds the octree of range scans, merged without zippering in the world
+/// frame their alignment gives (Kim, ch. 4; `resolution` counts cells across
+/// the longest side of all points' bounding box).
+///
+/// Corner signs: within two cells of the data, the distance to the tangent
+/// plane of the nearest range point (its normal from its 4 lattice
+/// neighbours' triangles), averaged with Gaussian weights over the nearby
+/// points of the same sheet so that overlapping scans out of register by a
+/// fraction of a cell agree; everywhere else the sign of the nearest measured
+/// lattice point (flood fill), with the root cube's faces outside. Where no
+/// scan saw the surface, the model is closed by a cap where the inside and
+/// outside floods meet (about half way between the unseen region's rim and
+/// the box). Normals and colours: the same weighted average of the nearby
+/// points' normals and colours.
+///
+/// Throws DataError for no scans, no measured point, a grid of the wrong
+/// size, a non-finite coordinate; std::invalid_argument for a resolution out
+/// of range.
+McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
+                              const McBuildOptions& options = {});
 
 }  // namespace lodforge

@@ -1,0 +1,90 @@
+#include "lodforge/mcoctree/range_scan.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "lodforge/core/error.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 3x2 grid (rows 2, cols 3) with one hole, in ASCII with an extra property.
+constexpr const char* kAscii =
+    "ply\nformat ascii 1.0\nobj_info num_cols 3\nobj_info num_rows 2\n"
+    "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+    "property float confidence\n"
+    "element range_grid 6\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 1\n1 0 0 1\n2 0 0 1\n0 1 0 1\n1 1 0 1\n"
+    "1 0\n1 1\n1 2\n1 3\n1 4\n0\n";
+
+TEST(RangeScan, ReadsAsciiGridWithHole) {
+  RangeScan s = read_range_grid_data(kAscii, "t.ply");
+  EXPECT_EQ(s.cols, 3);
+  EXPECT_EQ(s.rows, 2);
+  ASSERT_EQ(s.points.size(), 5u);
+  EXPECT_EQ(s.grid, (std::vector<std::int32_t>{0, 1, 2, 3, 4, -1}));
+  EXPECT_EQ(s.points[4], (Vec3{1, 1, 0}));
+  // A flat grid: every normal faces the sensor (+z).
+  for (const auto& n : s.normals()) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
+}
+
+TEST(RangeScan, BinaryRoundTripKeepsColoursAndAlignment) {
+  RangeScan s = read_range_grid_data(kAscii, "t.ply");
+  s.colors.assign(s.points.size(), Rgb8{10, 20, 30});
+  s.name = "a.ply";
+  s.translation = {1, 2, 3};
+  // 90 degrees about y as written; a .conf applies it as the conjugate.
+  s.rotation = {0, 0.70710678f, 0, 0.70710678f};
+  fs::path dir = fs::temp_directory_path() / ("lodforge_range_" + std::to_string(getpid()));
+  write_range_scans({s}, dir.string());
+  auto back = read_range_scans(dir.string());
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].grid, s.grid);
+  EXPECT_EQ(back[0].points, s.points);
+  EXPECT_EQ(back[0].colors, s.colors);
+  // (1, 0, 0) rotated -90 degrees about y is (0, 0, 1), then translated.
+  Vec3 w = back[0].to_world({1, 0, 0});
+  EXPECT_NEAR(w.x, 1, 1e-5f);
+  EXPECT_NEAR(w.y, 2, 1e-5f);
+  EXPECT_NEAR(w.z, 4, 1e-5f);
+  fs::remove_all(dir);
+}
+
+TEST(RangeScan, BadFilesAreDataErrors) {
+  std::string no_cols = kAscii;
+  no_cols.erase(no_cols.find("obj_info num_cols 3\n"), 20);
+  EXPECT_THROW(read_range_grid_data(no_cols, "t.ply"), DataError);
+  std::string bad_index = kAscii;
+  bad_index.replace(bad_index.find("1 4\n0\n"), 6, "1 9\n0\n");
+  EXPECT_THROW(read_range_grid_data(bad_index, "t.ply"), DataError);
+  std::string cut = kAscii;
+  cut.resize(cut.size() - 8);
+  try {
+    read_range_grid_data(cut, "t.ply");
+    FAIL();
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.ply: truncated"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RangeScan, StanfordBunnyConf) {
+  std::string conf = std::string(LODFORGE_SHARED_DATA) + "/range/bunny/bun.conf";
+  if (!fs::exists(conf)) GTEST_SKIP() << "no " << conf;
+  auto scans = read_range_scans(conf);
+  ASSERT_EQ(scans.size(), 10u);
+  EXPECT_EQ(scans[0].name, "bun000.ply");
+  EXPECT_EQ(scans[0].cols, 512);
+  EXPECT_EQ(scans[0].rows, 400);
+  EXPECT_EQ(scans[0].points.size(), 40256u);
+  // The Cyberware sensor is on +z: most normals face it.
+  int facing = 0;
+  for (const auto& n : scans[0].normals()) facing += n.z > 0;
+  EXPECT_GT(facing, 0.9 * 40256);
+}
+
+}  // namespace
+}  // namespace lodforge

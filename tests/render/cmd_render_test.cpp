@@ -106,6 +106,32 @@ TEST_F(CmdRender, RendersAVrmlSceneAndEachLodLevel) {
   EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + dir_ + "/x.png --levels"), 1);
 }
 
+TEST_F(CmdRender, ColouredComparisonShowsWhereTheErrorIs) {
+  // A sphere against a flattened copy of itself: the deviation is zero at the
+  // equator (blue) and largest at the poles (red); the picture shows both.
+  const std::string a = dir_ + "/a.wrl", b = dir_ + "/b.wrl";
+  std::ofstream(a) << "#VRML V1.0 ascii\nSphere { radius 1 }\n";
+  std::ofstream(b) << "#VRML V1.0 ascii\nScale { scaleFactor 1 0.5 1 }\nSphere { radius 1 }\n";
+  const std::string colored = dir_ + "/deviation.ply", png = dir_ + "/deviation.png";
+  ASSERT_EQ(std::system((exe_ + " compare " + a + " " + b + " --colored " + colored +
+                         " >/dev/null 2>&1").c_str()),
+            0);
+  ASSERT_EQ(lodforge_render(colored + " -o " + png + " --size 160x160 --view 0,0"), 0);
+  const Image img = load(png);
+  const auto s = test::pixel_stats(img);
+  EXPECT_GT(s.covered_fraction, 0.2);
+  // Both ends of the scale are on screen: reddish pixels and bluish pixels.
+  int red = 0, blue = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      if (p[0] > 2 * p[2] && p[0] > 2 * p[1]) ++red;
+      if (p[2] > 2 * p[0] && p[2] > p[1]) ++blue;
+    }
+  EXPECT_GT(red, 50);
+  EXPECT_GT(blue, 50);
+}
+
 TEST_F(CmdRender, RendersTheExampleScene) {
   const std::string png = dir_ + "/example.png";
   ASSERT_EQ(lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png +

@@ -106,6 +106,15 @@ struct Quadric {
   }
 };
 
+/// The corner (0, 1, 2) of triangle `c` that is vertex `p`, which must be one
+/// of them; without branches, since which one it is depends on the data.
+inline int corner_of(const std::uint32_t* c, std::uint32_t p) {
+  return int{c[1] == p} | int{c[2] == p} << 1;
+}
+/// The corners after and before corner k.
+constexpr int kNext[3] = {1, 2, 0};
+constexpr int kPrev[3] = {2, 0, 1};
+
 /// Vertex (welded position) kinds. A vertex moves only as its kind allows:
 ///
 /// | kind     | where it is                                   | may move along          |
@@ -196,9 +205,10 @@ class EdgeHeap {
     HeapEntry* h = v_.data();
     // Full families first, with a branch-free minimum of four.
     for (std::size_t c = 1; c + 4 <= n; c = 4 * i + 1) {
-      std::size_t b01 = h[c + 1].key < h[c].key ? c + 1 : c;
-      std::size_t b23 = h[c + 3].key < h[c + 2].key ? c + 3 : c + 2;
-      std::size_t best = h[b23].key < h[b01].key ? b23 : b01;
+      // Which child is smallest is data: select by arithmetic, not branches.
+      std::size_t b01 = c + std::size_t{h[c + 1].key < h[c].key};
+      std::size_t b23 = c + 2 + std::size_t{h[c + 3].key < h[c + 2].key};
+      std::size_t best = b01 + (b23 - b01) * std::size_t{h[b23].key < h[b01].key};
       h[i] = h[best];
       i = best;
     }
@@ -601,14 +611,14 @@ void Collapser::compute_kinds() {
     const std::uint32_t* ts = tris_begin(p);
     for (std::uint32_t i = 0; i < ref_count_[p]; ++i) {
       std::uint32_t base = 3 * ts[i];
-      std::uint32_t k = tv_[base] == p ? 0 : tv_[base + 1] == p ? 1 : 2;
-      fan.push_back({tv_[base + (k + 1) % 3], tv_[base + (k + 2) % 3], base, k});
+      auto k = static_cast<std::uint32_t>(corner_of(&tv_[base], p));
+      fan.push_back({tv_[base + kNext[k]], tv_[base + kPrev[k]], base, k});
     }
     const std::uint32_t counted = ++stamp_;
     for (std::uint32_t i = 0; i < fan.size(); ++i) {
       const Corner& c = fan[i];
       for (std::uint32_t o : {c.next, c.prev})
-        if (mark_[o] != counted) mark_[o] = counted, count[o] = 0;
+        count[o] = mark_[o] == counted ? count[o] : 0, mark_[o] = counted;
       count[c.next] += 1;
       fwd_at[c.next] = i;
       count[c.prev] += 1u << 16;
@@ -631,7 +641,7 @@ void Collapser::compute_kinds() {
           const Corner& f = fan[fwd_at[o]];
           const Corner& b = fan[bwd_at[o]];
           bool seam = tw_[f.base + f.k] != tw_[b.base + b.k] ||
-                      tw_[f.base + (f.k + 1) % 3] != tw_[b.base + (b.k + 2) % 3];
+                      tw_[f.base + kNext[f.k]] != tw_[b.base + kPrev[b.k]];
           bool material = materials && mesh_.materials[f.base / 3] != mesh_.materials[b.base / 3];
           if (seam || material) ++features;
         }
@@ -919,22 +929,30 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
 /// Queues the edges of `a`; `collect_rejected` notes neighbours flagged in
 /// rejected_.
 void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
-  std::uint32_t s = ++stamp_;
+  // In a manifold fan every neighbour follows `a` in exactly one triangle, so
+  // the corners after `a` are the neighbours; a corner before `a` is one too
+  // only where the fan is open (a border), which the marks find.
+  const std::uint32_t s = ++stamp_;
   const std::uint32_t* ts = tris_begin(a);
   const std::uint32_t n = ref_count_[a];
-  mark_[a] = s;
+  auto push = [&](std::uint32_t b) {
+    if (collect_rejected && rejected_[b]) requeue_.push_back(b);
+    Collapse c;
+    if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
+  };
   for (std::uint32_t i = 0; i < n; ++i) {
-    std::uint32_t t = ts[i];
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t b = tv_[3 * t + k];
-      if (mark_[b] == s) continue;
-      mark_[b] = s;
-      if (collect_rejected && rejected_[b]) requeue_.push_back(b);
-      Collapse c;
-      if (!evaluate(a, b, c)) continue;
-      HeapEntry e{heap_key(c.cost, false), a, b, version_[a] + version_[b]};
-      heap_.push(e);
-    }
+    const std::uint32_t* c = &tv_[3 * ts[i]];
+    std::uint32_t b = c[kNext[corner_of(c, a)]];
+    if (mark_[b] == s) continue;  // only in non-manifold or inconsistent fans
+    mark_[b] = s;
+    push(b);
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t* c = &tv_[3 * ts[i]];
+    std::uint32_t b = c[kPrev[corner_of(c, a)]];
+    if (mark_[b] == s) continue;
+    mark_[b] = s;
+    push(b);
   }
 }
 
@@ -987,7 +1005,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     for (int k = 0; k < 3; ++k) {
       std::uint32_t x = tv_[3 * t + k];
       has_v |= x == v;
-      if (x != u) mark_[x] = s_u;
+      mark_[x] = s_u;  // u too: it is skipped below
     }
     edge_tris += has_v;
   }
@@ -995,11 +1013,11 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
     for (int k = 0; k < 3; ++k) {
+      // Branch-free: which corners match depends on the data.
       std::uint32_t x = tv_[3 * t + k];
-      if (x != v && x != u && mark_[x] == s_u) {
-        mark_[x] = s_common;
-        ++common;
-      }
+      bool hit = (mark_[x] == s_u) & (x != v) & (x != u);
+      common += hit;
+      mark_[x] = hit ? s_common : mark_[x];
     }
   }
   if (edge_tris == 0 || common != edge_tris) return Outcome::kRejected;
@@ -1016,10 +1034,10 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   const double move_u = std::sqrt(norm2(w - pu)), move_v = std::sqrt(norm2(w - pv));
   auto check = [&](std::uint32_t t, std::uint32_t moved, D3 pk, double move) {
     const std::uint32_t* c = &tv_[3 * t];
-    int k = c[0] == moved ? 0 : c[1] == moved ? 1 : 2;
+    const int k = corner_of(c, moved);
     // Corners (moved, a, b) in the triangle's order; both normals are taken
     // against the edge a -> b that stays.
-    const D3 pa = pos_[c[(k + 1) % 3]], pb = pos_[c[(k + 2) % 3]];
+    const D3 pa = pos_[c[kNext[k]]], pb = pos_[c[kPrev[k]]];
     const D3 e = pb - pa, da_old = pa - pk, da_new = pa - w;
     const D3 n_old = cross(da_old, e), n_new = cross(da_new, e);
     double area2_new = norm2(n_new), area2_old = norm2(n_old);
@@ -1048,16 +1066,10 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   };
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    std::uint32_t x = kNone, y = kNone;
-    bool has_v = false;
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t z = tv_[3 * t + k];
-      if (z == v)
-        has_v = true;
-      else if (z != u)
-        (x == kNone ? x : y) = z;
-    }
-    if (has_v) continue;
+    const std::uint32_t* c = &tv_[3 * t];
+    const int k = corner_of(c, u);
+    const std::uint32_t x = c[kNext[k]], y = c[kPrev[k]];
+    if (x == v || y == v) continue;
     // (u, x, y) becomes (v, x, y): a duplicate if v already has a triangle on x and y.
     if (mark_[x] == s_common && mark_[y] == s_common)
       for (std::uint32_t j = 0; j < nv; ++j) {

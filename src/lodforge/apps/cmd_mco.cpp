@@ -115,15 +115,18 @@ void add_mco_command(CLI::App& app, Runner& run) {
   op->excludes(on);
   extract->callback([e, &run] {
     run = [e] {
-      McOctree tree = read_mco_file(e->input);
+      // --priority N reads only what priorities 0..N need (the file is
+      // progressive: a prefix, e.g. a partial download, is enough).
+      McOctree tree = read_mco_file(e->input, {.max_priority = e->priority});
       auto r = extract_mc_mesh(
           tree, {.priority = e->priority, .triangles = e->triangles, .percent = e->percent});
       if (r.clamped)
         fmt::print(stderr, "warning: request beyond the model's range, clamped to priority {}\n",
                    r.priority);
       write_mesh(r.mesh, e->output);
-      fmt::print(stderr, "{}: priority {} of {}, {} triangles, {} vertices", e->output, r.priority,
-                 tree.lod.size(), r.mesh.triangle_count(), r.mesh.vertex_count());
+      fmt::print(stderr, "{}: priority {} of {}{}, {} triangles, {} vertices", e->output,
+                 r.priority, tree.lod.size(), e->priority >= 0 ? " read" : "",
+                 r.mesh.triangle_count(), r.mesh.vertex_count());
       if (e->triangles >= 0 || e->percent >= 0)
         fmt::print(stderr, " (requested {}, nearest reachable)", r.requested);
       fmt::print(stderr, "\n");

@@ -220,6 +220,13 @@ TEST_F(SimplifyCli, BadInputExitsOneWithAMessageAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("garbage.obj"));
   EXPECT_FALSE(fs::exists(out));
+
+  // An output that cannot be written: exit 1, nothing left behind.
+  const std::string unwritable = path("no_such_dir/out.ply");
+  r = run_lodforge("simplify " + path("sphere.ply") + " -o " + unwritable + " --ratio 0.5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("no_such_dir"));
+  EXPECT_FALSE(fs::exists(path("no_such_dir")));
 }
 
 }  // namespace

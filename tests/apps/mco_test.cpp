@@ -1,0 +1,154 @@
+// `lodforge mco build | extract | info | scan` as a user runs them: exit
+// codes, outputs, the range-scan path end to end, and bad model files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/run_command.h"
+#include "lodforge/mesh/mesh_io.h"
+#include "mesh/test_meshes.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::read_text;
+using testing::run_lodforge;
+
+class McoCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lodforge_mco_cli_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    mesh_ = path("torus.ply");
+    write_mesh(test::make_torus(1.0f, 0.35f, 32, 16), mesh_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Builds the torus model once per test.
+  std::string model() {
+    std::string m = path("torus.mco");
+    auto r = run_lodforge("mco build " + mesh_ + " -o " + m + " --resolution 20 --threads 2");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return m;
+  }
+  fs::path dir_;
+  std::string mesh_;
+};
+
+TEST_F(McoCli, BuildInfoExtract) {
+  std::string m = model();
+  ASSERT_TRUE(fs::exists(m));
+  auto info = run_lodforge("mco info " + m + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  auto j = nlohmann::json::parse(info.out);
+  for (const char* k : {"version", "depth", "nodes", "priorities", "full_triangles", "levels"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["version"].get<int>(), 2);
+  const auto full = j["full_triangles"].get<std::uint64_t>();
+  const auto priorities = j["priorities"].get<std::uint64_t>();
+
+  auto text = run_lodforge("mco info " + m);
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_THAT(text.err, HasSubstr("marching-cube octree, version 2"));
+
+  std::string out = path("full.ply");
+  auto r = run_lodforge("mco extract " + m + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_mesh(out).triangle_count(), full);
+
+  r = run_lodforge("mco extract " + m + " -o " + path("half.obj") + " --percent 50");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("nearest reachable"));
+  auto half = read_mesh(path("half.obj")).triangle_count();
+  EXPECT_NEAR(static_cast<double>(half), full / 2.0, full * 0.05);
+
+  r = run_lodforge("mco extract " + m + " -o " + path("p.ply") + " --priority 10");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("priority 10 of 10 read"));
+
+  r = run_lodforge("mco extract " + m + " -o " + path("big.ply") + " --priority " +
+                   std::to_string(priorities + 100));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("clamped"));
+}
+
+TEST_F(McoCli, ExtractFromATruncatedFileUpToWhatItHolds) {
+  std::string m = model();
+  std::string data = read_text(m);
+  std::string cut = path("cut.mco");
+  std::ofstream(cut, std::ios::binary) << data.substr(0, data.size() / 2);
+  // The first priorities are in the first half of a progressive file.
+  auto r = run_lodforge("mco extract " + cut + " -o " + path("low.ply") + " --priority 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(read_mesh(path("low.ply")).triangle_count(), 0u);
+  // The whole model is not.
+  std::string out = path("all.ply");
+  r = run_lodforge("mco extract " + cut + " -o " + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("truncated .mco file"));
+  EXPECT_FALSE(fs::exists(out));
+  r = run_lodforge("mco info " + cut);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("truncated .mco file"));
+}
+
+TEST_F(McoCli, CorruptedOrWrongFilesAreErrorsWithoutOutput) {
+  std::string m = model();
+  std::string data = read_text(m);
+  std::string bad = path("bad.mco");
+  data[data.size() / 3] ^= 0x40;
+  std::ofstream(bad, std::ios::binary) << data;
+  std::string out = path("out.ply");
+  auto r = run_lodforge("mco extract " + bad + " -o " + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("checksum mismatch"));
+  EXPECT_FALSE(fs::exists(out));
+
+  r = run_lodforge("mco extract " + mesh_ + " -o " + out);  // a mesh, not a model
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("not a .mco model"));
+  EXPECT_FALSE(fs::exists(out));
+
+  r = run_lodforge("mco info " + path("none.mco"));
+  EXPECT_EQ(r.exit_code, 1);
+  r = run_lodforge("mco build " + path("none.ply") + " -o " + path("none.mco"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_FALSE(fs::exists(path("none.mco")));
+  // Usage errors: two targets, a resolution out of range, no subcommand.
+  EXPECT_EQ(run_lodforge("mco extract " + m + " -o " + out + " --percent 5 --priority 3").exit_code,
+            2);
+  EXPECT_EQ(run_lodforge("mco build " + mesh_ + " -o x.mco --resolution 1").exit_code, 2);
+  EXPECT_EQ(run_lodforge("mco").exit_code, 2);
+}
+
+TEST_F(McoCli, ScanThenBuildFromTheScans) {
+  std::string scans = path("scans");
+  auto r = run_lodforge("mco scan " + mesh_ + " --views 6 --resolution 64 -o " + scans);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("6 scans of 64x64"));
+  EXPECT_TRUE(fs::exists(fs::path(scans) / "scans.conf"));
+  EXPECT_TRUE(fs::exists(fs::path(scans) / "scan005.ply"));
+  std::string m = path("scanned.mco");
+  r = run_lodforge("mco build " + scans + " -o " + m + " --resolution 20 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("6 range scans"));
+  // A single range-grid PLY is range input too; the .conf names the same set.
+  r = run_lodforge("mco build " + (fs::path(scans) / "scans.conf").string() + " -o " + m +
+                   " --resolution 20 --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_lodforge("mco build " + (fs::path(scans) / "scan000.ply").string() + " -o " + m +
+                   " --resolution 12 --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("1 range scans"));
+  // Bad scan input.
+  EXPECT_EQ(run_lodforge("mco scan " + mesh_ + " --views 0 -o " + scans).exit_code, 2);
+  EXPECT_EQ(run_lodforge("mco scan " + path("none.ply") + " -o " + scans).exit_code, 1);
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -887,7 +887,6 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
     D3 pa = pos_[u], pb = pos_[v];
     D3 mid = (pa + pb) * 0.5;
     double l2 = norm2(pb - pa);
-    bool solved = false;
     // Adjugate of the symmetric A: six cofactors give both det and A^-1.
     const double c00 = q.a11 * q.a22 - q.a12 * q.a12, c01 = q.a12 * q.a02 - q.a01 * q.a22,
                  c02 = q.a01 * q.a12 - q.a11 * q.a02, c11 = q.a00 * q.a22 - q.a02 * q.a02,
@@ -895,19 +894,25 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
     double det = q.a00 * c00 + q.a01 * c01 + q.a02 * c02;
     double tr = q.a00 + q.a11 + q.a22;
     if (std::abs(det) > 1e-9 * tr * tr * tr) {
-      // Solve A x = -(A mid + b) relative to the midpoint for accuracy.
-      D3 rhs = q.apply_a(mid) + D3{q.b0, q.b1, q.b2};
+      // Solve A x = -g, g = A mid + b, relative to the midpoint for accuracy.
+      const D3 bv{q.b0, q.b1, q.b2};
+      const D3 g = q.apply_a(mid) + bv;
       double inv = -1 / det;
-      D3 x{(c00 * rhs.x + c01 * rhs.y + c02 * rhs.z) * inv,
-           (c01 * rhs.x + c11 * rhs.y + c12 * rhs.z) * inv,
-           (c02 * rhs.x + c12 * rhs.y + c22 * rhs.z) * inv};
+      D3 x{(c00 * g.x + c01 * g.y + c02 * g.z) * inv, (c01 * g.x + c11 * g.y + c12 * g.z) * inv,
+           (c02 * g.x + c12 * g.y + c22 * g.z) * inv};
       if (norm2(x) <= l2) {
-        w = mid + x;
-        solved = true;
+        // Q(mid + x) = Q(mid) + 2 g.x + x.A x = Q(mid) + g.x since A x = -g,
+        // and Q(mid) = mid.(g + b) + c.
+        out.u = u;
+        out.v = v;
+        out.w = mid + x;
+        out.cost = std::max(0.0, dot(mid, g + bv) + q.c + dot(g, x));
+        return true;
       }
     }
-    if (!solved) {
-      // Best point of the segment u..v: minimise Q(pa + t d), t in [0, 1].
+    {
+      // Ill-conditioned, or the minimiser is far from the edge: the best
+      // point of the segment u..v, minimising Q(pa + t d) over t in [0, 1].
       D3 d = pb - pa;
       double dad = dot(d, q.apply_a(d));
       double slope = dot(d, q.apply_a(pa) + D3{q.b0, q.b1, q.b2});

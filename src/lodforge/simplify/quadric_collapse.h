@@ -49,7 +49,7 @@
 /// Costs: O((V + F) log F) time, about ten edge evaluations and queue entries
 /// per collapse (each collapse re-evaluates the edges of the merged vertex),
 /// O(V + F) memory (plus O(F) per chain level for its output). Single
-/// threaded; 2.5-4x the time of meshopt_simplify, which places vertices at
+/// threaded; 2-5x the time of meshopt_simplify, which places vertices at
 /// edge ends and has no attribute quadrics (figures in docs/RESULTS.md).
 #include <cstddef>
 #include <vector>

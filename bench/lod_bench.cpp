@@ -91,7 +91,12 @@ void BM_LodBunnyAndCorpus(benchmark::State& state) {
   state.counters["shapes"] = double(shapes);
   state.counters["threads"] = threads == 0 ? double(std::thread::hardware_concurrency()) : threads;
 }
-BENCHMARK(BM_LodBunnyAndCorpus)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_LodBunnyAndCorpus)
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
 
 }  // namespace
 

@@ -63,7 +63,8 @@ TEST_F(Cli, BadInputIsExitCodeOneWithPositionAndNoOutputFile) {
   std::string out = path("out.wrl");
   auto r = run_lodforge("format " + bad + " -o " + out);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "error: " + bad + ":3:16: expected a number for SFFloat field 'width', got 'x'\n");
+  EXPECT_EQ(r.err,
+            "error: " + bad + ":3:16: expected a number for SFFloat field 'width', got 'x'\n");
   EXPECT_FALSE(fs::exists(out));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
@@ -93,8 +94,8 @@ TEST_F(Cli, UnknownNodesWarnAndSurviveFormatting) {
 
 TEST_F(Cli, InlinesAreReadOnlyWhenAskedAndNeverOutsideTheFolder) {
   write("scene/part.wrl", "#VRML V1.0 ascii\nSeparator { Cube {} Sphere {} }\n");
-  std::string main = write("scene/main.wrl",
-                           "#VRML V1.0 ascii\nSeparator { WWWInline { name \"part.wrl\" } }\n");
+  std::string main =
+      write("scene/main.wrl", "#VRML V1.0 ascii\nSeparator { WWWInline { name \"part.wrl\" } }\n");
   auto without = nlohmann::json::parse(run_lodforge("info --json " + main).out);
   EXPECT_EQ(without["shapes"]["Cube"].get<int>(), 0);
   auto r = run_lodforge("info --json --inline " + main);
@@ -108,8 +109,8 @@ TEST_F(Cli, InlinesAreReadOnlyWhenAskedAndNeverOutsideTheFolder) {
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_THAT(refused.err, HasSubstr("WWWInline '../secret.wrl' leaves the scene's folder"));
 
-  std::string net = write("scene/net.wrl",
-                          "#VRML V1.0 ascii\nWWWInline { name \"http://example.com/x.wrl\" }\n");
+  std::string net =
+      write("scene/net.wrl", "#VRML V1.0 ascii\nWWWInline { name \"http://example.com/x.wrl\" }\n");
   auto remote = run_lodforge("info --inline " + net);
   EXPECT_EQ(remote.exit_code, 0);
   EXPECT_THAT(remote.err, HasSubstr("lodforge never reads over a network"));

@@ -50,14 +50,16 @@ TEST_F(LodCli, SeveralScenesOneBrokenGoOnAndExitOne) {
                           "IndexedFaceSet { coordIndex [0, 1, 5, -1] }\n}\n");
   auto r = run_lodforge("lod " + bad + " " + good + " --out-dir " + path("out"));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("bad.wrl: line 4: IndexedFaceSet coordIndex[2] = 5 is out of range"));
+  EXPECT_THAT(r.err,
+              HasSubstr("bad.wrl: line 4: IndexedFaceSet coordIndex[2] = 5 is out of range"));
   EXPECT_TRUE(fs::exists(path("out/good.wrl")));
   EXPECT_FALSE(fs::exists(path("out/bad.wrl")));
 }
 
 TEST_F(LodCli, BrokenInputsAreErrorsWithoutOutput) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"#VRML V1.0 ascii\nSeparator { Cube { width } }\n", "case0.wrl:2:26: expected a number for SFFloat field 'width', got '}'"},
+      {"#VRML V1.0 ascii\nSeparator { Cube { width } }\n",
+       "case0.wrl:2:26: expected a number for SFFloat field 'width', got '}'"},
       {"#VRML V1.0 ascii\nSeparator { Coordinate3 { point [0 0 0, 1 0 nan, 0 1 0] }\n"
        "IndexedFaceSet { coordIndex [0, 1, 2] } }\n",
        "line 2: Coordinate3 point 1 used by the IndexedFaceSet at line 3 is not finite"},
@@ -86,16 +88,21 @@ TEST_F(LodCli, EmptyFaceSetIsAWarningNamingItsLine) {
 TEST_F(LodCli, BadUsageIsExitTwo) {
   EXPECT_EQ(run_lodforge("lod " + kPrimitives).exit_code, 2);  // no -o
   EXPECT_EQ(run_lodforge("lod " + kPrimitives + " " + kPrimitives + " -o x.wrl").exit_code, 2);
-  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --quality teapot=3").exit_code, 2);
-  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --method magic").exit_code, 2);
-  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --ranges 5,2").exit_code, 2);
+  EXPECT_EQ(
+      run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --quality teapot=3").exit_code,
+      2);
+  EXPECT_EQ(
+      run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --method magic").exit_code, 2);
+  EXPECT_EQ(run_lodforge("lod " + kPrimitives + " -o " + path("x.wrl") + " --ranges 5,2").exit_code,
+            2);
   EXPECT_FALSE(fs::exists(path("x.wrl")));
 }
 
 TEST_F(LodCli, OptionsOfTheOriginalAreAccepted) {
   for (const std::string opts :
-       {"--method cluster --min-diff 50", "--method decimate --levels 3", "--export reducer --no-quads",
-        "--export performer --no-lines --quad-split-angle 0.3", "--extract 1", "--extract -1",
+       {"--method cluster --min-diff 50", "--method decimate --levels 3",
+        "--export reducer --no-quads", "--export performer --no-lines --quad-split-angle 0.3",
+        "--extract 1", "--extract -1",
         "--quality sphere=0 --quality cone=1 --quality cylinder=3 --ranges cube=5", "--join",
         "--error-range 0.1 --camera-angle 0.5 --minimize"}) {
     auto r = run_lodforge("lod " + kPrimitives + " -o " + path("o.wrl") + " " + opts);

@@ -36,8 +36,10 @@ inline CommandResult run_lodforge(const std::string& args, const std::string& st
   std::string out = (dir / ("out" + std::to_string(counter))).string();
   std::string err = (dir / ("err" + std::to_string(counter++))).string();
   std::string cmd = std::string(LODFORGE_EXE) + " " + args + " >" + out + " 2>" + err;
-  if (!stdin_file.empty()) cmd += " <" + stdin_file;
-  else cmd += " </dev/null";
+  if (!stdin_file.empty())
+    cmd += " <" + stdin_file;
+  else
+    cmd += " </dev/null";
   int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

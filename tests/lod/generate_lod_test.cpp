@@ -21,7 +21,9 @@ namespace {
 using ::testing::HasSubstr;
 using testing::scene_of;
 
-scene::Scene read(const std::string& text) { return vrml1::read_vrml1(text).scene; }
+scene::Scene read(const std::string& text) {
+  return vrml1::read_vrml1(text).scene;
+}
 
 // Errors measured again with another seed and twice the samples stay within
 // the error the ranges used; on screen, at the switch distance, the level's
@@ -89,12 +91,13 @@ TEST(GenerateLod, MinDiffControlsTheNumberOfLevels) {
 }
 
 TEST(GenerateLod, CameraAngleComesFromTheFirstPerspectiveCamera) {
-  const std::string text = scene_of(test::make_icosphere(2), "PerspectiveCamera { heightAngle 0.3 }");
+  const std::string text =
+      scene_of(test::make_icosphere(2), "PerspectiveCamera { heightAngle 0.3 }");
   LodResult r = generate_lod(read(text), {.measure_samples = 20000});
   EXPECT_FLOAT_EQ(float(r.camera_angle), 0.3f);
-  LodResult given = generate_lod(read(text), {.range = {.camera_angle = 1.0f},
-                                              .camera_angle_given = true,
-                                              .measure_samples = 20000});
+  LodResult given = generate_lod(
+      read(text),
+      {.range = {.camera_angle = 1.0f}, .camera_angle_given = true, .measure_samples = 20000});
   EXPECT_FLOAT_EQ(float(given.camera_angle), 1.0f);
   // A narrower camera magnifies: ranges grow.
   EXPECT_GT(r.shapes[0].ranges[0], given.shapes[0].ranges[0]);
@@ -130,7 +133,8 @@ TEST(GenerateLod, ExportFlavoursAgreeOnTheWorldCentre) {
     return m.transform_point(c);
   };
   const Vec3 expected = cube.bounds().center() + Vec3{0, 0, 5};
-  for (ExportFlavour f : {ExportFlavour::kSpec, ExportFlavour::kPerformer, ExportFlavour::kReducer}) {
+  for (ExportFlavour f :
+       {ExportFlavour::kSpec, ExportFlavour::kPerformer, ExportFlavour::kReducer}) {
     Vec3 c = world_centre(f);
     EXPECT_NEAR(c.x, expected.x, 1e-5);
     EXPECT_NEAR(c.y, expected.y, 1e-5);
@@ -147,8 +151,10 @@ TEST(GenerateLod, OneThreadAndAllThreadsWriteTheSameFile) {
   }
   text += "Sphere {} Cone {} Cube {} }\n";
   scene::Scene in = read(text);
-  std::string one = vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 1}).scene);
-  std::string all = vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 0}).scene);
+  std::string one =
+      vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 1}).scene);
+  std::string all =
+      vrml1::write_vrml1(generate_lod(in, {.measure_samples = 20000, .threads = 0}).scene);
   EXPECT_EQ(one, all);
 }
 
@@ -173,7 +179,8 @@ TEST(GenerateLod, PerFaceMaterialsBecomeIndexedAndSurviveSimplification) {
   std::string text = scene_of(m, "", true);
   // PER_FACE needs one material per face: repeat the three colours.
   std::string colours;
-  for (std::size_t i = 0; i < m.triangle_count(); ++i) colours += i % 3 == 0 ? "1 0 0," : i % 3 == 1 ? "0 1 0," : "0 0 1,";
+  for (std::size_t i = 0; i < m.triangle_count(); ++i)
+    colours += i % 3 == 0 ? "1 0 0," : i % 3 == 1 ? "0 1 0," : "0 0 1,";
   text.replace(text.find("[1 0 0, 0 1 0, 0 0 1]"), 21, "[" + colours + "]");
   LodResult r = generate_lod(read(text), {.measure_samples = 20000});
   scene::Scene out = read(vrml1::write_vrml1(r.scene));
@@ -202,7 +209,7 @@ TEST(GenerateLod, ExtractWritesOneLevelWithoutLodNodes) {
 }
 
 TEST(GenerateLod, ManualQualityAndRanges) {
-  const std::string text = scene_of(test::make_icosphere(3)) ;
+  const std::string text = scene_of(test::make_icosphere(3));
   LodOptions o{.measure_samples = 20000};
   o.manual["polygon"] = {.quality = 4, .ranges = {10, 20, 30}};
   LodResult r = generate_lod(read(text), o);

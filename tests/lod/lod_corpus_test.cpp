@@ -61,9 +61,9 @@ TEST_P(LodCorpus, OutputIsReadByCoinAndKeepsTheInputAtLevelZero) {
     EXPECT_NE(std::string(e.what()).find("line "), std::string::npos) << e.what();
     GTEST_SKIP() << "input has broken geometry: " << e.what();
   }
-  fs::path out = fs::temp_directory_path() /
-                 ("lodforge_lod_corpus_" + std::to_string(getpid()) + "_" +
-                  lodforge::testing::test_name_for(path) + ".wrl");
+  fs::path out =
+      fs::temp_directory_path() / ("lodforge_lod_corpus_" + std::to_string(getpid()) + "_" +
+                                   lodforge::testing::test_name_for(path) + ".wrl");
   vrml1::write_vrml1_file(r.scene, out.string());
   scene::Scene written = vrml1::read_vrml1_file(out.string()).scene;
 
@@ -88,8 +88,8 @@ TEST_P(LodCorpus, OutputIsReadByCoinAndKeepsTheInputAtLevelZero) {
       common = std::min(common, s.levels.size());
   TriangleMesh level0 = scene::flatten_scene(written, {.lod_level = 0});
   const bool own_lods = scene::scene_statistics(in.scene).node_counts["LOD"] > 0;
-  for (std::size_t k = 1; !own_lods && common != SIZE_MAX && k < common && !level0.triangles.empty();
-       ++k) {
+  for (std::size_t k = 1;
+       !own_lods && common != SIZE_MAX && k < common && !level0.triangles.empty(); ++k) {
     double bound = 0;
     for (const auto& s : r.shapes)
       if (s.type != "IndexedLineSet" && !s.ranges.empty())
@@ -113,7 +113,9 @@ TEST_P(LodCorpus, OutputIsReadByCoinAndKeepsTheInputAtLevelZero) {
 
 INSTANTIATE_TEST_SUITE_P(Corpus, LodCorpus,
                          ::testing::ValuesIn(lodforge::testing::all_vrml_test_files()),
-                         [](const auto& info) { return lodforge::testing::test_name_for(info.param); });
+                         [](const auto& info) {
+                           return lodforge::testing::test_name_for(info.param);
+                         });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(LodCorpus);
 
 }  // namespace

@@ -45,8 +45,8 @@ inline void expect_indices_in_range(const scene::Scene& s) {
       if (!idx) return;
       for (std::int32_t i : idx->ints)
         EXPECT_TRUE(i == -1 || (i >= 0 && std::size_t(i) < limit))
-            << v.shape.type << " line " << v.shape.first_line << " " << field << " " << i
-            << " of " << limit;
+            << v.shape.type << " line " << v.shape.first_line << " " << field << " " << i << " of "
+            << limit;
     };
     check("coordIndex", count(v.state.coordinate3, "point", 3));
     check("normalIndex", count(v.state.normal, "vector", 3));

@@ -42,8 +42,8 @@ Separator {
   EXPECT_EQ(s.problems[0],
             "line 4: IndexedFaceSet coordIndex[2] = 5 is out of range (the current Coordinate3 "
             "has 3 points)");
-  EXPECT_EQ(s.ifs_triangles, 1u);   // what a renderer is asked to draw
-  EXPECT_EQ(s.total_triangles, 0u); // what can actually be built
+  EXPECT_EQ(s.ifs_triangles, 1u);    // what a renderer is asked to draw
+  EXPECT_EQ(s.total_triangles, 0u);  // what can actually be built
 }
 
 }  // namespace

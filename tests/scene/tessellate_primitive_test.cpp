@@ -11,7 +11,9 @@
 namespace lodforge::scene {
 namespace {
 
-Node node(std::string type) { return Node{.type = std::move(type)}; }
+Node node(std::string type) {
+  return Node{.type = std::move(type)};
+}
 
 // Signed volume (divergence theorem): positive when triangles face outwards.
 double signed_volume(const TriangleMesh& m) {

@@ -20,13 +20,12 @@ std::vector<Seen> visit_all(const std::string& body, int lod_level = 0) {
   static std::vector<vrml1::ReadResult> keep;  // the nodes must outlive the visit
   keep.push_back(std::move(r));
   std::vector<Seen> out;
-  traverse(
-      keep.back().scene,
-      [&](const ShapeVisit& v) {
-        out.push_back({v.shape.type, v.state.transform.transform_point({0, 0, 0}),
-                       v.state.material ? v.state.material->name : "", v.camera});
-      },
-      {.lod_level = lod_level});
+  traverse(keep.back().scene,
+           [&](const ShapeVisit& v) {
+             out.push_back({v.shape.type, v.state.transform.transform_point({0, 0, 0}),
+                            v.state.material ? v.state.material->name : "", v.camera});
+           },
+           {.lod_level = lod_level});
   return out;
 }
 

@@ -30,7 +30,7 @@ struct CoinResult {
 
 /// Runs coin_probe on `path` in a child process, killing it after `timeout`.
 inline CoinResult run_coin_probe(const std::string& path,
-                          std::chrono::seconds timeout = std::chrono::seconds(120)) {
+                                 std::chrono::seconds timeout = std::chrono::seconds(120)) {
   CoinResult result;
 #ifdef LODFORGE_COIN_PROBE
   int fds[2];

@@ -11,9 +11,9 @@
 namespace lodforge::vrml1 {
 namespace {
 
+using scene::FieldKind;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using scene::FieldKind;
 
 ReadResult parse(const std::string& body) {
   return read_vrml1("#VRML V1.0 ascii\n" + body, {.source_name = "t.wrl"});
@@ -28,7 +28,9 @@ std::string error_of(const std::string& text) {
   return "no error";
 }
 
-const scene::Node& root(const ReadResult& r) { return *r.scene.roots.at(0); }
+const scene::Node& root(const ReadResult& r) {
+  return *r.scene.roots.at(0);
+}
 
 TEST(ReadVrml1, FloatKindsAndTheirComponents) {
   auto r = parse(R"(

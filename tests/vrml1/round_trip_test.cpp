@@ -40,7 +40,9 @@ TEST_P(RoundTrip, WriteThenReadGivesTheSameScene) {
 
 INSTANTIATE_TEST_SUITE_P(Corpus, RoundTrip,
                          ::testing::ValuesIn(lodforge::testing::all_vrml_test_files()),
-                         [](const auto& info) { return lodforge::testing::test_name_for(info.param); });
+                         [](const auto& info) {
+                           return lodforge::testing::test_name_for(info.param);
+                         });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(RoundTrip);
 
 TEST(RoundTripCorpus, CorpusIsPresent) {

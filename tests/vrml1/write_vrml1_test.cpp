@@ -13,10 +13,10 @@
 namespace lodforge::vrml1 {
 namespace {
 
-using ::testing::HasSubstr;
-using ::testing::Not;
 using scene::Node;
 using scene::NodePtr;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 NodePtr make(std::string type) {
   auto n = std::make_shared<Node>();

@@ -62,17 +62,18 @@ void add_info_command(CLI::App& app, Runner& run) {
       }
       for (const auto& p : st.problems) fmt::print(stderr, "warning: {}\n", p);
       fmt::print("{}\n", s->input);
-      fmt::print("  IndexedFaceSets {}, IndexedLineSets {}, Cylinders {}, Cones {}, Spheres {}, "
-                 "Cubes {}\n",
-                 count("IndexedFaceSet"), count("IndexedLineSet"), count("Cylinder"),
-                 count("Cone"), count("Sphere"), count("Cube"));
+      fmt::print(
+          "  IndexedFaceSets {}, IndexedLineSets {}, Cylinders {}, Cones {}, Spheres {}, "
+          "Cubes {}\n",
+          count("IndexedFaceSet"), count("IndexedLineSet"), count("Cylinder"), count("Cone"),
+          count("Sphere"), count("Cube"));
       fmt::print("  triangles {} (IndexedFaceSets {} in {} faces), vertices {}, line segments {}\n",
                  st.total_triangles, st.ifs_triangles, st.ifs_faces, st.total_vertices,
                  st.ils_segments);
       if (!st.bounds.empty())
         fmt::print("  bounds [{} {} {}] .. [{} {} {}], diagonal {}\n", st.bounds.lo.x,
-                   st.bounds.lo.y, st.bounds.lo.z, st.bounds.hi.x, st.bounds.hi.y,
-                   st.bounds.hi.z, st.bounds.diagonal());
+                   st.bounds.lo.y, st.bounds.lo.z, st.bounds.hi.x, st.bounds.hi.y, st.bounds.hi.z,
+                   st.bounds.diagonal());
       fmt::print("  nodes:");
       for (const auto& [type, n] : st.node_counts) fmt::print(" {} {},", type, n);
       fmt::print("\n");

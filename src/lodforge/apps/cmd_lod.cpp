@@ -23,14 +23,16 @@ std::vector<float> parse_floats(const std::string& text, const std::string& what
   std::size_t pos = 0;
   while (pos <= text.size()) {
     std::size_t comma = text.find(',', pos);
-    std::string part = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    std::string part =
+        text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     try {
       std::size_t used = 0;
       float f = std::stof(part, &used);
       if (used != part.size() || !(f > 0)) throw std::invalid_argument(part);
       v.push_back(f);
     } catch (const std::exception&) {
-      throw CLI::ValidationError(what, "expected positive numbers separated by commas, got '" + part + "'");
+      throw CLI::ValidationError(
+          what, "expected positive numbers separated by commas, got '" + part + "'");
     }
     if (comma == std::string::npos) break;
     pos = comma + 1;
@@ -46,8 +48,8 @@ std::pair<std::string, std::string> split_typed(const std::string& text, const s
   if (eq == std::string::npos) return {"", text};
   std::string type = text.substr(0, eq);
   if (std::find(kTypes.begin(), kTypes.end(), type) == kTypes.end())
-    throw CLI::ValidationError(what, "unknown shape type '" + type +
-                                         "' (polygon, line, sphere, cone, cylinder, cube)");
+    throw CLI::ValidationError(
+        what, "unknown shape type '" + type + "' (polygon, line, sphere, cone, cylinder, cube)");
   return {type, text.substr(eq + 1)};
 }
 
@@ -67,7 +69,7 @@ struct Settings {
 
 LodOptions lod_options(const Settings& s) {
   LodOptions o;
-  o.method = s.method == "cluster" ? LodMethod::kCluster
+  o.method = s.method == "cluster"    ? LodMethod::kCluster
              : s.method == "decimate" ? LodMethod::kDecimate
                                       : LodMethod::kQem;
   o.range.error_range = float(s.error_range_pct / 100.0);
@@ -124,7 +126,8 @@ nlohmann::ordered_json stats_json(const std::string& file, const LodResult& r) {
     sj["radius"] = s.radius;
     sj["scale"] = s.scale;
     for (const auto& l : s.levels)
-      sj["levels"].push_back({{"triangles", l.triangles}, {"vertices", l.vertices}, {"error", l.error}});
+      sj["levels"].push_back(
+          {{"triangles", l.triangles}, {"vertices", l.vertices}, {"error", l.error}});
     sj["ranges"] = s.ranges;
     if (!s.stop_reason.empty()) sj["stop_reason"] = s.stop_reason;
     if (!s.levels.empty()) original += s.levels[0].triangles * s.occurrences;
@@ -146,7 +149,8 @@ void print_summary(const std::string& file, const LodResult& r) {
   fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
              file, r.shapes.size(), lods, levels, r.camera_angle);
   fmt::print(stderr, "  distance      triangles drawn\n");
-  for (const auto& [d, t] : r.triangles_by_distance) fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
+  for (const auto& [d, t] : r.triangles_by_distance)
+    fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
 }
 
 }  // namespace
@@ -167,7 +171,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--camera-angle", s->camera_angle,
                   "Camera height angle in radians (default: first PerspectiveCamera, else pi/4)")
       ->check(CLI::Range(0.0001, 3.14));
-  cmd->add_option("--min-diff", s->min_diff_pct, "Each level keeps at most (100 - PCT) % of the previous")
+  cmd->add_option("--min-diff", s->min_diff_pct,
+                  "Each level keeps at most (100 - PCT) % of the previous")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   cmd->add_option("--levels", s->levels, "At most N levels per shape (original and empty included)")
@@ -177,11 +182,13 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "polygon, line, sphere, cone, cylinder, cube")
       ->delimiter(' ');
   cmd->add_option("--ranges", s->ranges, "Explicit LOD ranges: a,b,... or TYPE=a,b,...");
-  cmd->add_flag("--differentiate-by-size", s->by_size, "Fewer levels for smaller objects (manual mode)");
+  cmd->add_flag("--differentiate-by-size", s->by_size,
+                "Fewer levels for smaller objects (manual mode)");
   cmd->add_flag("--join", s->join, "Join small IndexedFaceSets under unneeded Separators");
   cmd->add_flag("--no-lines", s->no_lines, "Drop faces that collapse into lines");
   cmd->add_flag("--no-quads", s->no_quads, "Split every quadrilateral into triangles");
-  cmd->add_option("--quad-split-angle", s->quad_split_angle, "Split quads bent more than this (radians)")
+  cmd->add_option("--quad-split-angle", s->quad_split_angle,
+                  "Split quads bent more than this (radians)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3.1416));
   cmd->add_option("--export", s->export_flavour, "LOD centre: spec, performer or reducer")
@@ -194,7 +201,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "Show messages of these categories: coord, material, normal, texcoord, face, "
                   "line, join, triangulator")
       ->delimiter(',');
-  cmd->add_option("--threads", s->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", s->threads, "Worker threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {
@@ -231,7 +239,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
           std::string target = s->output;
           if (!s->out_dir.empty()) {
             std::filesystem::create_directories(s->out_dir);
-            std::string base = input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
+            std::string base =
+                input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
             if (base.ends_with(".gz")) base.resize(base.size() - 3);
             target = (std::filesystem::path(s->out_dir) / base).string();
           }
@@ -239,8 +248,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
           if (!s->read.quiet) print_summary(input, result);
           all_stats.push_back(stats_json(input, result));
         } catch (const DataError& e) {
-          fmt::print(stderr, "error: {}{}\n", std::string(e.what()).starts_with(input) ? "" : input + ": ",
-                     e.what());
+          fmt::print(stderr, "error: {}{}\n",
+                     std::string(e.what()).starts_with(input) ? "" : input + ": ", e.what());
           ++failures;
         }
       }

@@ -7,16 +7,20 @@
 namespace lodforge {
 namespace {
 constexpr std::array<std::string_view, 10> kCategoryNames = {
-    "general", "parse", "coord", "material", "normal",
-    "texcoord", "face", "line", "join", "triangulator"};
+    "general",  "parse", "coord", "material", "normal",
+    "texcoord", "face",  "line",  "join",     "triangulator"};
 }  // namespace
 
 std::string_view to_string(LogLevel level) {
   switch (level) {
-    case LogLevel::kMessage: return "message";
-    case LogLevel::kWarning: return "warning";
-    case LogLevel::kError: return "error";
-    case LogLevel::kInternal: return "internal";
+    case LogLevel::kMessage:
+      return "message";
+    case LogLevel::kWarning:
+      return "warning";
+    case LogLevel::kError:
+      return "error";
+    case LogLevel::kInternal:
+      return "internal";
   }
   return "?";
 }

@@ -24,19 +24,42 @@ struct Vec3 {
   Vec3 operator-() const { return {-x, -y, -z}; }
   Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
   Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
-  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  Vec3& operator*=(float s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   friend bool operator==(const Vec3&, const Vec3&) = default;
 };
 
-inline Vec3 operator*(float s, const Vec3& v) { return v * s; }
-inline float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 operator*(float s, const Vec3& v) {
+  return v * s;
+}
+inline float dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-inline float length_squared(const Vec3& v) { return dot(v, v); }
+inline float length(const Vec3& v) {
+  return std::sqrt(dot(v, v));
+}
+inline float length_squared(const Vec3& v) {
+  return dot(v, v);
+}
 /// Unit vector along v; the zero vector stays zero.
 inline Vec3 normalized(const Vec3& v) {
   float l = length(v);
@@ -59,9 +82,15 @@ struct Box3 {
   Vec3 hi{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
           -std::numeric_limits<float>::max()};
   bool empty() const { return lo.x > hi.x; }
-  void add(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+  void add(const Vec3& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
   void add(const Box3& b) {
-    if (!b.empty()) { add(b.lo); add(b.hi); }
+    if (!b.empty()) {
+      add(b.lo);
+      add(b.hi);
+    }
   }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   Vec3 size() const { return empty() ? Vec3{} : hi - lo; }

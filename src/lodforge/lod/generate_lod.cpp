@@ -92,9 +92,9 @@ struct Job {
   ShapeGeometry geometry;
   Vec3 center;
   double radius = 0;
-  bool remove = false;   // quality 0
-  bool keep = false;     // nothing to simplify: the shape stays as it is
-  bool no_lod = false;   // quality 1
+  bool remove = false;  // quality 0
+  bool keep = false;    // nothing to simplify: the shape stays as it is
+  bool no_lod = false;  // quality 1
   ShapeStatistics stats;
   Log log;
 };
@@ -121,7 +121,8 @@ ShapeGeometry primitive_geometry(const TriangleMesh& tess, bool textured) {
   g.normal_values = tess.normals;
   g.vertex_normal.resize(tess.positions.size());
   g.vertex_texcoord.resize(tess.positions.size());
-  for (std::uint32_t i = 0; i < tess.positions.size(); ++i) g.vertex_normal[i] = g.vertex_texcoord[i] = i;
+  for (std::uint32_t i = 0; i < tess.positions.size(); ++i)
+    g.vertex_normal[i] = g.vertex_texcoord[i] = i;
   g.has_texcoords = textured && !tess.texcoords.empty();
   g.texcoord_values = tess.texcoords;
   g.triangle_polygon.resize(tess.triangles.size());
@@ -140,7 +141,8 @@ class Pipeline {
 
   LodResult run() {
     if (opt_.join) {
-      JoinStatistics js = join_nodes(result_.scene, {.max_faces = opt_.join_max_faces}, result_.log);
+      JoinStatistics js =
+          join_nodes(result_.scene, {.max_faces = opt_.join_max_faces}, result_.log);
       result_.joined = js.joined;
     }
     collect();
@@ -172,8 +174,9 @@ class Pipeline {
       if (!camera && v.camera) camera = v.camera;
       if (!is_lod_shape(v.shape.type)) return;
       const auto& s = v.state;
-      JobKey key{&v.shape,   s.coordinate3,      s.normal,         s.texture_coordinate2, s.material,
-                 s.material_binding, s.normal_binding, s.shape_hints, s.texture2};
+      JobKey key{&v.shape,   s.coordinate3,      s.normal,         s.texture_coordinate2,
+                 s.material, s.material_binding, s.normal_binding, s.shape_hints,
+                 s.texture2};
       auto [jit, fresh] = job_of.try_emplace(key, jobs_.size());
       if (fresh) {
         jobs_.emplace_back();
@@ -182,7 +185,8 @@ class Pipeline {
       }
       Node* parent = v.path.empty() ? nullptr : const_cast<Node*>(v.path.back());
       double scale = max_scale_of(v.state.transform);
-      auto [oit, new_place] = occurrence_of.try_emplace({parent, v.child_index}, occurrences_.size());
+      auto [oit, new_place] =
+          occurrence_of.try_emplace({parent, v.child_index}, occurrences_.size());
       if (new_place) {
         occurrences_.push_back({parent, v.child_index, jit->second, scale, v.state.transform});
       } else {
@@ -275,7 +279,8 @@ class Pipeline {
     if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
       j.level_nodes.push_back(shape_level_node(j.geometry, j.geometry.mesh, {}, {}, opt_.no_lines));
       j.errors.push_back(0);
-      j.stats.levels.push_back({j.geometry.mesh.triangle_count(), j.geometry.mesh.vertex_count(), 0});
+      j.stats.levels.push_back(
+          {j.geometry.mesh.triangle_count(), j.geometry.mesh.vertex_count(), 0});
     } else {
       auto original = std::make_shared<Node>(*j.shape);
       original->name.clear();
@@ -325,7 +330,8 @@ class Pipeline {
       j.level_nodes.push_back(shape_level_node(j.geometry, l.level.mesh, l.level.vertex_map,
                                                l.level.face_map, opt_.no_lines));
       j.errors.push_back(l.error);
-      j.stats.levels.push_back({l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
+      j.stats.levels.push_back(
+          {l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
       j.stats.stop_reason = to_string(l.level.stop_reason);
     }
   }
@@ -378,7 +384,7 @@ class Pipeline {
   NodePtr binding_node(const char* type, AttributeBinding b) {
     auto n = make_node(type);
     n->set("value", scene::make_enum(b == AttributeBinding::kPerFace ? "PER_FACE_INDEXED"
-                                                                      : "PER_VERTEX_INDEXED"));
+                                                                     : "PER_VERTEX_INDEXED"));
     return n;
   }
 
@@ -415,8 +421,8 @@ class Pipeline {
       // Primitives are centred at their origin already: nothing to move.
     } else if (opt_.export_flavour == ExportFlavour::kReducer) {
       auto tr = make_node("Translation");
-      tr->set("translation", scene::make_floats(FieldKind::kVec3f, false,
-                                                {j.center.x, j.center.y, j.center.z}));
+      tr->set("translation",
+              scene::make_floats(FieldKind::kVec3f, false, {j.center.x, j.center.y, j.center.z}));
       sep->children.push_back(tr);
     }
     if (opt_.extract) {
@@ -443,7 +449,8 @@ class Pipeline {
     }
     lod->set("range", scene::make_floats(FieldKind::kFloat, true, ranges));
     if (opt_.export_flavour == ExportFlavour::kSpec) {
-      lod->set("center", scene::make_floats(FieldKind::kVec3f, false, {j.center.x, j.center.y, j.center.z}));
+      lod->set("center",
+               scene::make_floats(FieldKind::kVec3f, false, {j.center.x, j.center.y, j.center.z}));
     } else if (opt_.export_flavour == ExportFlavour::kPerformer) {
       Vec3 c = o.transform.transform_point(j.center);
       lod->set("center", scene::make_floats(FieldKind::kVec3f, false, {c.x, c.y, c.z}));
@@ -462,8 +469,10 @@ class Pipeline {
       if (j.keep) continue;
       NodePtr s = subtree(j, o);
       if (!j.shape->name.empty()) s->name = j.shape->name;
-      if (o.parent) o.parent->children[o.index] = s;
-      else result_.scene.roots[o.index] = s;
+      if (o.parent)
+        o.parent->children[o.index] = s;
+      else
+        result_.scene.roots[o.index] = s;
     }
   }
 

@@ -53,12 +53,12 @@ struct LodOptions {
   /// Manual mode: each halving of a shape's size below the largest shape's
   /// removes one level (at least 2 remain).
   bool differentiate_by_size = false;
-  bool no_lines = false;            ///< drop faces that collapse to lines
+  bool no_lines = false;  ///< drop faces that collapse to lines
   /// Join runs of small IndexedFaceSets first (join_nodes.h), so a model
   /// broken into many parts is simplified as one.
   bool join = false;
   std::size_t join_max_faces = 1000;
-  TriangulateOptions triangulation; ///< quad split angle, keep_quads (--no-quads)
+  TriangulateOptions triangulation;  ///< quad split angle, keep_quads (--no-quads)
   ExportFlavour export_flavour = ExportFlavour::kSpec;
   /// Write only level K of every shape (0 = original); -1 = only clean and
   /// reformat (every shape as its cleaned level 0, no LOD nodes).
@@ -77,12 +77,12 @@ struct LevelStatistics {
 };
 
 struct ShapeStatistics {
-  std::string type;       ///< node type
-  std::string name;       ///< DEF name, if any
-  int line = 0;           ///< where the shape was read
+  std::string type;  ///< node type
+  std::string name;  ///< DEF name, if any
+  int line = 0;      ///< where the shape was read
   std::size_t occurrences = 1;
-  double radius = 0;      ///< bounding sphere, local units
-  double scale = 0;       ///< largest transform scale among its occurrences
+  double radius = 0;                    ///< bounding sphere, local units
+  double scale = 0;                     ///< largest transform scale among its occurrences
   std::vector<LevelStatistics> levels;  ///< level 0 .. empty level
   std::vector<float> ranges;            ///< LOD.range (levels.size() - 1 values)
   std::string method;                   ///< simplifier, or "tessellation" / "none"

@@ -35,8 +35,7 @@ using scene::Node;
 using scene::NodePtr;
 
 constexpr std::array<const char*, 6> kMaterialFields = {
-    "ambientColor", "diffuseColor", "specularColor", "emissiveColor", "shininess",
-    "transparency"};
+    "ambientColor", "diffuseColor", "specularColor", "emissiveColor", "shininess", "transparency"};
 
 struct Piece {
   const Node* material = nullptr;
@@ -158,7 +157,8 @@ class Joiner {
   }
 
   static bool compatible(const Piece& a, const Piece& b) {
-    bool same_hints = (!a.hints && !b.hints) || (a.hints && b.hints && a.hints->fields == b.hints->fields);
+    bool same_hints =
+        (!a.hints && !b.hints) || (a.hints && b.hints && a.hints->fields == b.hints->fields);
     return same_hints && (a.material != nullptr) == (b.material != nullptr) &&
            (a.normal != nullptr) == (b.normal != nullptr) &&
            (a.texcoords != nullptr) == (b.texcoords != nullptr);
@@ -306,7 +306,8 @@ class Joiner {
     ifs->type = "IndexedFaceSet";
     ifs->first_line = line;
     ifs->set("coordIndex", scene::make_longs(std::move(coord_index)));
-    if (!material_index.empty()) ifs->set("materialIndex", scene::make_longs(std::move(material_index)));
+    if (!material_index.empty())
+      ifs->set("materialIndex", scene::make_longs(std::move(material_index)));
     if (!normal_index.empty()) ifs->set("normalIndex", scene::make_longs(std::move(normal_index)));
     if (!tex_index.empty()) ifs->set("textureCoordIndex", scene::make_longs(std::move(tex_index)));
     sep->children.push_back(ifs);

@@ -19,8 +19,8 @@ struct JoinOptions {
 };
 
 struct JoinStatistics {
-  std::size_t runs = 0;        ///< groups of Separators joined into one
-  std::size_t joined = 0;      ///< IndexedFaceSets merged away
+  std::size_t runs = 0;    ///< groups of Separators joined into one
+  std::size_t joined = 0;  ///< IndexedFaceSets merged away
   std::size_t separators_removed = 0;
 };
 

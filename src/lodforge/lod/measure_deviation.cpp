@@ -64,7 +64,8 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
   const Triangle& t = from.triangles[tri];
   const Vec3 a = from.positions[t[0]], b = from.positions[t[1]], c = from.positions[t[2]];
   auto at = [&](const std::array<double, 3>& w) {
-    return Vec3{float(w[0] * a.x + w[1] * b.x + w[2] * c.x), float(w[0] * a.y + w[1] * b.y + w[2] * c.y),
+    return Vec3{float(w[0] * a.x + w[1] * b.x + w[2] * c.x),
+                float(w[0] * a.y + w[1] * b.y + w[2] * c.y),
                 float(w[0] * a.z + w[1] * b.z + w[2] * c.z)};
   };
   std::array<double, 3> w = barycentric(a, b, c, start);
@@ -92,7 +93,8 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
 double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine) {
   const std::size_t n = from.samples.size();
   std::vector<double> d(n);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { d[i] = distance(to, from.samples.positions[i]); });
+  tbb::parallel_for(std::size_t(0), n,
+                    [&](std::size_t i) { d[i] = distance(to, from.samples.positions[i]); });
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::size_t k = std::min(refine, n);

@@ -49,15 +49,18 @@ Bind binding_of(const Node* binding_node, Bind default_binding) {
 // -1 if the binding has none.
 struct AttributeIndexer {
   Bind bind = Bind::kOverall;
-  const std::vector<std::int32_t>* index = nullptr;   // materialIndex / normalIndex
+  const std::vector<std::int32_t>* index = nullptr;  // materialIndex / normalIndex
   const std::vector<std::int32_t>* coord_index = nullptr;
   std::int64_t at(std::size_t face, std::size_t corner_seq, std::size_t pos) const {
     switch (bind) {
-      case Bind::kOverall: return -1;
-      case Bind::kPerFace: return std::int64_t(face);
+      case Bind::kOverall:
+        return -1;
+      case Bind::kPerFace:
+        return std::int64_t(face);
       case Bind::kPerFaceIndexed:
         return face < index->size() ? (*index)[face] : std::int64_t(-2);
-      case Bind::kPerVertex: return std::int64_t(corner_seq);
+      case Bind::kPerVertex:
+        return std::int64_t(corner_seq);
       case Bind::kPerVertexIndexed: {
         const auto& idx = index_is_default_vec() ? *coord_index : *index;
         return pos < idx.size() ? idx[pos] : std::int64_t(-2);
@@ -73,8 +76,7 @@ struct AttributeIndexer {
 // Rows of a Material node: one row per index, fields of fewer values repeat
 // their last value (a single colour with many transparencies, say).
 constexpr std::array<const char*, 6> kMaterialFields = {
-    "ambientColor", "diffuseColor", "specularColor", "emissiveColor", "shininess",
-    "transparency"};
+    "ambientColor", "diffuseColor", "specularColor", "emissiveColor", "shininess", "transparency"};
 
 std::size_t material_rows(const Node& m) {
   std::size_t n = 1;
@@ -163,7 +165,8 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
   // Bindings.
   Bind mbind = binding_of(st.material_binding, Bind::kOverall);
   Bind nbind = binding_of(st.normal_binding, Bind::kPerVertexIndexed);
-  const FieldValue* normal_field = st.normal ? scene::field_or_default(*st.normal, "vector") : nullptr;
+  const FieldValue* normal_field =
+      st.normal ? scene::field_or_default(*st.normal, "vector") : nullptr;
   std::size_t nnormals = normal_field ? normal_field->floats.size() / 3 : 0;
   if (lines || nnormals == 0) nbind = Bind::kOverall;
   const FieldValue* tc_field =
@@ -228,7 +231,8 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
       std::int64_t fmat = material_ok && (mbind == Bind::kPerFace || mbind == Bind::kPerFaceIndexed)
                               ? mindex.at(f, 0, b)
                               : -1;
-      if (fmat != -1 && (fmat < 0 || std::size_t(fmat) >= nmat)) drop(material_ok, "material", fmat, nmat);
+      if (fmat != -1 && (fmat < 0 || std::size_t(fmat) >= nmat))
+        drop(material_ok, "material", fmat, nmat);
       std::int64_t fnorm = normal_ok && (nbind == Bind::kPerFace || nbind == Bind::kPerFaceIndexed)
                                ? nindex.at(f, 0, b)
                                : -1;
@@ -237,19 +241,21 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
       for (std::size_t p = b; p < e; ++p, ++corner_seq) {
         std::int32_t c = ci[p];
         if (c < 0 || std::size_t(c) >= npts)
-          throw DataError(fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the "
-                                      "current Coordinate3 has {} points)",
-                                      shape.first_line, shape.type, p, c, npts));
+          throw DataError(
+              fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the "
+                          "current Coordinate3 has {} points)",
+                          shape.first_line, shape.type, p, c, npts));
         Vec3 x = point(std::size_t(c));
         if (!is_finite(x))
-          throw DataError(fmt::format("line {}: Coordinate3 point {} used by the {} at line {} is "
-                                      "not finite",
-                                      st.coordinate3 ? st.coordinate3->first_line : 0, c,
-                                      shape.type, shape.first_line));
+          throw DataError(fmt::format(
+              "line {}: Coordinate3 point {} used by the {} at line {} is "
+              "not finite",
+              st.coordinate3 ? st.coordinate3->first_line : 0, c, shape.type, shape.first_line));
         VertexKey key{{bits(x.x), bits(x.y), bits(x.z)}, kNone, kNone, kNone};
         if (normal_ok && (nbind == Bind::kPerVertex || nbind == Bind::kPerVertexIndexed)) {
           std::int64_t n = nindex.at(f, corner_seq, p);
-          if (n < 0 || std::size_t(n) >= nnormals) drop(normal_ok, "normal", n, nnormals);
+          if (n < 0 || std::size_t(n) >= nnormals)
+            drop(normal_ok, "normal", n, nnormals);
           else {
             Vec3 v{normal_field->floats[3 * n], normal_field->floats[3 * n + 1],
                    normal_field->floats[3 * n + 2]};
@@ -258,7 +264,8 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
         }
         if (tex_ok) {
           std::int64_t t = tindex.at(f, corner_seq, p);
-          if (t < 0 || std::size_t(t) >= ntex) drop(tex_ok, "texture coordinate", t, ntex);
+          if (t < 0 || std::size_t(t) >= ntex)
+            drop(tex_ok, "texture coordinate", t, ntex);
           else {
             Vec2 v{tc_field->floats[2 * t], tc_field->floats[2 * t + 1]};
             key.texcoord = texcoords.add(v, {bits(v.x), bits(v.y)});
@@ -267,8 +274,10 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
         std::int64_t vm = -1;
         if (material_ok && (mbind == Bind::kPerVertex || mbind == Bind::kPerVertexIndexed)) {
           vm = mindex.at(f, corner_seq, p);
-          if (vm < 0 || std::size_t(vm) >= nmat) drop(material_ok, "material", vm, nmat);
-          else key.material = materials.add(std::uint32_t(vm), material_row(mat, std::size_t(vm)));
+          if (vm < 0 || std::size_t(vm) >= nmat)
+            drop(material_ok, "material", vm, nmat);
+          else
+            key.material = materials.add(std::uint32_t(vm), material_row(mat, std::size_t(vm)));
         }
         auto [it, fresh] = vertex_ids.try_emplace(key, std::uint32_t(g.mesh.positions.size()));
         if (fresh) {
@@ -361,22 +370,20 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
     }
     g.material = m;
   }
-  if (g.material_binding == AttributeBinding::kPerVertex && lines)
-    g.segment_material.clear();
+  if (g.material_binding == AttributeBinding::kPerVertex && lines) g.segment_material.clear();
   mark_inherited_attributes(g, st);
   const Node* hints = st.shape_hints;
   const FieldValue* face_type = hints ? scene::field_or_default(*hints, "faceType") : nullptr;
-  g.needs_convex_hint = !lines && face_type && !face_type->strings.empty() &&
-                        face_type->strings[0] != "CONVEX";
+  g.needs_convex_hint =
+      !lines && face_type && !face_type->strings.empty() && face_type->strings[0] != "CONVEX";
   return g;
 }
 
 void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& st) {
   g.override_normals = st.normal && g.normal_binding == AttributeBinding::kNone;
   g.override_texcoords = st.texture_coordinate2 && !g.has_texcoords;
-  g.override_material_binding =
-      g.material_binding == AttributeBinding::kNone &&
-      binding_of(st.material_binding, Bind::kOverall) != Bind::kOverall;
+  g.override_material_binding = g.material_binding == AttributeBinding::kNone &&
+                                binding_of(st.material_binding, Bind::kOverall) != Bind::kOverall;
 }
 
 }  // namespace lodforge
@@ -401,8 +408,8 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
   std::vector<float> coords;
   auto coord_of = [&](std::uint32_t v) {
     const Vec3& p = mesh.positions[v];
-    auto [it, fresh] = coord_ids.try_emplace({bits(p.x), bits(p.y), bits(p.z)},
-                                             std::int32_t(coords.size() / 3));
+    auto [it, fresh] =
+        coord_ids.try_emplace({bits(p.x), bits(p.y), bits(p.z)}, std::int32_t(coords.size() / 3));
     if (fresh) coords.insert(coords.end(), {p.x, p.y, p.z});
     return it->second;
   };
@@ -423,13 +430,16 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
     return it->second;
   };
   auto origin = [&](std::uint32_t v) { return vertex_map.empty() ? v : vertex_map[v]; };
-  auto origin_face = [&](std::size_t t) { return face_map.empty() ? std::uint32_t(t) : face_map[t]; };
+  auto origin_face = [&](std::size_t t) {
+    return face_map.empty() ? std::uint32_t(t) : face_map[t];
+  };
 
   IndexWriter faces;
   auto corner = [&](std::uint32_t v) {
     std::uint32_t o = origin(v);
     faces.coord.push_back(coord_of(v));
-    if (g.normal_binding == AttributeBinding::kPerVertex) faces.normal.push_back(normal_of(g.vertex_normal[o]));
+    if (g.normal_binding == AttributeBinding::kPerVertex)
+      faces.normal.push_back(normal_of(g.vertex_normal[o]));
     if (g.has_texcoords) faces.texcoord.push_back(tex_of(g.vertex_texcoord[o]));
     if (g.material_binding == AttributeBinding::kPerVertex)
       faces.material.push_back(std::int32_t(g.vertex_material[o]));
@@ -438,7 +448,8 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
     std::uint32_t of = origin_face(t);
     faces.coord.push_back(-1);
     if (g.normal_binding == AttributeBinding::kPerVertex) faces.normal.push_back(-1);
-    if (g.normal_binding == AttributeBinding::kPerFace) faces.normal.push_back(normal_of(g.face_normal[of]));
+    if (g.normal_binding == AttributeBinding::kPerFace)
+      faces.normal.push_back(normal_of(g.face_normal[of]));
     if (g.has_texcoords) faces.texcoord.push_back(-1);
     if (g.material_binding == AttributeBinding::kPerVertex) faces.material.push_back(-1);
     if (g.material_binding == AttributeBinding::kPerFace)
@@ -502,7 +513,8 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
         std::uint32_t o = origin(s[0]);
         std::uint32_t m = line_set && l < g.segment_material.size() && vertex_map.empty()
                               ? g.segment_material[l]
-                              : g.vertex_face_material.empty() ? 0u : g.vertex_face_material[o];
+                          : g.vertex_face_material.empty() ? 0u
+                                                           : g.vertex_face_material[o];
         segs.material.push_back(std::int32_t(m == kNone ? 0 : m));
       }
     }

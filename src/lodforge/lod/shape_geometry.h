@@ -42,7 +42,7 @@ struct ShapeGeometry {
   std::vector<Vec3> normal_values;
   std::vector<Vec2> texcoord_values;
   std::vector<std::uint32_t> vertex_normal, vertex_texcoord, vertex_material;
-  std::vector<std::uint32_t> face_normal;  ///< #F, for per-face normals
+  std::vector<std::uint32_t> face_normal;       ///< #F, for per-face normals
   std::vector<std::uint32_t> segment_material;  ///< #L, line sets with materials
   /// #V: the material of a face using the vertex (per-face materials), for
   /// the lines that faces collapse into.
@@ -62,8 +62,8 @@ struct ShapeGeometry {
   bool override_normals = false;
   bool override_texcoords = false;
   bool override_material_binding = false;
-  std::size_t input_faces = 0;       ///< polygons (or polylines) read
-  std::size_t dropped_faces = 0;     ///< polygons with < 3 distinct corners
+  std::size_t input_faces = 0;    ///< polygons (or polylines) read
+  std::size_t dropped_faces = 0;  ///< polygons with < 3 distinct corners
 };
 
 struct ShapeGeometryOptions {

@@ -15,9 +15,12 @@ namespace lodforge {
 
 const char* to_string(LodMethod method) {
   switch (method) {
-    case LodMethod::kCluster: return "cluster";
-    case LodMethod::kDecimate: return "decimate";
-    case LodMethod::kQem: return "qem";
+    case LodMethod::kCluster:
+      return "cluster";
+    case LodMethod::kDecimate:
+      return "decimate";
+    case LodMethod::kQem:
+      return "qem";
   }
   return "?";
 }
@@ -30,7 +33,8 @@ std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChai
     // Line sets are always clustered (weighted mean), as in the original.
     VertexClusteringOptions c;
     c.min_diff = std::clamp(o.min_diff, 0.01f, 1.0f);
-    if (!o.triangle_targets.empty()) c.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
+    if (!o.triangle_targets.empty())
+      c.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
     auto chain = vertex_clustering(mesh, c);
     if (!chain.empty() && chain.front().stop_reason == StopReason::kNoReduction)
       chain.erase(chain.begin());  // level 0: the input itself
@@ -39,7 +43,8 @@ std::vector<SimplifyResult> run_method(const TriangleMesh& mesh, const LevelChai
   if (o.method == LodMethod::kDecimate) {
     VertexDecimationOptions d;
     d.step = std::clamp(o.min_diff, 0.01f, 1.0f);
-    if (!o.triangle_targets.empty()) d.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
+    if (!o.triangle_targets.empty())
+      d.target.triangles = std::max<std::size_t>(o.triangle_targets.back(), 1);
     return vertex_decimation_chain(mesh, d);
   }
   std::vector<std::size_t> targets = o.triangle_targets;
@@ -87,8 +92,8 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
   std::unique_ptr<DeviationMeter> meter;
   if (!lines_only)
     meter = std::make_unique<DeviationMeter>(
-        mesh, DeviationOptions{.samples = measure_samples_for(mesh.triangle_count(),
-                                                               options.measure_samples)});
+        mesh, DeviationOptions{
+                  .samples = measure_samples_for(mesh.triangle_count(), options.measure_samples)});
   tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
     MeasuredLevel& m = out[i];
     if (lines_only || m.level.mesh.triangles.empty()) {

@@ -17,7 +17,7 @@ const char* to_string(LodMethod method);
 
 struct LevelChainOptions {
   LodMethod method = LodMethod::kQem;
-  float min_diff = 0.2f;     ///< each level <= (1 - min_diff) x the previous one
+  float min_diff = 0.2f;       ///< each level <= (1 - min_diff) x the previous one
   std::size_t max_levels = 0;  ///< simplified levels at most (0: until exhausted)
   /// Explicit triangle counts per level instead of the min-diff progression
   /// (manual mode); decreasing.

@@ -16,8 +16,8 @@
 namespace lodforge {
 
 struct RangeOptions {
-  float error_range = 0.02f;        ///< p, fraction of the screen height (2 %)
-  float camera_angle = 0.785398f;   ///< alpha, radians (pi/4, VRML's default)
+  float error_range = 0.02f;       ///< p, fraction of the screen height (2 %)
+  float camera_angle = 0.785398f;  ///< alpha, radians (pi/4, VRML's default)
 };
 
 /// d for one error. Preconditions: error >= 0, scale > 0, radius >= 0,
@@ -26,7 +26,9 @@ double switch_distance(double error, double scale, double radius, const RangeOpt
 
 /// The error at which a whole object of bounding radius r disappears from view
 /// at the error range: its diameter. An empty last level takes this error.
-inline double vanishing_error(double radius) { return 2 * radius; }
+inline double vanishing_error(double radius) {
+  return 2 * radius;
+}
 
 /// LOD.range for levels 1..n given their errors eps_1..eps_n (level 0, the
 /// original, has no range). Errors are made non-decreasing (a coarser level is

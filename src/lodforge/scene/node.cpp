@@ -8,9 +8,9 @@
 namespace lodforge::scene {
 namespace {
 
-constexpr std::array<std::string_view, 12> kKindNames = {
-    "BitMask", "Bool", "Color", "Enum", "Float", "Image",
-    "Long", "Matrix", "Rotation", "String", "Vec2f", "Vec3f"};
+constexpr std::array<std::string_view, 12> kKindNames = {"BitMask",  "Bool",   "Color", "Enum",
+                                                         "Float",    "Image",  "Long",  "Matrix",
+                                                         "Rotation", "String", "Vec2f", "Vec3f"};
 
 // Equality of two graphs must also see that sharing matches: a node shared in
 // one graph must map to one node in the other. The map records the pairing.
@@ -60,13 +60,20 @@ bool parse_type_name(std::string_view name, FieldType& out) {
 
 int float_components(FieldKind kind) {
   switch (kind) {
-    case FieldKind::kColor: return 3;
-    case FieldKind::kFloat: return 1;
-    case FieldKind::kMatrix: return 16;
-    case FieldKind::kRotation: return 4;
-    case FieldKind::kVec2f: return 2;
-    case FieldKind::kVec3f: return 3;
-    default: return 0;
+    case FieldKind::kColor:
+      return 3;
+    case FieldKind::kFloat:
+      return 1;
+    case FieldKind::kMatrix:
+      return 16;
+    case FieldKind::kRotation:
+      return 4;
+    case FieldKind::kVec2f:
+      return 2;
+    case FieldKind::kVec3f:
+      return 3;
+    default:
+      return 0;
   }
 }
 
@@ -75,11 +82,14 @@ std::size_t FieldValue::count() const {
   if (int c = float_components(type.kind)) return floats.size() / static_cast<std::size_t>(c);
   switch (type.kind) {
     case FieldKind::kBool:
-    case FieldKind::kLong: return ints.size();
+    case FieldKind::kLong:
+      return ints.size();
     case FieldKind::kString:
     case FieldKind::kEnum:
-    case FieldKind::kBitMask: return strings.size();
-    default: return 1;
+    case FieldKind::kBitMask:
+      return strings.size();
+    default:
+      return 1;
   }
 }
 
@@ -117,7 +127,9 @@ bool equal(const Scene& a, const Scene& b) {
   return true;
 }
 
-FieldValue make_float(float v) { return make_floats(FieldKind::kFloat, false, {v}); }
+FieldValue make_float(float v) {
+  return make_floats(FieldKind::kFloat, false, {v});
+}
 
 FieldValue make_floats(FieldKind kind, bool multi, std::vector<float> v) {
   FieldValue r;

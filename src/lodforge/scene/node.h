@@ -80,18 +80,18 @@ struct Node;
 using NodePtr = std::shared_ptr<Node>;
 
 struct Node {
-  std::string type;                ///< "Separator", or any name for other nodes
-  std::string name;                ///< DEF name, empty if none
-  std::vector<Field> fields;       ///< fields given in the file, in order
-  std::vector<NodePtr> children;   ///< for group nodes
-  std::vector<FieldDecl> declared; ///< the `fields [...]` declaration, if any
-  bool has_declaration = false;    ///< true if `fields [...]` was given
-  std::vector<std::string> is_a;   ///< `isA [...]`, for extension nodes
+  std::string type;                 ///< "Separator", or any name for other nodes
+  std::string name;                 ///< DEF name, empty if none
+  std::vector<Field> fields;        ///< fields given in the file, in order
+  std::vector<NodePtr> children;    ///< for group nodes
+  std::vector<FieldDecl> declared;  ///< the `fields [...]` declaration, if any
+  bool has_declaration = false;     ///< true if `fields [...]` was given
+  std::vector<std::string> is_a;    ///< `isA [...]`, for extension nodes
   /// A node whose type is unknown and that declares no fields cannot be parsed:
   /// its body (the text between its braces) is kept verbatim and written back.
   bool is_raw = false;
   std::string raw_body;
-  int first_line = 0;              ///< where the node was read (0 if built in code)
+  int first_line = 0;  ///< where the node was read (0 if built in code)
   int last_line = 0;
 
   /// The field of that name (the last one if the file gave it twice), or nullptr.

@@ -51,8 +51,8 @@ FieldSpec sf_image(std::string name) {
 }
 
 const std::vector<std::string> kBindings = {
-    "DEFAULT",          "OVERALL",  "PER_PART",         "PER_PART_INDEXED", "PER_FACE",
-    "PER_FACE_INDEXED", "PER_VERTEX", "PER_VERTEX_INDEXED"};
+    "DEFAULT",  "OVERALL",          "PER_PART",   "PER_PART_INDEXED",
+    "PER_FACE", "PER_FACE_INDEXED", "PER_VERTEX", "PER_VERTEX_INDEXED"};
 
 std::vector<FieldSpec> light_fields(std::initializer_list<FieldSpec> extra) {
   std::vector<FieldSpec> f = {sf_bool("on", true), sf("intensity", K::kFloat, {1}),
@@ -62,8 +62,8 @@ std::vector<FieldSpec> light_fields(std::initializer_list<FieldSpec> extra) {
 }
 
 std::vector<FieldSpec> indexed_set_fields() {
-  return {mf_long("coordIndex", {0}), mf_long("materialIndex", {-1}),
-          mf_long("normalIndex", {-1}), mf_long("textureCoordIndex", {-1})};
+  return {mf_long("coordIndex", {0}), mf_long("materialIndex", {-1}), mf_long("normalIndex", {-1}),
+          mf_long("textureCoordIndex", {-1})};
 }
 
 std::vector<NodeSpec> build() {
@@ -81,24 +81,24 @@ std::vector<NodeSpec> build() {
   node("Cone", {sf_bitmask("parts", {"ALL"}, {"SIDES", "BOTTOM", "ALL"}),
                 sf("bottomRadius", K::kFloat, {1}), sf("height", K::kFloat, {2})});
   node("Coordinate3", {mf("point", K::kVec3f, {0, 0, 0})});
-  node("Cube", {sf("width", K::kFloat, {2}), sf("height", K::kFloat, {2}),
-                sf("depth", K::kFloat, {2})});
+  node("Cube",
+       {sf("width", K::kFloat, {2}), sf("height", K::kFloat, {2}), sf("depth", K::kFloat, {2})});
   node("Cylinder", {sf_bitmask("parts", {"ALL"}, {"SIDES", "TOP", "BOTTOM", "ALL"}),
                     sf("radius", K::kFloat, {1}), sf("height", K::kFloat, {2})});
   node("DirectionalLight", light_fields({sf("direction", K::kVec3f, {0, 0, -1})}));
-  node("FontStyle", {sf("size", K::kFloat, {10}),
-                     sf_enum("family", "SERIF", {"SERIF", "SANS", "TYPEWRITER"}),
-                     sf_bitmask("style", {"NONE"}, {"NONE", "BOLD", "ITALIC"})});
+  node("FontStyle",
+       {sf("size", K::kFloat, {10}), sf_enum("family", "SERIF", {"SERIF", "SANS", "TYPEWRITER"}),
+        sf_bitmask("style", {"NONE"}, {"NONE", "BOLD", "ITALIC"})});
   group("Group", false, {});
   node("IndexedFaceSet", indexed_set_fields());
   node("IndexedLineSet", indexed_set_fields());
   node("Info", {sf_string("string", "<Undefined info>")});
   group("LOD", true, {mf("range", K::kFloat, {}), sf("center", K::kVec3f, {0, 0, 0})});
-  node("Material", {mf("ambientColor", K::kColor, {0.2f, 0.2f, 0.2f}),
-                    mf("diffuseColor", K::kColor, {0.8f, 0.8f, 0.8f}),
-                    mf("specularColor", K::kColor, {0, 0, 0}),
-                    mf("emissiveColor", K::kColor, {0, 0, 0}),
-                    mf("shininess", K::kFloat, {0.2f}), mf("transparency", K::kFloat, {0})});
+  node("Material",
+       {mf("ambientColor", K::kColor, {0.2f, 0.2f, 0.2f}),
+        mf("diffuseColor", K::kColor, {0.8f, 0.8f, 0.8f}),
+        mf("specularColor", K::kColor, {0, 0, 0}), mf("emissiveColor", K::kColor, {0, 0, 0}),
+        mf("shininess", K::kFloat, {0.2f}), mf("transparency", K::kFloat, {0})});
   node("MaterialBinding", {sf_enum("value", "DEFAULT", kBindings)});
   node("MatrixTransform",
        {sf("matrix", K::kMatrix, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1})});
@@ -114,19 +114,17 @@ std::vector<NodeSpec> build() {
   node("PointSet", {sf_long("startIndex", 0), sf_long("numPoints", -1)});
   node("Rotation", {sf("rotation", K::kRotation, {0, 0, 1, 0})});
   node("Scale", {sf("scaleFactor", K::kVec3f, {1, 1, 1})});
-  group("Separator", true,
-        {sf_enum("renderCulling", "AUTO", {"ON", "OFF", "AUTO"})});
-  node("ShapeHints",
-       {sf_enum("vertexOrdering", "UNKNOWN_ORDERING",
-                {"UNKNOWN_ORDERING", "CLOCKWISE", "COUNTERCLOCKWISE"}),
-        sf_enum("shapeType", "UNKNOWN_SHAPE_TYPE", {"UNKNOWN_SHAPE_TYPE", "SOLID"}),
-        sf_enum("faceType", "CONVEX", {"UNKNOWN_FACE_TYPE", "CONVEX"}),
-        sf("creaseAngle", K::kFloat, {0.5f})});
+  group("Separator", true, {sf_enum("renderCulling", "AUTO", {"ON", "OFF", "AUTO"})});
+  node("ShapeHints", {sf_enum("vertexOrdering", "UNKNOWN_ORDERING",
+                              {"UNKNOWN_ORDERING", "CLOCKWISE", "COUNTERCLOCKWISE"}),
+                      sf_enum("shapeType", "UNKNOWN_SHAPE_TYPE", {"UNKNOWN_SHAPE_TYPE", "SOLID"}),
+                      sf_enum("faceType", "CONVEX", {"UNKNOWN_FACE_TYPE", "CONVEX"}),
+                      sf("creaseAngle", K::kFloat, {0.5f})});
   node("Sphere", {sf("radius", K::kFloat, {1})});
-  node("SpotLight", light_fields({sf("location", K::kVec3f, {0, 0, 1}),
-                                  sf("direction", K::kVec3f, {0, 0, -1}),
-                                  sf("dropOffRate", K::kFloat, {0}),
-                                  sf("cutOffAngle", K::kFloat, {kQuarterPi})}));
+  node("SpotLight",
+       light_fields({sf("location", K::kVec3f, {0, 0, 1}), sf("direction", K::kVec3f, {0, 0, -1}),
+                     sf("dropOffRate", K::kFloat, {0}),
+                     sf("cutOffAngle", K::kFloat, {kQuarterPi})}));
   group("Switch", false, {sf_long("whichChild", -1)});
   node("Texture2", {sf_string("filename", ""), sf_image("image"),
                     sf_enum("wrapS", "REPEAT", {"REPEAT", "CLAMP"}),
@@ -137,12 +135,13 @@ std::vector<NodeSpec> build() {
   node("TextureCoordinate2", {mf("point", K::kVec2f, {0, 0})});
   node("Transform",
        {sf("translation", K::kVec3f, {0, 0, 0}), sf("rotation", K::kRotation, {0, 0, 1, 0}),
-        sf("scaleFactor", K::kVec3f, {1, 1, 1}),
-        sf("scaleOrientation", K::kRotation, {0, 0, 1, 0}), sf("center", K::kVec3f, {0, 0, 0})});
+        sf("scaleFactor", K::kVec3f, {1, 1, 1}), sf("scaleOrientation", K::kRotation, {0, 0, 1, 0}),
+        sf("center", K::kVec3f, {0, 0, 0})});
   group("TransformSeparator", false, {});
   node("Translation", {sf("translation", K::kVec3f, {0, 0, 0})});
-  group("WWWAnchor", true, {sf_string("name", ""), sf_string("description", ""),
-                            sf_enum("map", "NONE", {"NONE", "POINT"})});
+  group("WWWAnchor", true,
+        {sf_string("name", ""), sf_string("description", ""),
+         sf_enum("map", "NONE", {"NONE", "POINT"})});
   node("WWWInline", {sf_string("name", ""), sf("bboxSize", K::kVec3f, {0, 0, 0}),
                      sf("bboxCenter", K::kVec3f, {0, 0, 0})});
   return s;
@@ -167,7 +166,9 @@ const NodeSpec* find_node_spec(std::string_view type) {
   return it == t.end() ? nullptr : &*it;
 }
 
-std::span<const NodeSpec> node_specs() { return specs(); }
+std::span<const NodeSpec> node_specs() {
+  return specs();
+}
 
 const FieldValue* field_or_default(const Node& node, std::string_view name) {
   if (const FieldValue* v = node.value(name)) return v;

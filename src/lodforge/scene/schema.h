@@ -20,8 +20,8 @@ struct FieldSpec {
 
 struct NodeSpec {
   std::string type;
-  bool group = false;            ///< has children
-  bool separator = false;        ///< saves and restores the traversal state
+  bool group = false;      ///< has children
+  bool separator = false;  ///< saves and restores the traversal state
   std::vector<FieldSpec> fields;
   const FieldSpec* field(std::string_view name) const;
 };

@@ -17,18 +17,20 @@ std::vector<Vec3> coordinates(const TraversalState& state, const Node& shape) {
   for (std::size_t i = 0; i < pts.size(); ++i) {
     pts[i] = {v->floats[3 * i], v->floats[3 * i + 1], v->floats[3 * i + 2]};
     if (!is_finite(pts[i]))
-      throw DataError(fmt::format("line {}: Coordinate3 point {} is not finite (used by the {} "
-                                  "at line {})",
-                                  c.first_line, i, shape.type, shape.first_line));
+      throw DataError(
+          fmt::format("line {}: Coordinate3 point {} is not finite (used by the {} "
+                      "at line {})",
+                      c.first_line, i, shape.type, shape.first_line));
   }
   return pts;
 }
 
 void check_index(std::int32_t i, std::size_t n, const Node& shape, std::size_t pos) {
   if (i < 0 || std::size_t(i) >= n)
-    throw DataError(fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the current "
-                                "Coordinate3 has {} points)",
-                                shape.first_line, shape.type, pos, i, n));
+    throw DataError(
+        fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the current "
+                    "Coordinate3 has {} points)",
+                    shape.first_line, shape.type, pos, i, n));
 }
 
 }  // namespace
@@ -68,9 +70,10 @@ TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options
       }
       if (poly.size() < 3) {
         if (log)
-          log->warn(LogCategory::kFace, fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
-                                                    "has {} vertices; skipped",
-                                                    shape.first_line, b, poly.size()));
+          log->warn(LogCategory::kFace,
+                    fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
+                                "has {} vertices; skipped",
+                                shape.first_line, b, poly.size()));
         continue;
       }
       TriangulateResult tr = triangulate_polygon(mesh.positions, poly, options.triangulation);

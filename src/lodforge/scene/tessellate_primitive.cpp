@@ -53,7 +53,9 @@ class Builder {
     mesh.texcoords.push_back(uv);
     return static_cast<std::uint32_t>(mesh.positions.size() - 1);
   }
-  void tri(std::uint32_t a, std::uint32_t b, std::uint32_t c) { mesh.triangles.push_back({a, b, c}); }
+  void tri(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    mesh.triangles.push_back({a, b, c});
+  }
   void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
     tri(a, b, c);
     tri(a, c, d);
@@ -64,10 +66,13 @@ class Builder {
     std::uint32_t center = vertex({0, y, 0}, {0, up, 0}, {0.5f, 0.5f});
     for (int i = 0; i <= seg; ++i) {
       auto [s, c] = circle(i, seg);
-      std::uint32_t v = vertex({r * s + 0.f, y, r * c + 0.f}, {0, up, 0}, {0.5f + 0.5f * s, 0.5f - 0.5f * c * up});
+      std::uint32_t v = vertex({r * s + 0.f, y, r * c + 0.f}, {0, up, 0},
+                               {0.5f + 0.5f * s, 0.5f - 0.5f * c * up});
       if (i == 0) continue;
-      if (up > 0) tri(center, v - 1, v);
-      else tri(center, v, v - 1);
+      if (up > 0)
+        tri(center, v - 1, v);
+      else
+        tri(center, v, v - 1);
     }
   }
 
@@ -84,9 +89,12 @@ class Builder {
     std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size()) - 2 * (seg + 1);
     for (int i = 0; i < seg; ++i) {
       std::uint32_t a = base + 2 * i, b = a + 2, top_a = a + 1, top_b = a + 3;
-      if (r1 == 0) tri(a, b, top_a);
-      else if (r0 == 0) tri(a, top_b, top_a);
-      else quad(a, b, top_b, top_a);
+      if (r1 == 0)
+        tri(a, b, top_a);
+      else if (r0 == 0)
+        tri(a, top_b, top_a);
+      else
+        quad(a, b, top_b, top_a);
     }
   }
 };

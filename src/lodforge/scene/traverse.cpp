@@ -10,9 +10,9 @@
 namespace lodforge::scene {
 namespace {
 
-constexpr std::array<std::string_view, 8> kShapes = {
-    "IndexedFaceSet", "IndexedLineSet", "PointSet", "Cube",
-    "Sphere",         "Cone",           "Cylinder", "AsciiText"};
+constexpr std::array<std::string_view, 8> kShapes = {"IndexedFaceSet", "IndexedLineSet", "PointSet",
+                                                     "Cube",           "Sphere",         "Cone",
+                                                     "Cylinder",       "AsciiText"};
 
 Vec3 vec3_of(const Node& n, std::string_view field) {
   const FieldValue* v = field_or_default(n, field);
@@ -37,15 +37,24 @@ class Walker {
       visit_(ShapeVisit{n, state, camera_, path_, index});
       return;
     }
-    if (t == "Coordinate3") state.coordinate3 = &n;
-    else if (t == "Normal") state.normal = &n;
-    else if (t == "TextureCoordinate2") state.texture_coordinate2 = &n;
-    else if (t == "Material") state.material = &n;
-    else if (t == "MaterialBinding") state.material_binding = &n;
-    else if (t == "NormalBinding") state.normal_binding = &n;
-    else if (t == "ShapeHints") state.shape_hints = &n;
-    else if (t == "Texture2") state.texture2 = &n;
-    else if (t == "FontStyle") state.font_style = &n;
+    if (t == "Coordinate3")
+      state.coordinate3 = &n;
+    else if (t == "Normal")
+      state.normal = &n;
+    else if (t == "TextureCoordinate2")
+      state.texture_coordinate2 = &n;
+    else if (t == "Material")
+      state.material = &n;
+    else if (t == "MaterialBinding")
+      state.material_binding = &n;
+    else if (t == "NormalBinding")
+      state.normal_binding = &n;
+    else if (t == "ShapeHints")
+      state.shape_hints = &n;
+    else if (t == "Texture2")
+      state.texture2 = &n;
+    else if (t == "FontStyle")
+      state.font_style = &n;
     else if (t == "PerspectiveCamera") {
       if (!camera_) camera_ = &n;
     } else if (t == "Transform" || t == "MatrixTransform" || t == "Translation" ||
@@ -121,9 +130,10 @@ Mat4 local_transform(const Node& n) {
     Vec3 c = vec3_of(n, "center");
     Mat4 sr = rotation_of(n, "scaleOrientation");
     const FieldValue* so = field_or_default(n, "scaleOrientation");
-    Mat4 sr_inv = so && so->floats.size() >= 4
-                      ? Mat4::rotation({so->floats[0], so->floats[1], so->floats[2]}, -so->floats[3])
-                      : Mat4{};
+    Mat4 sr_inv =
+        so && so->floats.size() >= 4
+            ? Mat4::rotation({so->floats[0], so->floats[1], so->floats[2]}, -so->floats[3])
+            : Mat4{};
     return Mat4::translation(vec3_of(n, "translation")) * Mat4::translation(c) *
            rotation_of(n, "rotation") * sr * Mat4::scale(vec3_of(n, "scaleFactor")) * sr_inv *
            Mat4::translation(-c);

@@ -17,8 +17,8 @@
 namespace lodforge::scene {
 
 struct TraversalState {
-  Mat4 transform;                        ///< object to world
-  const Node* coordinate3 = nullptr;     ///< nullptr: the spec default
+  Mat4 transform;                     ///< object to world
+  const Node* coordinate3 = nullptr;  ///< nullptr: the spec default
   const Node* normal = nullptr;
   const Node* texture_coordinate2 = nullptr;
   const Node* material = nullptr;
@@ -30,9 +30,9 @@ struct TraversalState {
 };
 
 struct ShapeVisit {
-  const Node& shape;              ///< IndexedFaceSet, IndexedLineSet, PointSet, Cube, ...
+  const Node& shape;  ///< IndexedFaceSet, IndexedLineSet, PointSet, Cube, ...
   const TraversalState& state;
-  const Node* camera;             ///< first PerspectiveCamera met so far, or nullptr
+  const Node* camera;  ///< first PerspectiveCamera met so far, or nullptr
   /// The group nodes from a root down to the shape's parent.
   const std::vector<const Node*>& path;
   /// Where the shape is: its index in path.back()->children, or in

@@ -54,14 +54,22 @@ Token Lexer::scan() {
     return t;
   };
   switch (c) {
-    case '{': return single(TokenKind::kLBrace);
-    case '}': return single(TokenKind::kRBrace);
-    case '[': return single(TokenKind::kLBracket);
-    case ']': return single(TokenKind::kRBracket);
-    case '(': return single(TokenKind::kLParen);
-    case ')': return single(TokenKind::kRParen);
-    case ',': return single(TokenKind::kComma);
-    case '|': return single(TokenKind::kBar);
+    case '{':
+      return single(TokenKind::kLBrace);
+    case '}':
+      return single(TokenKind::kRBrace);
+    case '[':
+      return single(TokenKind::kLBracket);
+    case ']':
+      return single(TokenKind::kRBracket);
+    case '(':
+      return single(TokenKind::kLParen);
+    case ')':
+      return single(TokenKind::kRParen);
+    case ',':
+      return single(TokenKind::kComma);
+    case '|':
+      return single(TokenKind::kBar);
     case '"': {
       const char* p = cursor_ + 1;
       while (p < end_ && *p != '"') {
@@ -82,7 +90,8 @@ Token Lexer::scan() {
       t.text = {start, static_cast<std::size_t>(cursor_ - start)};
       return t;
     }
-    default: break;
+    default:
+      break;
   }
   const char* p = cursor_;
   while (p < end_ && !is_delimiter(*p)) ++p;
@@ -182,10 +191,14 @@ bool Lexer::read_int(std::int32_t& out, bool commas) {
     while (p < end_) {
       char c = *p;
       unsigned d;
-      if (c >= '0' && c <= '9') d = unsigned(c - '0');
-      else if (c >= 'a' && c <= 'f') d = unsigned(c - 'a' + 10);
-      else if (c >= 'A' && c <= 'F') d = unsigned(c - 'A' + 10);
-      else break;
+      if (c >= '0' && c <= '9')
+        d = unsigned(c - '0');
+      else if (c >= 'a' && c <= 'f')
+        d = unsigned(c - 'a' + 10);
+      else if (c >= 'A' && c <= 'F')
+        d = unsigned(c - 'A' + 10);
+      else
+        break;
       v = v * 16 + d;
       if (v > 0xFFFFFFFFull) return false;
       ++p;
@@ -253,13 +266,15 @@ std::string_view Lexer::skip_balanced_body(const Token& open) {
 
 std::string Lexer::describe(const Token& t) {
   switch (t.kind) {
-    case TokenKind::kEnd: return "end of file";
+    case TokenKind::kEnd:
+      return "end of file";
     case TokenKind::kString:
     case TokenKind::kWord: {
       std::string_view s = t.text.substr(0, 40);
       return fmt::format("'{}'{}", s, t.text.size() > 40 ? "..." : "");
     }
-    default: return fmt::format("'{}'", t.text);
+    default:
+      return fmt::format("'{}'", t.text);
   }
 }
 

@@ -54,9 +54,7 @@ class Lexer {
   }
   const char* cursor() { return cursor_; }
   /// The unread text.
-  std::string_view rest() const {
-    return {cursor_, static_cast<std::size_t>(end_ - cursor_)};
-  }
+  std::string_view rest() const { return {cursor_, static_cast<std::size_t>(end_ - cursor_)}; }
   /// Skips the body of the node opened by `open` (a '{' token already read):
   /// everything up to (not including) the matching '}', honouring strings and
   /// comments. Returns the body text. Throws on end of input.
@@ -93,9 +91,23 @@ class Lexer {
 /// True if `c` ends a word.
 inline bool is_delimiter(char c) {
   switch (c) {
-    case ' ': case '\t': case '\r': case '\n': case '\f': case '\v':
-    case '{': case '}': case '[': case ']': case '(': case ')':
-    case ',': case '|': case '"': case '#': case '\0':
+    case ' ':
+    case '\t':
+    case '\r':
+    case '\n':
+    case '\f':
+    case '\v':
+    case '{':
+    case '}':
+    case '[':
+    case ']':
+    case '(':
+    case ')':
+    case ',':
+    case '|':
+    case '"':
+    case '#':
+    case '\0':
       return true;
     default:
       return false;

@@ -134,10 +134,10 @@ class Parser {
       node->raw_body = std::string(lex_.skip_balanced_body(open));
       lex_.next();  // the closing brace
       node->last_line = lex_.line();
-      result_.log.warn(LogCategory::kParse,
-                       fmt::format("{}:{}-{}: unknown node type >{}< kept as it is",
-                                   options_.source_name, node->first_line, node->last_line,
-                                   node->type));
+      result_.log.warn(
+          LogCategory::kParse,
+          fmt::format("{}:{}-{}: unknown node type >{}< kept as it is", options_.source_name,
+                      node->first_line, node->last_line, node->type));
       return node;
     }
     if (!spec) {
@@ -160,11 +160,11 @@ class Parser {
       const std::vector<std::string>* enum_names = nullptr;
       if (find_field(*node, spec, word.text, ftype, enum_names)) {
         if (node->find(word.text))
-          result_.log.warn(LogCategory::kParse,
-                           fmt::format("{}:{}:{}: field >{}< of {} given twice; the last value "
-                                       "counts",
-                                       options_.source_name, word.line, word.col, word.text,
-                                       node->type));
+          result_.log.warn(
+              LogCategory::kParse,
+              fmt::format("{}:{}:{}: field >{}< of {} given twice; the last value "
+                          "counts",
+                          options_.source_name, word.line, word.col, word.text, node->type));
         scene::Field f;
         f.name = std::string(word.text);
         f.value = parse_value(ftype, word, enum_names);
@@ -184,10 +184,10 @@ class Parser {
       f.name = std::string(word.text);
       f.is_raw = true;
       f.raw = std::string(parse_raw_value(word));
-      result_.log.warn(LogCategory::kParse,
-                       fmt::format("{}:{}:{}: unknown field >{}< of {} kept as it is",
-                                   options_.source_name, word.line, word.col, word.text,
-                                   node->type));
+      result_.log.warn(
+          LogCategory::kParse,
+          fmt::format("{}:{}:{}: unknown field >{}< of {} kept as it is", options_.source_name,
+                      word.line, word.col, word.text, node->type));
       node->fields.push_back(std::move(f));
     }
     node->last_line = lex_.line();
@@ -243,9 +243,12 @@ class Parser {
       Token s = lex_.next();
       if (s.kind == TokenKind::kComma) continue;
       if (s.kind == TokenKind::kRBracket) break;
-      if (s.kind == TokenKind::kString) node.is_a.push_back(detail::unquote(s.text));
-      else if (s.kind == TokenKind::kWord) node.is_a.push_back(std::string(s.text));
-      else lex_.expected(s, "a node type name or ']'");
+      if (s.kind == TokenKind::kString)
+        node.is_a.push_back(detail::unquote(s.text));
+      else if (s.kind == TokenKind::kWord)
+        node.is_a.push_back(std::string(s.text));
+      else
+        lex_.expected(s, "a node type name or ']'");
     }
   }
 
@@ -306,31 +309,41 @@ class Parser {
       case FieldKind::kVec2f:
       case FieldKind::kVec3f: {
         int n = scene::float_components(type.kind);
-        for (int i = 0; i < n; ++i) out.floats.push_back(read_float(field, type, in_list && i == 0));
+        for (int i = 0; i < n; ++i)
+          out.floats.push_back(read_float(field, type, in_list && i == 0));
         return;
       }
-      case FieldKind::kLong: out.ints.push_back(read_int(field, type, in_list)); return;
+      case FieldKind::kLong:
+        out.ints.push_back(read_int(field, type, in_list));
+        return;
       case FieldKind::kBool: {
         if (in_list) lex_.skip_space(true);
         Token t = lex_.next();
-        if (t.text == "TRUE" || t.text == "1") out.ints.push_back(1);
-        else if (t.text == "FALSE" || t.text == "0") out.ints.push_back(0);
-        else lex_.fail(t, fmt::format("expected TRUE or FALSE for field '{}', got {}", field.text,
-                                      Lexer::describe(t)));
+        if (t.text == "TRUE" || t.text == "1")
+          out.ints.push_back(1);
+        else if (t.text == "FALSE" || t.text == "0")
+          out.ints.push_back(0);
+        else
+          lex_.fail(t, fmt::format("expected TRUE or FALSE for field '{}', got {}", field.text,
+                                   Lexer::describe(t)));
         return;
       }
       case FieldKind::kString: {
         if (in_list) lex_.skip_space(true);
         Token t = lex_.next();
-        if (t.kind == TokenKind::kString) out.strings.push_back(detail::unquote(t.text));
-        else if (t.kind == TokenKind::kWord) out.strings.emplace_back(t.text);
-        else lex_.expected(t, fmt::format("a string for field '{}'", field.text));
+        if (t.kind == TokenKind::kString)
+          out.strings.push_back(detail::unquote(t.text));
+        else if (t.kind == TokenKind::kWord)
+          out.strings.emplace_back(t.text);
+        else
+          lex_.expected(t, fmt::format("a string for field '{}'", field.text));
         return;
       }
       case FieldKind::kEnum: {
         if (in_list) lex_.skip_space(true);
         Token t = lex_.next();
-        if (t.kind != TokenKind::kWord) lex_.expected(t, fmt::format("a name for field '{}'", field.text));
+        if (t.kind != TokenKind::kWord)
+          lex_.expected(t, fmt::format("a name for field '{}'", field.text));
         check_enum(t, field, enum_names);
         out.strings.emplace_back(t.text);
         return;
@@ -360,8 +373,8 @@ class Parser {
         std::int32_t h = read_int(field, type, false);
         std::int32_t nc = read_int(field, type, false);
         if (w < 0 || h < 0 || nc < 0 || nc > 4 || std::int64_t(w) * h > (1 << 26))
-          lex_.fail_here(fmt::format("bad image size {} x {} x {} in field '{}'", w, h, nc,
-                                     field.text));
+          lex_.fail_here(
+              fmt::format("bad image size {} x {} x {} in field '{}'", w, h, nc, field.text));
         out.ints.insert(out.ints.end(), {w, h, nc});
         for (std::int64_t i = 0, n = std::int64_t(w) * h; i < n; ++i)
           out.ints.push_back(read_int(field, type, false));
@@ -425,9 +438,9 @@ class Parser {
     if (!name || name->strings.empty() || name->strings[0].empty()) return;
     const std::string& url = name->strings[0];
     auto warn = [&](const std::string& why) {
-      result_.log.warn(LogCategory::kParse, fmt::format("{}:{}: WWWInline '{}' not read: {}",
-                                                        options_.source_name, node.first_line,
-                                                        url, why));
+      result_.log.warn(LogCategory::kParse,
+                       fmt::format("{}:{}: WWWInline '{}' not read: {}", options_.source_name,
+                                   node.first_line, url, why));
     };
     if (url.find("://") != std::string::npos && !url.starts_with("file://")) {
       warn("lodforge never reads over a network");

@@ -73,8 +73,8 @@ class Writer {
       // A later USE must reach this node: the name must not be bound to
       // another node that is still to be USEd.
       auto bound = bound_.find(name);
-      if (name.empty() || (bound != bound_.end() && bound->second != n.get() &&
-                           pending_[bound->second] > 0))
+      if (name.empty() ||
+          (bound != bound_.end() && bound->second != n.get() && pending_[bound->second] > 0))
         name = unique_name(name);
       names_[n.get()] = name;
       pending_[n.get()] = refs - 1;
@@ -116,8 +116,10 @@ class Writer {
       newline(depth + 1);
       out_ += f.name;
       out_ += ' ';
-      if (f.is_raw) out_ += f.raw;
-      else write_value(f.value, depth + 1);
+      if (f.is_raw)
+        out_ += f.raw;
+      else
+        write_value(f.value, depth + 1);
     }
     for (const auto& c : n->children) {
       newline(depth + 1);
@@ -136,9 +138,7 @@ class Writer {
     out_ += '"';
   }
 
-  void write_float(float f) {
-    fmt::format_to(std::back_inserter(out_), "{}", f);
-  }
+  void write_float(float f) { fmt::format_to(std::back_inserter(out_), "{}", f); }
 
   // Values of one kind, `per_value` numbers each, wrapped after `per_line`.
   template <typename T, typename Emit>
@@ -157,8 +157,10 @@ class Writer {
     out_ += '[';
     for (std::size_t i = 0; i < count; ++i) {
       if (i) out_ += ',';
-      if (!opt_.minimize && i % values_per_line == 0) newline(depth + 1);
-      else if (i || !opt_.minimize) out_ += ' ';
+      if (!opt_.minimize && i % values_per_line == 0)
+        newline(depth + 1);
+      else if (i || !opt_.minimize)
+        out_ += ' ';
       for (std::size_t k = 0; k < per_value; ++k) {
         if (k) out_ += ' ';
         emit(v[i * per_value + k]);
@@ -179,13 +181,17 @@ class Writer {
       case FieldKind::kVec2f:
       case FieldKind::kVec3f: {
         std::size_t per = static_cast<std::size_t>(scene::float_components(v.type.kind));
-        if (v.type.multi) write_list(v.floats, per, opt_.floats_per_line, depth, emit_float);
-        else write_list(v.floats, v.floats.size(), opt_.floats_per_line, depth, emit_float);
+        if (v.type.multi)
+          write_list(v.floats, per, opt_.floats_per_line, depth, emit_float);
+        else
+          write_list(v.floats, v.floats.size(), opt_.floats_per_line, depth, emit_float);
         return;
       }
       case FieldKind::kLong:
-        if (v.type.multi) write_list(v.ints, 1, opt_.ints_per_line, depth, emit_int);
-        else write_list(v.ints, v.ints.size(), opt_.ints_per_line, depth, emit_int);
+        if (v.type.multi)
+          write_list(v.ints, 1, opt_.ints_per_line, depth, emit_int);
+        else
+          write_list(v.ints, v.ints.size(), opt_.ints_per_line, depth, emit_int);
         return;
       case FieldKind::kBool: {
         auto emit_bool = [this](std::int32_t b) { out_ += b ? "TRUE" : "FALSE"; };
@@ -220,9 +226,13 @@ class Writer {
           if (i >= 3 && opt_.ints_per_line > 0 && (i - 3) % std::size_t(opt_.ints_per_line) == 0 &&
               !opt_.minimize)
             newline(depth + 1);
-          else if (i) out_ += ' ';
-          if (i < 3) fmt::format_to(std::back_inserter(out_), "{}", v.ints[i]);
-          else fmt::format_to(std::back_inserter(out_), "{:#x}", static_cast<std::uint32_t>(v.ints[i]));
+          else if (i)
+            out_ += ' ';
+          if (i < 3)
+            fmt::format_to(std::back_inserter(out_), "{}", v.ints[i]);
+          else
+            fmt::format_to(std::back_inserter(out_), "{:#x}",
+                           static_cast<std::uint32_t>(v.ints[i]));
         }
         return;
       }
@@ -232,9 +242,9 @@ class Writer {
   const WriteOptions& opt_;
   std::string& out_;
   std::unordered_map<const Node*, std::size_t> refs_;
-  std::unordered_map<const Node*, std::string> names_;   // shared nodes already written
-  std::unordered_map<const Node*, std::size_t> pending_; // USEs still to write
-  std::unordered_map<std::string, const Node*> bound_;   // what each name means now
+  std::unordered_map<const Node*, std::string> names_;    // shared nodes already written
+  std::unordered_map<const Node*, std::size_t> pending_;  // USEs still to write
+  std::unordered_map<std::string, const Node*> bound_;    // what each name means now
   std::unordered_set<std::string> used_names_;
 };
 

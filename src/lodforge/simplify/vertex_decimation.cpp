@@ -42,6 +42,38 @@ constexpr int kMaxLoop = static_cast<int>(kMaxDecimationValence) + 1;
 constexpr float kMinSine = 1e-6f;
 constexpr float kMinNormalDot = 1e-4f;
 
+/// Scales `points` in place by a power of two so that the longest side of their
+/// bounding box lies in [0.5, 1) (as far as that keeps every coordinate below
+/// 2^100), and returns the factor that scales back (1 if they have no extent).
+///
+/// Why: the criteria multiply up to four lengths (squared fan areas, volumes),
+/// which overflow or underflow single precision for models whose unit is far
+/// from their size: a sphere of radius 1e10 or 1e-12 lost nothing at all
+/// (found by fuzz/simplify_fuzz). A power of two scales every float exactly, and
+/// every test below compares quantities of the same dimension, so the decisions
+/// are those of the unscaled model wherever it did not overflow.
+double normalise_to_unit_box(std::vector<Vec3>& points) {
+  if (points.empty()) return 1;
+  double lo[3], hi[3], max_abs = 0;
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = points[0][a];
+  for (const Vec3& p : points)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], double(p[a]));
+      hi[a] = std::max(hi[a], double(p[a]));
+      max_abs = std::max(max_abs, std::abs(double(p[a])));
+    }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (!(extent > 0)) return 1;
+  int extent_exp = 0, abs_exp = 0;
+  std::frexp(extent, &extent_exp);
+  std::frexp(max_abs, &abs_exp);
+  const int shift = std::min(-extent_exp, 100 - abs_exp);
+  if (shift == 0) return 1;
+  const double f = std::ldexp(1.0, shift);
+  for (Vec3& p : points) p = {float(p.x * f), float(p.y * f), float(p.z * f)};
+  return std::ldexp(1.0, -shift);
+}
+
 enum class VertexClass : std::uint8_t { kSimple, kBoundary, kInteriorEdge, kCorner, kComplex };
 
 /// Why a vertex is still there (kept per vertex, summarised in stop_detail).
@@ -185,6 +217,10 @@ class Decimator {
   std::vector<HeapEntry> heap_;
   std::size_t live_triangles_ = 0;
   std::size_t live_vertices_ = 0;
+  // pos_ is in units of unit_ model units (normalise_to_unit_box); so are the
+  // criteria, the accumulated errors and budget_ (the error budget).
+  double unit_ = 1;
+  float budget_ = 0;
   float max_error_ = 0;
   Plan plan_;  // scratch
 };
@@ -202,6 +238,8 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
   points.positions = std::move(w1.mesh.positions);
   WeldResult w2 = weld(points, {});
   pos_ = std::move(w2.mesh.positions);
+  unit_ = normalise_to_unit_box(pos_);
+  budget_ = static_cast<float>(double(options.target.max_error) / unit_);
   has_seams_ = pos_.size() != av_input_.size();
   has_materials_ = w1.mesh.has_materials();
   const std::vector<std::uint32_t>& pv = w2.remap;
@@ -493,7 +531,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
   if (!criterion(v, fan)) return fan.why;
   float accumulated = fan.error;
   accumulated += fan.d;
-  if (accumulated > options_.target.max_error) return Keep::kErrorBudget;
+  if (accumulated > budget_) return Keep::kErrorBudget;
   plan.accumulated = accumulated;
 
   std::array<Side, 2>& sides = plan.sides;
@@ -682,7 +720,7 @@ SimplifyResult Decimator::snapshot(StopReason reason, std::string detail) const 
   SimplifyResult r;
   r.stop_reason = reason;
   r.stop_detail = std::move(detail);
-  r.error = max_error_;
+  r.error = static_cast<float>(double(max_error_) * unit_);  // model units
   std::vector<std::uint32_t> id(av_input_.size(), kNone);
   for (std::size_t t = 0; t < tv_.size(); ++t)
     if (alive_[t])

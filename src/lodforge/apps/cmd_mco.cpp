@@ -77,7 +77,9 @@ void add_mco_command(CLI::App& app, Runner& run) {
         for (const auto& sc : scans)
           for (auto g : sc.grid) points += g >= 0;
         r = build_mc_octree(scans, options);
-        what = fmt::format("{} range scans ({} points)", scans.size(), points);
+        what = fmt::format(
+            "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded)", scans.size(),
+            points, r.stats.band_points, r.stats.carved_points, r.stats.flooded_points);
       } else {
         TriangleMesh mesh = load_geometry(b->input);
         r = build_mc_octree(mesh, options);

@@ -416,14 +416,103 @@ class ScanField {
   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> cells_;
 };
 
+// Line-of-sight carving (Curless & Levoy 1996's space carving, reduced to
+// signs): each scan is resampled as a depth image in its own frame (the
+// sensor looks down -z, lines of sight parallel: the Stanford Cyberware
+// scans and mco scan's are), from its grid triangles without the depth
+// jumps. A point is seen empty, hence outside, when some scan's line of
+// sight through it reaches the surface behind it (by more than `margin`).
+// A line that met nothing carves nothing: the Cyberware scans are partial
+// (a limited window; the chin and ear scans are close-ups), so "no data"
+// may be an unscanned part of the object as well as the background (carving
+// those hollowed the bunny out). Holes (occlusion shadows) say nothing either.
+class SightCarver {
+ public:
+  SightCarver(const std::vector<RangeScan>& scans, float margin) : margin_(margin) {
+    for (const auto& s : scans) add(s);
+  }
+  bool empty_at(const Vec3& world) const {
+    for (const auto& im : images_) {
+      Vec3 q = im.scan->to_scan(world);
+      auto i = static_cast<std::int64_t>(std::floor((q.x - im.x0) / im.s));
+      auto j = static_cast<std::int64_t>(std::floor((q.y - im.y0) / im.s));
+      if (i < 0 || j < 0 || i >= im.w || j >= im.h) continue;
+      if (q.z > im.depth[static_cast<std::size_t>(j) * im.w + i] + margin_) return true;
+    }
+    return false;
+  }
+
+ private:
+  struct Image {
+    const RangeScan* scan;
+    float x0, y0, s;
+    int w, h;
+    std::vector<float> depth;  // nearest surface (largest z); -inf: none
+  };
+  void add(const RangeScan& scan) {
+    float s = scan.spacing();
+    if (!(s > 0)) return;
+    Box3 box;
+    for (auto g : scan.grid)
+      if (g >= 0) box.add(scan.points[g]);
+    Vec3 size = box.size();
+    // At most 4096 pixels a side: coarser pixels for a very wide scan.
+    s = std::max(s, std::max(size.x, size.y) / 4090.0f);
+    Image im{&scan, box.lo.x - 2 * s, box.lo.y - 2 * s, s, 0, 0, {}};
+    im.w = static_cast<int>(std::ceil(size.x / s)) + 5;
+    im.h = static_cast<int>(std::ceil(size.y / s)) + 5;
+    im.depth.assign(static_cast<std::size_t>(im.w) * im.h, -INFINITY);
+    const float limit2 = 16 * scan.spacing() * scan.spacing();
+    auto at = [&](int r, int c) { return scan.grid[static_cast<std::size_t>(r) * scan.cols + c]; };
+    auto raster = [&](std::int32_t ia, std::int32_t ib, std::int32_t ic) {
+      if (ia < 0 || ib < 0 || ic < 0) return;
+      const Vec3 &a = scan.points[ia], &b = scan.points[ib], &c = scan.points[ic];
+      if (length_squared(a - b) > limit2 || length_squared(b - c) > limit2 ||
+          length_squared(c - a) > limit2)
+        return;
+      float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      if (!(std::abs(area) > 0)) return;
+      auto px = [&](float v, float o) { return (v - o) / im.s - 0.5f; };
+      int c0 = std::max(0, static_cast<int>(std::ceil(px(std::min({a.x, b.x, c.x}), im.x0))));
+      int c1 =
+          std::min(im.w - 1, static_cast<int>(std::floor(px(std::max({a.x, b.x, c.x}), im.x0))));
+      int r0 = std::max(0, static_cast<int>(std::ceil(px(std::min({a.y, b.y, c.y}), im.y0))));
+      int r1 =
+          std::min(im.h - 1, static_cast<int>(std::floor(px(std::max({a.y, b.y, c.y}), im.y0))));
+      for (int r = r0; r <= r1; ++r)
+        for (int cc = c0; cc <= c1; ++cc) {
+          float x = im.x0 + (static_cast<float>(cc) + 0.5f) * im.s;
+          float y = im.y0 + (static_cast<float>(r) + 0.5f) * im.s;
+          float l1 = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) / area;
+          float l2 = ((a.x - x) * (b.y - y) - (b.x - x) * (a.y - y)) / area;
+          float l0 = 1 - l1 - l2;
+          if (l0 < -1e-4f || l1 < -1e-4f || l2 < -1e-4f) continue;
+          float z = l0 * a.z + l1 * b.z + l2 * c.z;
+          auto& d = im.depth[static_cast<std::size_t>(r) * im.w + cc];
+          d = std::max(d, z);
+        }
+    };
+    for (int r = 0; r + 1 < scan.rows; ++r)
+      for (int c = 0; c + 1 < scan.cols; ++c) {
+        raster(at(r, c), at(r, c + 1), at(r + 1, c + 1));
+        raster(at(r, c), at(r + 1, c + 1), at(r + 1, c));
+      }
+    images_.push_back(std::move(im));
+  }
+  float margin_;
+  std::vector<Image> images_;
+};
+
 // The sign lattice of range scans. Band: the lattice points within two cells
-// of a range point get the weighted tangent-plane distance. The box's outer
-// faces are outside (the root cube has a free cell all round). Every other
-// point takes the sign of the nearest band or border point by flood fill:
-// where no scan saw anything (under the Stanford bunny, which stood on the
-// turntable) the inside and the outside meet about half way between the
-// rim of the unseen region and the box, which closes the model with a cap.
-Lattice make_scan_lattice(ScanField& field, int resolution, McBuildStats& stats) {
+// of a range point get the weighted tangent-plane distance. Outside: the
+// box's outer faces (the root cube has a free cell all round) and every point
+// a line of sight shows empty (SightCarver, 2 cells of margin).
+// Every other point (inside the object, or seen by no scan: under the
+// Stanford bunny, which stood on the turntable) takes the sign of the
+// nearest band or carved point by flood fill, which closes the unseen
+// region with a cap within a few cells of the carved space.
+Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans, int resolution,
+                          McBuildStats& stats) {
   Lattice lat = empty_lattice(field.bounds(), resolution);
   field.index(lat.origin, lat.h);
   std::vector<std::int64_t> band;
@@ -458,20 +547,31 @@ Lattice make_scan_lattice(ScanField& field, int resolution, McBuildStats& stats)
     seeds.push_back(band[i]);
   }
   stats.band_points = seeds.size();
-  for (std::int64_t k = 0; k < lat.n; ++k)
-    for (std::int64_t j = 0; j < lat.n; ++j)
-      for (std::int64_t i = 0; i < lat.n; ++i) {
-        bool border =
-            i == 0 || j == 0 || k == 0 || i == lat.n - 1 || j == lat.n - 1 || k == lat.n - 1;
-        if (!border) {
-          i = std::max<std::int64_t>(i, lat.n - 2);  // skip to the far face
-          continue;
+  SightCarver carver(scans, 2 * lat.h);
+  std::vector<std::uint8_t> carved(lat.state.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, lat.n), [&](const auto& r) {
+    for (std::int64_t k = r.begin(); k != r.end(); ++k)
+      for (std::int64_t j = 0; j < lat.n; ++j)
+        for (std::int64_t i = 0; i < lat.n; ++i) {
+          auto idx = lat.index(i, j, k);
+          bool border =
+              i == 0 || j == 0 || k == 0 || i == lat.n - 1 || j == lat.n - 1 || k == lat.n - 1;
+          if (!(lat.state[idx] & kAssigned) && (border || carver.empty_at(lat.point(idx))))
+            carved[idx] = 1;
         }
-        auto idx = lat.index(i, j, k);
-        if (lat.state[idx] & kAssigned) continue;
-        lat.state[idx] = kAssigned;
-        seeds.push_back(idx);
-      }
+  });
+  for (std::size_t idx = 0; idx < carved.size(); ++idx)
+    if (carved[idx]) {
+      lat.state[idx] = kAssigned;
+      ++stats.carved_points;
+    }
+  // Seeds: the band and the carved points next to an unassigned one.
+  for (std::int64_t idx = 0; idx < static_cast<std::int64_t>(carved.size()); ++idx) {
+    if (!carved[idx]) continue;
+    bool frontier = false;
+    lattice_neighbours(lat, idx, [&](std::int64_t q) { frontier |= !(lat.state[q] & kAssigned); });
+    if (frontier) seeds.push_back(idx);
+  }
   flood_fill(lat, seeds, stats);
   std::sort(lat.distance.begin(), lat.distance.end());
   return lat;
@@ -881,7 +981,7 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   McBuildResult result;
   auto t0 = Clock::now();
   ScanField field(scans);
-  Lattice lat = make_scan_lattice(field, options.resolution, result.stats);
+  Lattice lat = make_scan_lattice(field, scans, options.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);

@@ -25,6 +25,7 @@ struct McBuildStats {
   std::size_t band_points = 0;      ///< lattice points with an exact signed distance
   std::size_t flooded_points = 0;   ///< lattice points whose sign came from the flood fill
   std::size_t sign_repairs = 0;     ///< flooded points later given an exact distance
+  std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
   double seconds_signs = 0, seconds_tree = 0, seconds_priorities = 0;
@@ -61,12 +62,14 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// plane of the nearest range point (its normal from its 4 lattice
 /// neighbours' triangles), averaged with Gaussian weights over the nearby
 /// points of the same sheet so that overlapping scans out of register by a
-/// fraction of a cell agree; everywhere else the sign of the nearest measured
-/// lattice point (flood fill), with the root cube's faces outside. Where no
-/// scan saw the surface, the model is closed by a cap where the inside and
-/// outside floods meet (about half way between the unseen region's rim and
-/// the box). Normals and colours: the same weighted average of the nearby
-/// points' normals and colours.
+/// fraction of a cell agree; outside wherever a line of sight shows the
+/// space empty (in front of the surface a scan measured: space carving) and
+/// on the root cube's faces;
+/// everywhere else the sign of the nearest measured or carved lattice point
+/// (flood fill). Where no scan saw the surface, the model is closed by a cap
+/// where the inside and outside floods meet, between the unseen region's rim
+/// and the carved space or the box. Normals and colours: the same
+/// weighted average of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
 /// size, a non-finite coordinate; std::invalid_argument for a resolution out

@@ -147,12 +147,33 @@ Vec3 RangeScan::to_world(const Vec3& p) const {
   return rotate(p) + translation;
 }
 
+Vec3 RangeScan::to_scan(const Vec3& p) const {
+  return quat_rotate(rotation, p - translation);
+}
+
+float RangeScan::spacing() const {
+  std::vector<float> d;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c + 1 < cols; ++c) {
+      auto a = grid[static_cast<std::size_t>(r) * cols + c],
+           b = grid[static_cast<std::size_t>(r) * cols + c + 1];
+      if (a >= 0 && b >= 0) d.push_back(length(points[a] - points[b]));
+    }
+  if (d.empty()) return 0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
 std::vector<Vec3> RangeScan::normals() const {
   std::vector<Vec3> out(points.size(), Vec3{0, 0, 1});
   auto at = [&](int r, int c) -> std::int32_t {
     if (r < 0 || c < 0 || r >= rows || c >= cols) return -1;
     return grid[static_cast<std::size_t>(r) * cols + c];
   };
+  // A lattice edge much longer than the spacing crosses a depth jump (an
+  // occluding contour): its triangle is not surface.
+  const float limit = 4 * spacing();
+  const float limit2 = limit > 0 ? limit * limit : INFINITY;
   // Neighbours counter-clockwise in (col, row): right, up, left, down.
   const int dr[4] = {0, 1, 0, -1}, dc[4] = {1, 0, -1, 0};
   double flip = 0;
@@ -164,7 +185,9 @@ std::vector<Vec3> RangeScan::normals() const {
       for (int k = 0; k < 4; ++k) {
         std::int32_t a = at(r + dr[k], c + dc[k]), b = at(r + dr[(k + 1) % 4], c + dc[(k + 1) % 4]);
         if (a < 0 || b < 0) continue;
-        sum += normalized(cross(points[a] - points[i], points[b] - points[i]));
+        Vec3 ea = points[a] - points[i], eb = points[b] - points[i];
+        if (length_squared(ea) > limit2 || length_squared(eb) > limit2) continue;
+        sum += normalized(cross(ea, eb));
       }
       if (length_squared(sum) > 0) {
         out[i] = normalized(sum);

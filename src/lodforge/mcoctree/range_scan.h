@@ -38,13 +38,17 @@ struct RangeScan {
 
   /// The point in world coordinates.
   Vec3 to_world(const Vec3& p) const;
+  /// A world point in the scan frame (the inverse of to_world).
+  Vec3 to_scan(const Vec3& p) const;
+  /// Median distance between neighbours along a row (0 if none).
+  float spacing() const;
   /// A direction (normal) in world coordinates.
   Vec3 rotate(const Vec3& v) const;
   /// Normals of the points in the scan frame (Kim, sec. 4.2, Fig. 4.2): the
   /// average of the unit normals of the triangles a point makes with its 4
   /// lattice neighbours (right/up, up/left, left/down, down/right), oriented
-  /// towards the sensor (+z). A point without two consecutive neighbours
-  /// gets +z. #points.
+  /// towards the sensor (+z); edges longer than 4 x spacing() (depth jumps)
+  /// make no triangle. A point without such a triangle gets +z. #points.
   std::vector<Vec3> normals() const;
 };
 

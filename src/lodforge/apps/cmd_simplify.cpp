@@ -42,7 +42,9 @@
 // (null without --error), output_vertices, output_triangles, output_lines,
 // error, error_kind, stop_reason, stop_detail, time_ms (the simplification
 // alone: no file reading or writing; steady_clock), and for cluster `level`
-// and `levels` (the chosen chain level and how many were made).
+// and `levels` (the chosen chain level and how many were made). JSON has no
+// infinity: an error the simplifier reports as non-finite prints as null
+// (vertex clustering's displacement overflows float beyond about 1e19).
 #include <fmt/core.h>
 
 #include <chrono>

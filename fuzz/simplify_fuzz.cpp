@@ -2,8 +2,9 @@
 // vertex clustering, vertex decimation and its chain) on small random meshes:
 // triangle soups with duplicate and coincident vertices, degenerate and
 // repeated triangles, non-manifold edges, line segments, attribute seams and
-// materials. Every result must keep the SimplifyResult invariants below;
-// a violation traps. lodforge::DataError is an allowed answer.
+// materials. Every result must keep the SimplifyResult invariants below, and
+// vertex decimation must not depend on the model's unit (power-of-two scaled
+// copies); a violation traps. lodforge::DataError is an allowed answer.
 //
 // Input bytes:
 //
@@ -164,6 +165,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < levels.size(); ++i) {
       check_result(mesh, levels[i], 0);
       if (i > 0) check(levels[i].mesh.triangle_count() <= levels[i - 1].mesh.triangle_count());
+    }
+    // Decimation's decisions do not depend on the model's unit: a copy scaled
+    // by 2^40 or 2^-40 (exact in float) gives the same triangles and exactly
+    // the scaled error (it did nothing at all at such scales before its
+    // criteria were computed in normalised units).
+    for (int e : {40, -40}) {
+      TriangleMesh scaled = mesh;
+      for (Vec3& p : scaled.positions) p = p * std::ldexp(1.0f, e);
+      const VertexDecimationOptions d{.target = targets[0]};
+      const SimplifyResult a = vertex_decimation(mesh, d);
+      const SimplifyResult b = vertex_decimation(scaled, d);
+      check(a.mesh.triangles == b.mesh.triangles);
+      check(b.error == std::ldexp(a.error, e));
     }
   } catch (const DataError&) {
   }

@@ -129,7 +129,7 @@ void run_row(benchmark::State& state, std::size_t index,
   state.SetLabel(r.peer.empty() ? r.key() : r.key() + " / " + r.peer);
 }
 
-void register_row(Row r, std::function<TriangleMesh(const Row&)> simplify) {
+void register_row(Row r, const std::function<TriangleMesh(const Row&)>& simplify) {
   std::size_t i = g_rows.size();
   g_index[r.key()] = i;
   g_rows.push_back(std::move(r));
@@ -220,11 +220,13 @@ std::size_t cluster_count(const TriangleMesh& mesh, std::size_t target) {
 void register_rows(const std::map<std::string, TriangleMesh>& meshes) {
   constexpr const char* kSimplify = "meshopt_simplify";
   constexpr const char* kSloppy = "meshopt_simplifySloppy";
-  for (const auto& [name, mesh] : meshes) {
+  for (const auto& entry : meshes) {
+    const std::string& name = entry.first;  // (not a structured binding: the lambda below uses it)
+    const TriangleMesh& mesh = entry.second;
     for (int reduction : {50, 99}) {
       const std::size_t target = mesh.triangle_count() * std::size_t(100 - reduction) / 100;
       const std::string red = fmt::format("{} %", reduction);
-      auto key = [&](const char* method) { return std::string(method) + " " + name + " " + red; };
+      auto key = [&](const char* method) { return fmt::format("{} {} {}", method, name, red); };
       [[maybe_unused]] const std::size_t clustered = cluster_count(mesh, target);
 #ifdef LODFORGE_HAVE_MESHOPTIMIZER
       register_row({kSimplify, name, red, &mesh, target}, run_meshopt<false>);

@@ -180,7 +180,7 @@ TEST_F(SimplifyCli, VrmlSceneIsFlattenedInWorldSpace) {
 TEST_F(SimplifyCli, UsageErrorsExitTwoAndWriteNothing) {
   const std::string in = path("sphere.obj");
   const std::string out = path("never.ply");
-  for (const std::string args : {
+  for (const std::string& args : {
            " -o " + out,                                   // no target
            " -o " + out + " --ratio 0",                    // ratio outside (0, 1]
            " -o " + out + " --ratio 1.5",                  //

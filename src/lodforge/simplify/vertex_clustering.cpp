@@ -1053,15 +1053,18 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       return finish(StopReason::kCannotSimplify,
                     fmt::format("the level at octree depth {} would be empty", depth));
 
-    // The largest displacement of a represented input vertex.
+    // The largest displacement of a represented input vertex, in double: a
+    // float square overflows for coordinates beyond ~1.8e19.
     std::vector<std::uint32_t> new_node(input_node.size());
-    float error2 = 0;
+    double error2 = 0;
     for (std::size_t i = 0; i < input_node.size(); ++i) {
       std::uint32_t n = input_node[i] == kNone ? kNone : keep[cell_of[input_node[i]]];
       new_node[i] = n;
-      if (n != kNone) error2 = std::max(error2, length_squared(input_pos[i] - next.pos[n]));
+      if (n == kNone) continue;
+      const Vec3 d = input_pos[i] - next.pos[n];
+      error2 = std::max(error2, double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
     }
-    const float error = std::sqrt(error2);
+    const float error = float(std::sqrt(error2));
     if (error > max_error)
       return finish(
           StopReason::kErrorBudgetReached,

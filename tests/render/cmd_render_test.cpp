@@ -113,9 +113,10 @@ TEST_F(CmdRender, ColouredComparisonShowsWhereTheErrorIs) {
   std::ofstream(a) << "#VRML V1.0 ascii\nSphere { radius 1 }\n";
   std::ofstream(b) << "#VRML V1.0 ascii\nScale { scaleFactor 1 0.5 1 }\nSphere { radius 1 }\n";
   const std::string colored = dir_ + "/deviation.ply", png = dir_ + "/deviation.png";
-  ASSERT_EQ(std::system((exe_ + " compare " + a + " " + b + " --colored " + colored +
-                         " >/dev/null 2>&1").c_str()),
-            0);
+  ASSERT_EQ(
+      std::system((exe_ + " compare " + a + " " + b + " --colored " + colored + " >/dev/null 2>&1")
+                      .c_str()),
+      0);
   ASSERT_EQ(lodforge_render(colored + " -o " + png + " --size 160x160 --view 0,0"), 0);
   const Image img = load(png);
   const auto s = test::pixel_stats(img);
@@ -134,9 +135,9 @@ TEST_F(CmdRender, ColouredComparisonShowsWhereTheErrorIs) {
 
 TEST_F(CmdRender, RendersTheExampleScene) {
   const std::string png = dir_ + "/example.png";
-  ASSERT_EQ(lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png +
-                            " --size 160x120"),
-            0);
+  ASSERT_EQ(
+      lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png + " --size 160x120"),
+      0);
   EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
 }
 

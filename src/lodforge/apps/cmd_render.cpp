@@ -21,8 +21,8 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/render/contact_sheet.h"
 #include "lodforge/render/render_mesh.h"
-#include "lodforge/scene/flatten_scene.h"
 #include "lodforge/render/write_png.h"
+#include "lodforge/scene/flatten_scene.h"
 
 namespace lodforge::apps {
 namespace {

@@ -7,10 +7,14 @@ namespace lodforge {
 
 const char* to_string(StopReason reason) {
   switch (reason) {
-    case StopReason::kTargetReached: return "target reached";
-    case StopReason::kErrorBudgetReached: return "error budget reached";
-    case StopReason::kCannotSimplify: return "cannot simplify further";
-    case StopReason::kNoReduction: return "no reduction asked";
+    case StopReason::kTargetReached:
+      return "target reached";
+    case StopReason::kErrorBudgetReached:
+      return "error budget reached";
+    case StopReason::kCannotSimplify:
+      return "cannot simplify further";
+    case StopReason::kNoReduction:
+      return "no reduction asked";
   }
   return "?";
 }

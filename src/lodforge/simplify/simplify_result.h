@@ -13,10 +13,10 @@ namespace lodforge {
 
 /// Why a simplifier stopped.
 enum class StopReason {
-  kTargetReached,      ///< the triangle target (count or ratio) was met
-  kErrorBudgetReached, ///< the next step would exceed the error budget
-  kCannotSimplify,     ///< no allowed operation is left (topology, borders, features...)
-  kNoReduction,        ///< the target asked for no reduction
+  kTargetReached,       ///< the triangle target (count or ratio) was met
+  kErrorBudgetReached,  ///< the next step would exceed the error budget
+  kCannotSimplify,      ///< no allowed operation is left (topology, borders, features...)
+  kNoReduction,         ///< the target asked for no reduction
 };
 
 /// "target reached", "error budget reached", ...

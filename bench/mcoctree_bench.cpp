@@ -1,7 +1,6 @@
 // The marching-cube octree: extraction throughput at several budgets, build
-// time per million input triangles beside quadric collapse to 20 % (the
-// meshopt_simplify peer is linked by bench/CMakeLists.txt only for the
-// benches listed there; when this bench is added to that list it runs too),
+// time per million input triangles beside quadric collapse and
+// meshopt_simplify to 20 % (linked by bench/CMakeLists.txt when installed),
 // and memory per full-resolution triangle. Input: the Stanford bunny.
 //
 //   mcoctree_bench [benchmark flags]

@@ -29,8 +29,10 @@ struct ReadOptions {
   /// refuses paths that leave `base_dir`.
   bool read_inlines = false;
   std::string base_dir = ".";
-  /// Deeper nesting than this is an error (the parser's stack is bounded).
-  int max_depth = 1000;
+  /// Deeper nesting than this is an error: the parser, the writer and the
+  /// traversals recurse once per level, and this bound keeps them within the
+  /// stack even in sanitizer builds (real files nest a few dozen levels).
+  int max_depth = 256;
 };
 
 struct ReadResult {

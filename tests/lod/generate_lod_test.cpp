@@ -80,6 +80,26 @@ TEST(GenerateLod, BunnySceneLevelsStayWithinTheErrorRangeOnScreen) {
   expect_errors_bounded(r, out, 0.02, 0.785398, 30000);
 }
 
+TEST(GenerateLod, TableB5LowerErrorRangeSwitchesFarther) {
+  // The original's Table B.5 behaviour on a generated model: the same levels
+  // switch farther away as the error range shrinks (0.1 %, 2 %, 10 %), and
+  // each level's distance grows with its error.
+  const std::string text = scene_of(test::make_icosphere(4));
+  std::vector<std::vector<float>> ranges;
+  for (float p : {0.001f, 0.02f, 0.10f}) {
+    LodResult r = generate_lod(read(text), {.range = {.error_range = p}, .measure_samples = 20000});
+    ranges.push_back(r.shapes[0].ranges);
+    for (std::size_t k = 1; k < r.shapes[0].levels.size(); ++k)
+      EXPECT_GT(r.shapes[0].levels[k].error, r.shapes[0].levels[k - 1].error);
+  }
+  ASSERT_EQ(ranges[0].size(), ranges[1].size());
+  ASSERT_EQ(ranges[1].size(), ranges[2].size());
+  for (std::size_t i = 0; i < ranges[0].size(); ++i) {
+    EXPECT_GT(ranges[0][i], ranges[1][i]);
+    EXPECT_GT(ranges[1][i], ranges[2][i]);
+  }
+}
+
 TEST(GenerateLod, MinDiffControlsTheNumberOfLevels) {
   const std::string text = scene_of(test::make_icosphere(4));
   LodResult many = generate_lod(read(text), {.min_diff = 0.2f, .measure_samples = 20000});

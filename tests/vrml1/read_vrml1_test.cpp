@@ -182,6 +182,8 @@ TEST(ReadVrml1, ErrorMessagesNameFileLineColumnAndToken) {
             "t.wrl:2:14: USE of undefined node name 'Nothing'");
   EXPECT_EQ(error_of("#VRML V1.0 ascii\nCube { Sphere { } }"),
             "t.wrl:2:8: Cube cannot have children; expected a field of Cube or '}', got 'Sphere'");
+  EXPECT_EQ(error_of("#VRML V1.0 ascii\nSeparator { Cube { } 3 . }"),
+            "t.wrl:2:22: expected a field name, a child node or '}' in Separator, got '3'");
   EXPECT_EQ(error_of("#VRML V1.0 ascii\nInfo { string \"open"),
             "t.wrl:2:15: unterminated string (missing closing '\"')");
   EXPECT_EQ(error_of("#VRML V1.0 ascii\nUnknown { { }"),

@@ -179,7 +179,11 @@ class Parser {
         node->children.push_back(parse_node_from(word, depth + 1));
         continue;
       }
-      // An unknown field of a known node: keep its text as it is.
+      // An unknown field of a known node: keep its text as it is. Its name must
+      // look like a name (a number here is stray data, and would make the
+      // extent of the verbatim values ambiguous when written back).
+      if (is_number_start(word.text))
+        lex_.expected(word, fmt::format("a field name, a child node or '}}' in {}", node->type));
       scene::Field f;
       f.name = std::string(word.text);
       f.is_raw = true;

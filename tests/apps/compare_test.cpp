@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -49,6 +50,30 @@ TEST_F(CompareCli, SameSceneSameLevelIsZeroAndColoredOutputIsWritten) {
   EXPECT_EQ(nlohmann::json::parse(r.out)["hausdorff"].get<double>(), 0.0);
   TriangleMesh m = read_mesh(colored);
   EXPECT_EQ(m.colors.size(), m.positions.size());
+}
+
+TEST_F(CompareCli, ColouredMeshesReportTheColourDeviation) {
+  // One red and one blue triangle, the same surface: RGB distance sqrt 2.
+  auto ply = [&](const char* name, const char* rgb) {
+    std::string body = std::string(
+                           "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                           "property float y\nproperty float z\nproperty uchar red\n"
+                           "property uchar green\nproperty uchar blue\nelement face 1\n"
+                           "property list uchar int vertex_indices\nend_header\n") +
+                       "0 0 0 " + rgb + "\n1 0 0 " + rgb + "\n0 1 0 " + rgb + "\n3 0 1 2\n";
+    return write(name, body);
+  };
+  std::string red = ply("red.ply", "255 0 0"), blue = ply("blue.ply", "0 0 255");
+  auto r = run_lodforge("compare " + red + " " + blue + " --json --samples 1000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  for (const char* side : {"a_to_b", "b_to_a"}) {
+    ASSERT_TRUE(j[side].contains("color")) << side;
+    EXPECT_NEAR(j[side]["color"]["mean"].get<double>(), std::sqrt(2.0), 1e-5);
+  }
+  auto plain = run_lodforge("compare " + scene_ + " " + scene_ + " --json --samples 1000");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(nlohmann::json::parse(plain.out)["a_to_b"].contains("color"));
 }
 
 TEST_F(CompareCli, EmptySurfaceAndMissingFileAreErrors) {

@@ -48,6 +48,40 @@ TEST(CompareMeshes, IdenticalMeshesWithVertexNormals) {
   EXPECT_LT(r.a_to_b.normal.max, 1e-3);  // barycentrics are recomputed, up to rounding
 }
 
+// Colour (p + 1) / 2 is linear in position, so interpolation inside a
+// triangle gives it exactly: the colour distance between a sample and its
+// closest point is then half their distance.
+TriangleMesh colored_by_position(TriangleMesh m) {
+  m.colors.clear();
+  for (const Vec3& p : m.positions) m.colors.push_back((p + Vec3{1, 1, 1}) * 0.5f);
+  return m;
+}
+
+TEST(CompareMeshes, ColourDeviationFollowsTheInterpolatedColours) {
+  TriangleMesh fine = colored_by_position(icosphere(4));
+  TriangleMesh coarse = colored_by_position(icosphere(2));
+  CompareResult r = compare_meshes(fine, coarse, {.samples = 20'000});
+  for (const Deviation* d : {&r.a_to_b, &r.b_to_a}) {
+    EXPECT_GT(d->color.samples, 20'000u);
+    EXPECT_GT(d->color.mean, 0);
+    EXPECT_NEAR(d->color.mean, d->mean / 2, 1e-3 * d->mean);
+    EXPECT_NEAR(d->color.max, d->max / 2, 1e-3 * d->max);
+  }
+
+  // Same surface, red shifted by 0.1 everywhere: every sample is 0.1 off.
+  TriangleMesh shifted = fine;
+  for (Vec3& c : shifted.colors) c.x += 0.1f;
+  CompareResult same = compare_meshes(fine, shifted, {.samples = 5'000});
+  EXPECT_EQ(same.hausdorff, 0);
+  EXPECT_NEAR(same.a_to_b.color.mean, 0.1, 1e-4);
+  EXPECT_NEAR(same.b_to_a.color.max, 0.1, 1e-4);
+
+  // Colours on one side only: nothing to compare.
+  CompareResult one = compare_meshes(fine, icosphere(2), {.samples = 5'000});
+  EXPECT_EQ(one.a_to_b.color.samples, 0u);
+  EXPECT_EQ(one.b_to_a.color.samples, 0u);
+}
+
 TEST(CompareMeshes, EstimatedNormalsAreSmooth) {
   // A fine sphere against a coarser one: face normals differ by about the
   // coarse facets' angular size; estimated vertex normals interpolate towards

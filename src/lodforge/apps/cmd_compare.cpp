@@ -8,8 +8,9 @@
 // direction), seed, diagonal (A's bounding box), hausdorff,
 // hausdorff_pct_diag, a_to_b and b_to_a (samples measured, min, max, mean,
 // rms, variance, max/mean/rms_pct_diag, normal {samples, mean, max,
-// variance}), normal (= a_to_b.normal: samples on the reference, as in seed
-// 000), normals_from ("faces" or "vertices"), colored {file, scale_max}.
+// variance}, color {samples, mean, max, rms} when both have vertex colours:
+// Euclidean RGB distance with channels in [0,1]), normal (= a_to_b.normal: samples on the
+// reference, as in seed 000), normals_from ("faces" or "vertices"), colored {file, scale_max}.
 // Distances are in the meshes' units, angles in radians.
 #include <fmt/core.h>
 
@@ -28,9 +29,6 @@
 namespace lodforge::apps {
 namespace {
 
-// The one place where compare turns an input path into a surface. Mesh files
-// go through read_mesh; VRML 1.0 scenes are to be read and flattened into one
-// world-space mesh (scene::flatten_scene) here, once that is wired in.
 nlohmann::ordered_json to_json(const Deviation& d) {
   nlohmann::ordered_json j;
   j["samples"] = d.samples;
@@ -46,6 +44,12 @@ nlohmann::ordered_json to_json(const Deviation& d) {
                  {"mean", d.normal.mean},
                  {"max", d.normal.max},
                  {"variance", d.normal.variance}};
+  if (d.color.samples) {
+    j["color"] = {{"samples", d.color.samples},
+                  {"mean", d.color.mean},
+                  {"max", d.color.max},
+                  {"rms", d.color.rms}};
+  }
   return j;
 }
 
@@ -57,6 +61,10 @@ void print_direction(const char* title, const Deviation& d) {
   fmt::print(stderr, "    variance {:.6g}\n", d.variance);
   fmt::print(stderr, "    normal   mean {:.6g} rad, max {:.6g} rad, variance {:.6g}\n",
              d.normal.mean, d.normal.max, d.normal.variance);
+  if (d.color.samples) {
+    fmt::print(stderr, "    colour   mean {:.4g}, max {:.4g}, rms {:.4g} (RGB distance, 1 = 255)\n",
+               d.color.mean, d.color.max, d.color.rms);
+  }
 }
 
 }  // namespace

@@ -91,6 +91,7 @@ TriangleMesh with_estimated_normals(const TriangleMesh& mesh) {
 struct Measured {
   std::vector<float> distance;
   std::vector<float> angle;  // NaN where a normal is undefined
+  std::vector<float> color;  // empty unless both surfaces have colours
 };
 
 // Samples are processed in fixed blocks; within a block each query starts
@@ -109,10 +110,13 @@ void for_each_in_blocks(std::size_t n, Query&& query) {
   });
 }
 
-Measured measure(const SurfaceSamples& samples, const TriangleBvh& other, float noise) {
+Measured measure(const SurfaceSamples& samples, const TriangleMesh& other_mesh,
+                 const TriangleBvh& other, float noise) {
   Measured m;
   m.distance.resize(samples.size());
   m.angle.resize(samples.size());
+  const bool colors = !samples.colors.empty() && other_mesh.has_colors();
+  if (colors) m.color.resize(samples.size());
   for_each_in_blocks(samples.size(), [&](std::size_t i, std::uint32_t hint) {
     const Vec3& n1 = samples.normals[i];
     ClosestPoint c = other.closest_point(samples.positions[i], n1, hint);
@@ -123,6 +127,13 @@ Measured measure(const SurfaceSamples& samples, const TriangleBvh& other, float 
       m.angle[i] = std::atan2(length(cross(n1, n2)), dot(n1, n2));
     } else {
       m.angle[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+    if (colors) {
+      const auto& t = other_mesh.triangles[c.triangle];
+      const auto& col = other_mesh.colors;
+      const auto& w = c.barycentric;
+      Vec3 there = col[t[0]] * w[0] + col[t[1]] * w[1] + col[t[2]] * w[2];
+      m.color[i] = length(samples.colors[i] - there);
     }
     return c.triangle;
   });
@@ -182,6 +193,19 @@ Deviation summarise(const Measured& m, std::size_t first_area, double diagonal) 
     }
     nd.variance = avar / double(acount);
   }
+
+  if (!m.color.empty()) {
+    ColorDeviation& cd = out.color;
+    cd.samples = n;
+    cd.max = *std::max_element(m.color.begin(), m.color.end());
+    double csum = 0, csum2 = 0;
+    for (std::size_t i = first_area; i < n; ++i) {
+      csum += m.color[i];
+      csum2 += double(m.color[i]) * m.color[i];
+    }
+    cd.mean = csum / count;
+    cd.rms = std::sqrt(csum2 / count);
+  }
   return out;
 }
 
@@ -217,9 +241,9 @@ CompareResult run(const TriangleMesh& a, const TriangleMesh& b, const CompareOpt
 
   auto area_start = [](const SurfaceSamples& s) { return s.vertex_samples + s.edge_samples; };
   result.a_to_b =
-      summarise(measure(samples_a, *bvh_b, noise), area_start(samples_a), result.diagonal);
+      summarise(measure(samples_a, b, *bvh_b, noise), area_start(samples_a), result.diagonal);
   result.b_to_a =
-      summarise(measure(samples_b, *bvh_a, noise), area_start(samples_b), result.diagonal);
+      summarise(measure(samples_b, a, *bvh_a, noise), area_start(samples_b), result.diagonal);
   result.hausdorff = std::max(result.a_to_b.max, result.b_to_a.max);
   result.hausdorff_pct = result.diagonal > 0 ? 100 * result.hausdorff / result.diagonal : 0;
 

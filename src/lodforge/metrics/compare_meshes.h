@@ -43,6 +43,16 @@ struct NormalDeviation {
   double variance = 0;  ///< definition 5.2.8 (population variance)
 };
 
+/// Distance in RGB (each channel in [0,1], Euclidean, so at most sqrt 3)
+/// between the colour at a sample and the colour interpolated at its closest
+/// point. Measured only when both meshes have vertex colours.
+struct ColorDeviation {
+  std::size_t samples = 0;  ///< 0: a mesh has no colours
+  double mean = 0;          ///< over the area samples, like Deviation::mean
+  double max = 0;           ///< over every sample
+  double rms = 0;
+};
+
 /// One-sided deviation E(S1, S2): samples on S1, distances to S2, in the
 /// meshes' units; the *_pct fields are percent of A's bounding-box diagonal.
 /// max and min run over every sample (vertices included); mean, rms and
@@ -60,6 +70,7 @@ struct Deviation {
   double mean_pct = 0;
   double rms_pct = 0;
   NormalDeviation normal;  ///< definition 5.2.6, samples on S1 against S2
+  ColorDeviation color;    ///< samples on S1 against S2, when both have colours
 };
 
 struct CompareResult {

@@ -57,6 +57,13 @@ struct Faces {
     }
   }
 
+  // Colour at barycentric (u, v, w) of triangle f (the mesh has colours).
+  Vec3 color_at(std::uint32_t f, float u, float v, float w) const {
+    const auto& t = mesh.triangles[f];
+    const auto& c = mesh.colors;
+    return c[t[0]] * u + c[t[1]] * v + c[t[2]] * w;
+  }
+
   // Normal at barycentric (u, v, w) of triangle f.
   Vec3 at(std::uint32_t f, float u, float v, float w) const {
     if (!smooth) return normal[f];
@@ -83,6 +90,7 @@ void add_vertex_samples(const Faces& faces, SurfaceSamples& out) {
     out.normals.push_back(faces.smooth ? normalized(mesh.normals[v]) : faces.normal[first[v]]);
     if (length_squared(out.normals.back()) == 0) out.normals.back() = faces.normal[first[v]];
     out.triangles.push_back(first[v]);
+    if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
     ++out.vertex_samples;
   }
 }
@@ -124,6 +132,7 @@ void add_edge_samples(const Faces& faces, std::size_t count, std::uint64_t seed,
   out.positions.resize(base + count);
   out.normals.resize(base + count);
   out.triangles.resize(base + count);
+  if (mesh.has_colors()) out.colors.resize(base + count);
   out.edge_samples = count;
   std::uint64_t stream = mix(seed ^ 0x6564676573ull);  // "edges"
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& range) {
@@ -145,6 +154,8 @@ void add_edge_samples(const Faces& faces, std::size_t count, std::uint64_t seed,
       out.positions[base + i] = p[t[0]] * w[0] + p[t[1]] * w[1] + p[t[2]] * w[2];
       out.normals[base + i] = faces.at(edges[e].triangle, w[0], w[1], w[2]);
       out.triangles[base + i] = edges[e].triangle;
+      if (mesh.has_colors())
+        out.colors[base + i] = faces.color_at(edges[e].triangle, w[0], w[1], w[2]);
     }
   });
 }
@@ -170,6 +181,7 @@ void add_area_samples(const Faces& faces, std::size_t count, std::uint64_t seed,
   out.positions.resize(base + count);
   out.normals.resize(base + count);
   out.triangles.resize(base + count);
+  if (mesh.has_colors()) out.colors.resize(base + count);
   std::uint64_t stream = mix(seed);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -189,6 +201,7 @@ void add_area_samples(const Faces& faces, std::size_t count, std::uint64_t seed,
       out.positions[base + i] = p[t[0]] * u + p[t[1]] * v + p[t[2]] * w;
       out.normals[base + i] = faces.at(f, u, v, w);
       out.triangles[base + i] = f;
+      if (mesh.has_colors()) out.colors[base + i] = faces.color_at(f, u, v, w);
     }
   });
 }
@@ -203,6 +216,7 @@ SurfaceSamples sample_surface(const TriangleMesh& mesh, const SampleOptions& opt
   out.positions.reserve(reserve);
   out.normals.reserve(reserve);
   out.triangles.reserve(reserve);
+  if (mesh.has_colors()) out.colors.reserve(reserve);
   if (options.vertices) add_vertex_samples(faces, out);
   if (options.edge_count) add_edge_samples(faces, options.edge_count, options.seed, out);
   add_area_samples(faces, options.count, options.seed, out);

@@ -23,9 +23,12 @@ struct SurfaceSamples {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;             ///< unit; zero where the triangle is degenerate
   std::vector<std::uint32_t> triangles;  ///< triangle each sample lies on
-  std::size_t vertex_samples = 0;        ///< how many of the first samples are vertices
-  std::size_t edge_samples = 0;          ///< how many edge samples follow them
-  double area = 0;                       ///< total surface area of the mesh
+  /// #S, the mesh's vertex colours interpolated at each sample; empty when
+  /// the mesh has no colours.
+  std::vector<Vec3> colors;
+  std::size_t vertex_samples = 0;  ///< how many of the first samples are vertices
+  std::size_t edge_samples = 0;    ///< how many edge samples follow them
+  double area = 0;                 ///< total surface area of the mesh
 
   std::size_t size() const { return positions.size(); }
 };
@@ -37,6 +40,8 @@ struct SurfaceSamples {
 /// from a counter-based generator keyed by (seed, i): the result does not
 /// depend on the number of threads.
 ///
+/// Colours, when the mesh has them, are interpolated like vertex normals
+/// (a vertex sample takes its vertex's colour).
 /// The normal of a sample interpolates the mesh's per-vertex normals when it
 /// has them (and options.vertex_normals), else it is the face normal. A vertex sample takes the
 /// first triangle using that vertex. Degenerate triangles get no area samples (their area is zero);

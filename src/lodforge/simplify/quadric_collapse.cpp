@@ -359,28 +359,34 @@ class Collapser {
   void collect_wedge_pairs(std::uint32_t u, std::uint32_t v);
   double attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q);
   void update_wedge_attributes(std::uint32_t v);
-  D3 position_of_corner(std::uint32_t t, int k) const { return pos_[tv_[3 * t + k]]; }
-  std::uint32_t* tris_begin(std::uint32_t p) { return refs_.data() + ref_start_[p]; }
-  const std::uint32_t* tris_begin(std::uint32_t p) const { return refs_.data() + ref_start_[p]; }
-  std::uint32_t tris_count(std::uint32_t p) const { return ref_count_[p]; }
+  D3 position_of_corner(std::uint32_t t, int k) const { return vx_[tv_[3 * t + k]].pos; }
+  std::uint32_t* tris_begin(std::uint32_t p) { return refs_.data() + vx_[p].ref_start; }
+  const std::uint32_t* tris_begin(std::uint32_t p) const { return refs_.data() + vx_[p].ref_start; }
+  std::uint32_t tris_count(std::uint32_t p) const { return vx_[p].ref_count; }
 
   const TriangleMesh& mesh_;
   const QuadricCollapseOptions& options_;
 
-  // Positions (welded vertices).
-  std::vector<D3> pos_;
-  std::vector<Quadric> quadric_;
-  std::vector<Kind> kind_;
-  std::vector<std::uint32_t> version_;
-  std::vector<std::uint8_t> vertex_alive_;
-  std::vector<std::uint32_t> first_wedge_;
-  std::vector<std::uint32_t> ref_start_, ref_count_;
+  // Positions (welded vertices): everything a collapse reads or writes per
+  // vertex in one 128-byte record, so that touching a vertex costs one or two
+  // cache misses instead of one per array (the collapse loop is bound by
+  // memory latency: collapses jump around the mesh in cost order).
+  struct alignas(64) Vertex {
+    Quadric q;
+    D3 pos;
+    std::uint32_t version = 0;
+    std::uint32_t ref_start = 0, ref_count = 0;  // its live triangles in refs_
+    std::uint32_t mark = 0;                      // scratch stamp
+    std::uint32_t first_wedge = kNone;
+    Kind kind = kFree;
+    // Set on both ends of a rejected collapse; a change next to such a vertex
+    // queues its edges again, since the change may have made them valid.
+    std::uint8_t rejected = 0;
+  };
+  static_assert(sizeof(Vertex) == 128);
+  std::vector<Vertex> vx_;
   std::vector<std::uint32_t> refs_;
-  std::vector<std::uint32_t> mark_;
   std::uint32_t stamp_ = 0;
-  // Set on both ends of a rejected collapse; a change next to such a vertex
-  // queues its edges again, since the change may have made them valid.
-  std::vector<std::uint8_t> rejected_;
 
   // Wedges (distinct position + attribute sets).
   std::vector<std::uint32_t> wedge_origin_;  // first input vertex of the wedge
@@ -461,8 +467,7 @@ void Collapser::build() {
     vertex_position[i] = table[slot];
   }
   const std::size_t np = position_first_input.size();
-  pos_.resize(np);
-  first_wedge_.assign(np, kNone);
+  vx_.resize(np);
   std::vector<std::uint32_t> last_input(np, kNone);
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t p = vertex_position[i];
@@ -479,8 +484,8 @@ void Collapser::build() {
       input_wedge_[i] = w;
       wedge_origin_.push_back(i);
       wedge_vertex_.push_back(p);
-      next_wedge_.push_back(first_wedge_[p]);
-      first_wedge_[p] = w;
+      next_wedge_.push_back(vx_[p].first_wedge);
+      vx_[p].first_wedge = w;
     }
   }
   const std::size_t nw = wedge_origin_.size();
@@ -488,7 +493,7 @@ void Collapser::build() {
   for (std::uint32_t w = 0; w < nw; ++w) wedge_parent_[w] = w;
   for (std::size_t p = 0; p < np; ++p) {
     const Vec3& q = mesh_.positions[position_first_input[p]];
-    pos_[p] = {q.x, q.y, q.z};
+    vx_[p].pos = {q.x, q.y, q.z};
   }
 
   // Triangles: drop those using a position twice.
@@ -514,23 +519,21 @@ void Collapser::build() {
   }
   for (std::size_t p = 0; p < np; ++p)
     if (used[p] || !mesh_.lines.empty()) {
-      const D3& q = pos_[p];
+      const D3& q = vx_[p].pos;
       if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
         throw DataError("quadric_collapse: vertex " + std::to_string(position_first_input[p]) +
                         " has a non-finite coordinate");
     }
 
   // Vertex -> triangle lists (CSR, later rewritten by appending).
-  ref_start_.assign(np, 0);
-  ref_count_.assign(np, 0);
   for (std::size_t t = 0; t < nf; ++t)
     if (tri_alive_[t])
-      for (int k = 0; k < 3; ++k) ++ref_count_[tv_[3 * t + k]];
+      for (int k = 0; k < 3; ++k) ++vx_[tv_[3 * t + k]].ref_count;
   std::uint32_t sum = 0;
   for (std::size_t p = 0; p < np; ++p) {
-    ref_start_[p] = sum;
-    sum += ref_count_[p];
-    ref_count_[p] = 0;
+    vx_[p].ref_start = sum;
+    sum += vx_[p].ref_count;
+    vx_[p].ref_count = 0;
   }
   refs_.reserve(std::size_t{sum} * 3);
   refs_.resize(sum);
@@ -538,14 +541,8 @@ void Collapser::build() {
     if (tri_alive_[t])
       for (int k = 0; k < 3; ++k) {
         std::uint32_t p = tv_[3 * t + k];
-        refs_[ref_start_[p] + ref_count_[p]++] = static_cast<std::uint32_t>(t);
+        refs_[vx_[p].ref_start + vx_[p].ref_count++] = static_cast<std::uint32_t>(t);
       }
-
-  version_.assign(np, 0);
-  vertex_alive_.assign(np, 1);
-  mark_.assign(np, 0);
-  rejected_.assign(np, 0);
-  kind_.assign(np, kFree);
 
   // Attribute channels, scaled so that a unit difference costs like a
   // displacement of weight x diagonal.
@@ -591,7 +588,7 @@ void Collapser::build() {
 // triangles running p -> o and o -> p are counted in scratch arrays indexed by
 // o (reset lazily by stamps), so a vertex costs O(valence).
 void Collapser::compute_kinds() {
-  const std::size_t np = pos_.size();
+  const std::size_t np = vx_.size();
   struct Corner {
     std::uint32_t next, prev;  // the corners after and before p
     std::uint32_t base;        // 3 * triangle
@@ -603,13 +600,13 @@ void Collapser::compute_kinds() {
   std::vector<std::uint32_t> count(np), fwd_at(np), bwd_at(np);
   const bool materials = mesh_.has_materials();
   for (std::uint32_t p = 0; p < np; ++p) {
-    if (ref_count_[p] == 0) {
-      kind_[p] = kLocked;
+    if (vx_[p].ref_count == 0) {
+      vx_[p].kind = kLocked;
       continue;
     }
     fan.clear();
     const std::uint32_t* ts = tris_begin(p);
-    for (std::uint32_t i = 0; i < ref_count_[p]; ++i) {
+    for (std::uint32_t i = 0; i < vx_[p].ref_count; ++i) {
       std::uint32_t base = 3 * ts[i];
       auto k = static_cast<std::uint32_t>(corner_of(&tv_[base], p));
       fan.push_back({tv_[base + kNext[k]], tv_[base + kPrev[k]], base, k});
@@ -618,7 +615,7 @@ void Collapser::compute_kinds() {
     for (std::uint32_t i = 0; i < fan.size(); ++i) {
       const Corner& c = fan[i];
       for (std::uint32_t o : {c.next, c.prev})
-        count[o] = mark_[o] == counted ? count[o] : 0, mark_[o] = counted;
+        count[o] = vx_[o].mark == counted ? count[o] : 0, vx_[o].mark = counted;
       count[c.next] += 1;
       fwd_at[c.next] = i;
       count[c.prev] += 1u << 16;
@@ -629,8 +626,8 @@ void Collapser::compute_kinds() {
     bool border = false, locked = false;
     for (const Corner& c : fan)
       for (std::uint32_t o : {c.next, c.prev}) {
-        if (mark_[o] == seen) continue;
-        mark_[o] = seen;
+        if (vx_[o].mark == seen) continue;
+        vx_[o].mark = seen;
         const std::uint32_t fwd = count[o] & 0xffffu, bwd = count[o] >> 16;
         if (fwd + bwd == 1) {
           ++features;
@@ -647,23 +644,22 @@ void Collapser::compute_kinds() {
         }
       }
     if (locked || (features != 0 && features != 2) || (border && options_.lock_border))
-      kind_[p] = kLocked;
+      vx_[p].kind = kLocked;
     else if (features == 2)
-      kind_[p] = kFeature;
+      vx_[p].kind = kFeature;
     else
-      kind_[p] = next_wedge_[first_wedge_[p]] == kNone ? kFree : kLocked;
+      vx_[p].kind = next_wedge_[vx_[p].first_wedge] == kNone ? kFree : kLocked;
   }
   for (const Segment& s : mesh_.lines)
     for (std::uint32_t i : s) {
       // Vertices of line segments stay where they are; look the position up
       // through the wedge.
-      kind_[wedge_vertex_[input_wedge_[i]]] = kLocked;
+      vx_[wedge_vertex_[input_wedge_[i]]].kind = kLocked;
     }
 }
 
 void Collapser::compute_quadrics() {
   const std::size_t nf = tri_alive_.size();
-  quadric_.assign(pos_.size(), Quadric{});
   if (attr_stride_ > 0) wedge_quadric_.assign(wedge_origin_.size() * attr_stride_, 0.0);
   const double border_weight = options_.border_weight;
   for (std::size_t t = 0; t < nf; ++t) {
@@ -677,16 +673,16 @@ void Collapser::compute_quadrics() {
     n = n * (1 / len);
     Quadric q;
     q.add_plane(n, -dot(n, p[0]), area);
-    for (int k = 0; k < 3; ++k) quadric_[tv_[3 * t + k]].add(q);
+    for (int k = 0; k < 3; ++k) vx_[tv_[3 * t + k]].q.add(q);
 
     // Penalty planes through feature edges, perpendicular to the face.
     if (border_weight > 0) {
       for (int k = 0; k < 3; ++k) {
         std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
-        if (kind_[a] == kFree || kind_[b] == kFree) continue;
+        if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool movable = false;
         if (!is_feature_edge(a, b, movable)) continue;
-        D3 edge = pos_[b] - pos_[a];
+        D3 edge = vx_[b].pos - vx_[a].pos;
         double l2 = norm2(edge);
         if (l2 <= 0) continue;
         D3 m = cross(edge, n);
@@ -694,9 +690,9 @@ void Collapser::compute_quadrics() {
         if (ml <= 0) continue;
         m = m * (1 / ml);
         Quadric pq;
-        pq.add_plane(m, -dot(m, pos_[a]), border_weight * l2);
-        quadric_[a].add(pq);
-        quadric_[b].add(pq);
+        pq.add_plane(m, -dot(m, vx_[a].pos), border_weight * l2);
+        vx_[a].q.add(pq);
+        vx_[b].q.add(pq);
       }
     }
 
@@ -753,7 +749,7 @@ void Collapser::compute_quadrics() {
 int Collapser::edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* tris) const {
   int n = 0;
   const std::uint32_t* ts = tris_begin(a);
-  for (std::uint32_t i = 0; i < ref_count_[a]; ++i) {
+  for (std::uint32_t i = 0; i < vx_[a].ref_count; ++i) {
     std::uint32_t t = ts[i];
     if (tv_[3 * t] == b || tv_[3 * t + 1] == b || tv_[3 * t + 2] == b) {
       if (n < 3) tris[n] = t;
@@ -785,7 +781,7 @@ bool Collapser::is_feature_edge(std::uint32_t a, std::uint32_t b, bool& movable)
 void Collapser::collect_wedge_pairs(std::uint32_t u, std::uint32_t v) {
   wedge_pairs_.clear();
   const std::uint32_t* ts = tris_begin(u);
-  for (std::uint32_t i = 0; i < ref_count_[u]; ++i) {
+  for (std::uint32_t i = 0; i < vx_[u].ref_count; ++i) {
     std::uint32_t t = ts[i];
     std::uint32_t wu = kNone, wv = kNone;
     for (int k = 0; k < 3; ++k) {
@@ -834,7 +830,7 @@ double Collapser::attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q
     }
   };
   const std::size_t s = attr_stride_;
-  for (std::uint32_t w = first_wedge_[v]; w != kNone; w = next_wedge_[w]) {
+  for (std::uint32_t w = vx_[v].first_wedge; w != kNone; w = next_wedge_[w]) {
     const double* wq = &wedge_quadric_[w * s];
     bool any = false;
     for (auto& pr : wedge_pairs_)
@@ -846,7 +842,7 @@ double Collapser::attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q
       }
     add_reduced(any ? merged.data() : wq);
   }
-  for (std::uint32_t w = first_wedge_[u]; w != kNone; w = next_wedge_[w]) {
+  for (std::uint32_t w = vx_[u].first_wedge; w != kNone; w = next_wedge_[w]) {
     bool paired = false;
     for (auto& pr : wedge_pairs_) paired |= pr.first == w;
     if (!paired) add_reduced(&wedge_quadric_[w * s]);
@@ -865,26 +861,26 @@ double Collapser::attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q
 /// |            |            | well conditioned and near the edge, else at    |
 /// |            |            | the best point of the edge                     |
 bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
-  bool ma = kind_[a] == kFree, mb = kind_[b] == kFree;
-  if (kind_[a] == kFeature || kind_[b] == kFeature) {
+  bool ma = vx_[a].kind == kFree, mb = vx_[b].kind == kFree;
+  if (vx_[a].kind == kFeature || vx_[b].kind == kFeature) {
     bool movable = false;
     bool feature = is_feature_edge(a, b, movable);
-    if (kind_[a] == kFeature) ma = feature && movable;
-    if (kind_[b] == kFeature) mb = feature && movable;
+    if (vx_[a].kind == kFeature) ma = feature && movable;
+    if (vx_[b].kind == kFeature) mb = feature && movable;
     if (ma && mb && !feature) ma = mb = false;
   }
   if (!ma && !mb) return false;
   std::uint32_t u = a, v = b;
   if (!ma) std::swap(u, v);
-  Quadric q = quadric_[u];
-  q.add(quadric_[v]);
+  Quadric q = vx_[u].q;
+  q.add(vx_[v].q);
   if (attr_stride_ > 0) {
     collect_wedge_pairs(u, v);
     attribute_quadric(u, v, q);
   }
-  D3 w = pos_[v];
+  D3 w = vx_[v].pos;
   if (ma && mb) {
-    D3 pa = pos_[u], pb = pos_[v];
+    D3 pa = vx_[u].pos, pb = vx_[v].pos;
     D3 mid = (pa + pb) * 0.5;
     double l2 = norm2(pb - pa);
     // Adjugate of the symmetric A: six cofactors give both det and A^-1.
@@ -932,31 +928,32 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
 }
 
 /// Queues the edges of `a`; `collect_rejected` notes neighbours flagged in
-/// rejected_.
+/// Vertex::rejected.
 void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
   // In a manifold fan every neighbour follows `a` in exactly one triangle, so
   // the corners after `a` are the neighbours; a corner before `a` is one too
   // only where the fan is open (a border), which the marks find.
   const std::uint32_t s = ++stamp_;
   const std::uint32_t* ts = tris_begin(a);
-  const std::uint32_t n = ref_count_[a];
+  const std::uint32_t n = vx_[a].ref_count;
   auto push = [&](std::uint32_t b) {
-    if (collect_rejected && rejected_[b]) requeue_.push_back(b);
+    if (collect_rejected && vx_[b].rejected) requeue_.push_back(b);
     Collapse c;
-    if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
+    if (evaluate(a, b, c))
+      heap_.push({heap_key(c.cost, false), a, b, vx_[a].version + vx_[b].version});
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t* c = &tv_[3 * ts[i]];
     std::uint32_t b = c[kNext[corner_of(c, a)]];
-    if (mark_[b] == s) continue;  // only in non-manifold or inconsistent fans
-    mark_[b] = s;
+    if (vx_[b].mark == s) continue;  // only in non-manifold or inconsistent fans
+    vx_[b].mark = s;
     push(b);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t* c = &tv_[3 * ts[i]];
     std::uint32_t b = c[kPrev[corner_of(c, a)]];
-    if (mark_[b] == s) continue;
-    mark_[b] = s;
+    if (vx_[b].mark == s) continue;
+    vx_[b].mark = s;
     push(b);
   }
 }
@@ -972,17 +969,18 @@ void Collapser::fill_heap() {
     for (int k = 0; k < 3; ++k) {
       std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
       if (a > b) {
-        if (kind_[a] == kFree || kind_[b] == kFree) continue;
+        if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool twin = false;
         const std::uint32_t* ts = tris_begin(b);
-        for (std::uint32_t i = 0; i < ref_count_[b] && !twin; ++i) {
+        for (std::uint32_t i = 0; i < vx_[b].ref_count && !twin; ++i) {
           const std::uint32_t* c = &tv_[3 * ts[i]];
           twin = (c[0] == b && c[1] == a) || (c[1] == b && c[2] == a) || (c[2] == b && c[0] == a);
         }
         if (twin) continue;
       }
       Collapse c;
-      if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
+      if (evaluate(a, b, c))
+        heap_.push({heap_key(c.cost, false), a, b, vx_[a].version + vx_[b].version});
     }
   }
   collapses_since_fill_ = 0;
@@ -1002,7 +1000,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   const std::uint32_t s_common = ++stamp_;
   const std::uint32_t* tu = tris_begin(u);
   const std::uint32_t* tvv = tris_begin(v);
-  const std::uint32_t nu = ref_count_[u], nv = ref_count_[v];
+  const std::uint32_t nu = vx_[u].ref_count, nv = vx_[v].ref_count;
   int edge_tris = 0;
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
@@ -1010,7 +1008,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     for (int k = 0; k < 3; ++k) {
       std::uint32_t x = tv_[3 * t + k];
       has_v |= x == v;
-      mark_[x] = s_u;  // u too: it is skipped below
+      vx_[x].mark = s_u;  // u too: it is skipped below
     }
     edge_tris += has_v;
   }
@@ -1020,9 +1018,9 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     for (int k = 0; k < 3; ++k) {
       // Branch-free: which corners match depends on the data.
       std::uint32_t x = tv_[3 * t + k];
-      bool hit = (mark_[x] == s_u) & (x != v) & (x != u);
+      bool hit = (vx_[x].mark == s_u) & (x != v) & (x != u);
       common += hit;
-      mark_[x] = hit ? s_common : mark_[x];
+      vx_[x].mark = hit ? s_common : vx_[x].mark;
     }
   }
   if (edge_tris == 0 || common != edge_tris) return Outcome::kRejected;
@@ -1035,14 +1033,14 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   bool over_budget = false;
   // The bound of a triangle that keeps its place in the mesh grows by the
   // distance its moved corner travels (see the header).
-  const D3 pu = pos_[u], pv = pos_[v];
+  const D3 pu = vx_[u].pos, pv = vx_[v].pos;
   const double move_u = std::sqrt(norm2(w - pu)), move_v = std::sqrt(norm2(w - pv));
   auto check = [&](std::uint32_t t, std::uint32_t moved, D3 pk, double move) {
     const std::uint32_t* c = &tv_[3 * t];
     const int k = corner_of(c, moved);
     // Corners (moved, a, b) in the triangle's order; both normals are taken
     // against the edge a -> b that stays.
-    const D3 pa = pos_[c[kNext[k]]], pb = pos_[c[kPrev[k]]];
+    const D3 pa = vx_[c[kNext[k]]].pos, pb = vx_[c[kPrev[k]]].pos;
     const D3 e = pb - pa, da_old = pa - pk, da_new = pa - w;
     const D3 n_old = cross(da_old, e), n_new = cross(da_new, e);
     double area2_new = norm2(n_new), area2_old = norm2(n_old);
@@ -1076,7 +1074,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     const std::uint32_t x = c[kNext[k]], y = c[kPrev[k]];
     if (x == v || y == v) continue;
     // (u, x, y) becomes (v, x, y): a duplicate if v already has a triangle on x and y.
-    if (mark_[x] == s_common && mark_[y] == s_common)
+    if (vx_[x].mark == s_common && vx_[y].mark == s_common)
       for (std::uint32_t j = 0; j < nv; ++j) {
         std::uint32_t t2 = tvv[j];
         int hits = 0;
@@ -1094,14 +1092,14 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
 
   // Allowed: perform it. Wedges of u merge into the wedges of v they meet on
   // the edge triangles; others move to v as they are.
-  const std::uint32_t fu = first_wedge_[u], fv = first_wedge_[v];
+  const std::uint32_t fu = vx_[u].first_wedge, fv = vx_[v].first_wedge;
   if (attr_stride_ == 0 && next_wedge_[fu] == kNone && next_wedge_[fv] == kNone) {
     // One wedge on each side (no attribute seams here): they merge.
     wedge_pairs_.assign(1, {fu, fv});
   } else {
     collect_wedge_pairs(u, v);
   }
-  for (std::uint32_t wu = first_wedge_[u]; wu != kNone;) {
+  for (std::uint32_t wu = vx_[u].first_wedge; wu != kNone;) {
     std::uint32_t next = next_wedge_[wu];
     std::uint32_t target = kNone;
     for (auto& pr : wedge_pairs_)
@@ -1115,12 +1113,12 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       }
     } else {
       wedge_vertex_[wu] = v;
-      next_wedge_[wu] = first_wedge_[v];
-      first_wedge_[v] = wu;
+      next_wedge_[wu] = vx_[v].first_wedge;
+      vx_[v].first_wedge = wu;
     }
     wu = next;
   }
-  first_wedge_[u] = kNone;
+  vx_[u].first_wedge = kNone;
 
   for (auto& [t, e] : new_errors_) tri_error_[t] = e;
   // v's new list: its own triangles but the edge ones, then u's that stay.
@@ -1139,13 +1137,13 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       --live_triangles_;
       std::uint32_t x = c[0] != u && c[0] != v ? c[0] : c[1] != u && c[1] != v ? c[1] : c[2];
       std::uint32_t* xs = tris_begin(x);
-      std::uint32_t nx = ref_count_[x];
+      std::uint32_t nx = vx_[x].ref_count;
       for (std::uint32_t j = 0; j < nx; ++j)
         if (xs[j] == t) {
           xs[j] = xs[--nx];
           break;
         }
-      ref_count_[x] = nx;
+      vx_[x].ref_count = nx;
       continue;
     }
     for (int k = 0; k < 3; ++k)
@@ -1156,20 +1154,19 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       }
     new_list_.push_back(t);
   }
-  if (new_list_.size() <= ref_count_[v]) {
-    std::copy(new_list_.begin(), new_list_.end(), refs_.begin() + ref_start_[v]);
+  if (new_list_.size() <= vx_[v].ref_count) {
+    std::copy(new_list_.begin(), new_list_.end(), refs_.begin() + vx_[v].ref_start);
   } else {
-    ref_start_[v] = static_cast<std::uint32_t>(refs_.size());
+    vx_[v].ref_start = static_cast<std::uint32_t>(refs_.size());
     refs_.insert(refs_.end(), new_list_.begin(), new_list_.end());
   }
-  ref_count_[v] = static_cast<std::uint32_t>(new_list_.size());
-  ref_count_[u] = 0;
+  vx_[v].ref_count = static_cast<std::uint32_t>(new_list_.size());
+  vx_[u].ref_count = 0;
 
-  quadric_[v].add(quadric_[u]);
-  pos_[v] = w;
-  vertex_alive_[u] = 0;
-  ++version_[u];
-  ++version_[v];
+  vx_[v].q.add(vx_[u].q);
+  vx_[v].pos = w;
+  ++vx_[u].version;
+  ++vx_[v].version;
   if (attr_stride_ > 0) update_wedge_attributes(v);
   return Outcome::kDone;
 }
@@ -1177,8 +1174,8 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
 /// The attributes of v's wedges at v's (new) position: the minimisers of
 /// their attribute quadrics.
 void Collapser::update_wedge_attributes(std::uint32_t v) {
-  const D3 p = pos_[v];
-  for (std::uint32_t w = first_wedge_[v]; w != kNone; w = next_wedge_[w]) {
+  const D3 p = vx_[v].pos;
+  for (std::uint32_t w = vx_[v].first_wedge; w != kNone; w = next_wedge_[w]) {
     const double* wq = &wedge_quadric_[std::size_t{w} * attr_stride_];
     double area = wq[10];
     if (area <= 0) continue;
@@ -1219,11 +1216,12 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     if (heap_.size() > 8 * live_triangles_ + 1024) {
       // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
       // dropping them keeps the heap shallow and in cache as the mesh shrinks.
-      heap_.drop_if([&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; });
+      heap_.drop_if(
+          [&](const HeapEntry& x) { return vx_[x.a].version + vx_[x.b].version != x.stamp; });
     }
     const HeapEntry e = heap_.pop();
     const bool deferred = is_deferred(e);
-    if (version_[e.a] + version_[e.b] != e.stamp) continue;
+    if (vx_[e.a].version + vx_[e.b].version != e.stamp) continue;
     Collapse c;
     if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than
@@ -1241,7 +1239,7 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       continue;
     }
     if (outcome == Outcome::kRejected) {
-      rejected_[e.a] = rejected_[e.b] = 1;
+      vx_[e.a].rejected = vx_[e.b].rejected = 1;
       continue;
     }
     ++collapses_since_fill_;
@@ -1249,7 +1247,7 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     push_edges(c.v, true);
     for (std::size_t i = 0; i < requeue_.size(); ++i) {
       std::uint32_t n = requeue_[i];
-      rejected_[n] = 0;
+      vx_[n].rejected = 0;
       push_edges(n);
     }
   }
@@ -1300,7 +1298,7 @@ SimplifyResult Collapser::snapshot() const {
   for (std::size_t w = 0; w < nw; ++w) {
     std::uint32_t o = out_index[w];
     if (o == kNone) continue;
-    const D3& p = pos_[wedge_vertex_[w]];
+    const D3& p = vx_[wedge_vertex_[w]].pos;
     m.positions[o] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
     r.vertex_map[o] = wedge_origin_[w];
     int c = 0;

@@ -159,7 +159,10 @@ struct Quadric {
 };
 
 /// The area-weighted quadric of the plane of triangle (p, q, r): area x the
-/// squared distance to the plane. Zero for a degenerate triangle.
+/// squared distance to the plane. Zero for a degenerate triangle. With
+/// n = (q - p) x (r - p) unnormalised, area = |n| / 2 and the unit normal
+/// n / |n|, every coefficient is a product of n and n.p over 2 |n|: one
+/// square root and one division.
 Quadric plane_quadric(const Vec3& p, const Vec3& q, const Vec3& r) {
   double ux = double(q.x) - p.x, uy = double(q.y) - p.y, uz = double(q.z) - p.z;
   double vx = double(r.x) - p.x, vy = double(r.y) - p.y, vz = double(r.z) - p.z;
@@ -167,21 +170,19 @@ Quadric plane_quadric(const Vec3& p, const Vec3& q, const Vec3& r) {
   double len = std::sqrt(nx * nx + ny * ny + nz * nz);
   Quadric k;
   if (!(len > 0)) return k;
-  double area = 0.5 * len;
-  nx /= len;
-  ny /= len;
-  nz /= len;
-  double d = -(nx * p.x + ny * p.y + nz * p.z);
-  k.a00 = area * nx * nx;
-  k.a01 = area * nx * ny;
-  k.a02 = area * nx * nz;
-  k.a11 = area * ny * ny;
-  k.a12 = area * ny * nz;
-  k.a22 = area * nz * nz;
-  k.b0 = -area * d * nx;
-  k.b1 = -area * d * ny;
-  k.b2 = -area * d * nz;
-  k.c = area * d * d;
+  const double s = 0.5 / len;
+  const double d = -(nx * p.x + ny * p.y + nz * p.z);  // |n| x the plane's offset
+  const double sx = s * nx, sy = s * ny, sz = s * nz;
+  k.a00 = sx * nx;
+  k.a01 = sx * ny;
+  k.a02 = sx * nz;
+  k.a11 = sy * ny;
+  k.a12 = sy * nz;
+  k.a22 = sz * nz;
+  k.b0 = -d * sx;
+  k.b1 = -d * sy;
+  k.b2 = -d * sz;
+  k.c = s * d * d;
   return k;
 }
 
@@ -404,10 +405,6 @@ struct Weights {
   double area = 0, volume = 0, mean = 0, quadric = 0;
 };
 
-/// Per triangle of a level: n = (b - a) x (c - a) (twice the area normal) and
-/// |n|. Single precision: only differences of nearby float positions enter.
-using TriangleNormal = std::array<float, 4>;
-
 /// The triangles of a level around each cell of the next: for cell j, the
 /// entries [start[j], start[j + 1]) of `entry`, each 4 x triangle + the index
 /// of its one corner inside the cell (0, 1, 2), or + 3 when two or three
@@ -417,10 +414,15 @@ struct CellFaces {
   std::vector<std::uint32_t> start;
   std::vector<std::uint32_t> entry;
 
+  /// Lists only the cells with `wanted[cell]` (the others get empty lists).
   void build(std::span<const Triangle> tris, std::span<const std::uint32_t> cell_of,
-             std::size_t cells) {
+             std::span<const char> wanted) {
+    const std::size_t cells = wanted.size();
     start.assign(cells + 1, 0);
-    auto visit = [&](auto&& add) {
+    auto visit = [&](auto&& add_any) {
+      auto add = [&](std::uint32_t cell, std::uint32_t e) {
+        if (wanted[cell]) add_any(cell, e);
+      };
       for (std::size_t f = 0; f < tris.size(); ++f) {
         const auto g = static_cast<std::uint32_t>(4 * f);
         const std::uint32_t a = cell_of[tris[f][0]], b = cell_of[tris[f][1]],
@@ -452,8 +454,9 @@ struct CellFaces {
 /// What every cell of a level reads.
 struct LevelContext {
   const Cut& prev;
-  std::span<const TriangleNormal> normals;  ///< empty unless area or volume is weighted
-  const CellFaces& faces;
+  /// The triangles around each cell of several vertices; null when neither
+  /// area nor volume is weighted or the level has no triangle.
+  const CellFaces* faces;
   Weights weights;
 };
 
@@ -536,12 +539,20 @@ struct Scratch {
   /// corners inside collapse.
   std::vector<float> ex, ey, ez, rx, ry, rz;
   std::size_t tris = 0, edges = 0;
-  std::vector<std::uint32_t> order;
-  std::vector<Vec3> candidate;
-  std::vector<std::uint32_t> candidate_orig;
-  std::vector<float> cx, cy, cz;    ///< candidates, padded to a multiple of kLanes
-  std::vector<float> area, volume;  ///< per padded candidate
-  std::vector<std::array<double, 4>> score;
+  std::vector<std::uint32_t> order;  ///< a large cell's vertices, nearest the mean first
+  /// The candidates (the cell's vertices, then Lindstrom's point), their
+  /// input vertices and scores (area, volume, mean, quadric); fixed arrays:
+  /// no allocation or size bookkeeping per cell.
+  std::size_t n = 0;
+  std::array<Vec3, kMaxCandidates + 1> candidate;
+  std::array<std::uint32_t, kMaxCandidates + 1> candidate_orig;
+  std::array<std::array<double, 4>, kMaxCandidates + 1> score;
+  std::size_t m = 0;                                        ///< contenders
+  std::array<std::uint32_t, kMaxCandidates + 1> contender;  ///< candidates that can still win
+  /// The contenders relative to the cell's mean, padded to a multiple of
+  /// kLanes, and their area and volume sums.
+  static constexpr std::size_t kPadded = (kMaxCandidates + 1 + kLanes - 1) / kLanes * kLanes;
+  std::array<float, kPadded> cx, cy, cz, area, volume;
 
   void reserve_faces(std::size_t n) {
     if (nx.size() >= n) return;
@@ -549,13 +560,9 @@ struct Scratch {
   }
 };
 
-/// For each padded candidate k: area[k] = sum over the edges of
-/// |p x r - x_k x (r - p)| and volume[k] = sum over the triangles of
-/// |d - n . x_k|.
-void score_faces(Scratch& s, bool area, bool volume) {
-  const std::size_t n = s.cx.size();
-  s.area.resize(n);
-  s.volume.resize(n);
+/// For each of the first n (a multiple of kLanes) padded candidates k: area[k] = sum over the edges
+/// of |p x r - x_k x (r - p)| and volume[k] = sum over the triangles of |d - n . x_k|.
+void score_faces(Scratch& s, std::size_t n, bool area, bool volume) {
   for (std::size_t g = 0; g < n; g += kLanes) {
     const F4 x = F4::load(&s.cx[g]), y = F4::load(&s.cy[g]), z = F4::load(&s.cz[g]);
     if (area) {
@@ -579,14 +586,29 @@ void score_faces(Scratch& s, bool area, bool volume) {
   }
 }
 
+/// What choose_representative decided for a cell: its representative's
+/// position and the input vertex whose attributes it takes.
+struct Choice {
+  Vec3 pos;
+  std::uint32_t orig = kNone;
+};
+
 /// The representative of cell `cell` holding vertices [begin, end) of the
-/// previous level: its position and the input vertex whose attributes it
-/// takes. `cell_lo` and `cell_size` bound the cell (for clamping Lindstrom's
-/// point).
-std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, std::uint32_t cell,
-                                                     std::uint32_t begin, std::uint32_t end,
-                                                     const Vec3& cell_lo, float cell_size,
-                                                     const Quadric& q, Scratch& s) {
+/// previous level. `has_faces`: a vertex of the cell is a corner of a
+/// triangle. `cell_lo` and `cell_size` bound the cell (for clamping
+/// Lindstrom's point).
+///
+/// The quadric term is cheap (one 4x4 form per candidate), the area and
+/// volume terms cost a pass over the triangles around the cell per
+/// candidate. Each normalised term lies in [0, 1], so a candidate whose
+/// weighted quadric term exceeds the best one by more than the sum of the
+/// other weights cannot win, whatever its area, volume and distance to the
+/// mean: only the remaining candidates (the contenders) are scored by area
+/// and volume, and those two terms are normalised over the contenders. When
+/// one contender is left it wins without looking at a triangle.
+Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::uint32_t begin,
+                             std::uint32_t end, bool has_faces, const Vec3& cell_lo,
+                             float cell_size, const Quadric& q, Scratch& s) {
   const Cut& prev = ctx.prev;
   // Weighted mean: the weights are the coordinates each vertex stands for.
   double mx = 0, my = 0, mz = 0, total = 0;
@@ -606,38 +628,16 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
   };
   const Vec3 origin{float(mx), float(my), float(mz)};
 
-  // The triangles of the previous level that use a vertex of the cell.
-  const std::uint32_t first = ctx.faces.start[cell], last = ctx.faces.start[cell + 1];
-  const bool faces = last > first;
-  double area_before = 0;
-  const bool measure_faces = faces && !ctx.normals.empty();
-  if (measure_faces) {
-    s.reserve_faces(last - first);
-    s.tris = s.edges = 0;
-    for (std::uint32_t k = first; k < last; ++k) {
-      const std::uint32_t f = ctx.faces.entry[k] >> 2, inside = ctx.faces.entry[k] & 3;
-      const TriangleNormal& n = ctx.normals[f];
-      const Triangle& t = prev.tris[f];
-      area_before += 0.5 * double(n[3]);
-      const Vec3 a = prev.pos[t[0]] - origin;
-      const std::size_t i = s.tris++;
-      s.nx[i] = n[0], s.ny[i] = n[1], s.nz[i] = n[2];
-      s.nd[i] = n[0] * a.x + n[1] * a.y + n[2] * a.z;
-      if (inside == 3) continue;
-      // The corners after and before the inside one keep the orientation.
-      const Vec3 p = prev.pos[t[inside == 0 ? 1 : 0]] - origin;
-      const Vec3 r = prev.pos[t[inside == 2 ? 1 : 2]] - origin;
-      const Vec3 pr = cross(p, r), d = r - p;
-      const std::size_t e = s.edges++;
-      s.ex[e] = pr.x, s.ey[e] = pr.y, s.ez[e] = pr.z;
-      s.rx[e] = d.x, s.ry[e] = d.y, s.rz[e] = d.z;
-    }
-  }
-
   // Candidates: the cell's vertices (at most kMaxCandidates, nearest the mean).
-  s.order.resize(end - begin);
-  std::iota(s.order.begin(), s.order.end(), begin);
-  if (s.order.size() > kMaxCandidates) {
+  s.n = 0;
+  auto add_candidate = [&](const Vec3& p, std::uint32_t orig) {
+    s.candidate[s.n] = p;
+    s.candidate_orig[s.n] = orig;
+    ++s.n;
+  };
+  if (end - begin > kMaxCandidates) {
+    s.order.resize(end - begin);
+    std::iota(s.order.begin(), s.order.end(), begin);
     std::nth_element(s.order.begin(), s.order.begin() + kMaxCandidates, s.order.end(),
                      [&](std::uint32_t a, std::uint32_t b) {
                        double da = mean_distance(prev.pos[a]), db = mean_distance(prev.pos[b]);
@@ -645,12 +645,9 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
                      });
     s.order.resize(kMaxCandidates);
     std::sort(s.order.begin(), s.order.end());
-  }
-  s.candidate.clear();
-  s.candidate_orig.clear();
-  for (std::uint32_t i : s.order) {
-    s.candidate.push_back(prev.pos[i]);
-    s.candidate_orig.push_back(prev.orig[i]);
+    for (std::uint32_t i : s.order) add_candidate(prev.pos[i], prev.orig[i]);
+  } else {
+    for (std::uint32_t i = begin; i < end; ++i) add_candidate(prev.pos[i], prev.orig[i]);
   }
 
   // | cell has triangles | quadric weight | heuristics used                         |
@@ -658,7 +655,7 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
   // | no (line set)      | any            | weighted mean alone                     |
   // | yes                | 0              | area, volume, mean (the thesis)         |
   // | yes                | > 0            | all four, Lindstrom's point a candidate |
-  const Weights use = faces ? ctx.weights : Weights{0, 0, 1, 0};
+  const Weights use = has_faces ? ctx.weights : Weights{0, 0, 1, 0};
   if (use.quadric > 0) {
     auto x = quadric_minimum(q, {mx, my, mz});
     Vec3 p{float(x[0]), float(x[1]), float(x[2])};
@@ -671,42 +668,86 @@ std::pair<Vec3, std::uint32_t> choose_representative(const LevelContext& ctx, st
         float d = length_squared(prev.pos[i] - p);
         if (d < best) best = d, nearest = i;
       }
-      s.candidate.push_back(p);
-      s.candidate_orig.push_back(prev.orig[nearest]);
+      add_candidate(p, prev.orig[nearest]);
     }
   }
 
-  const std::size_t n = s.candidate.size();
-  if (measure_faces && (use.area > 0 || use.volume > 0)) {
-    const std::size_t padded = (n + kLanes - 1) / kLanes * kLanes;
-    s.cx.resize(padded);
-    s.cy.resize(padded);
-    s.cz.resize(padded);
-    for (std::size_t k = 0; k < padded; ++k) {
-      const Vec3 r = s.candidate[std::min(k, n - 1)] - origin;
-      s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
-    }
-    score_faces(s, use.area > 0, use.volume > 0);
-  }
-  s.score.assign(n, {0, 0, 0, 0});
+  // The terms that need no triangle, and the contenders.
+  const std::size_t n = s.n;
   std::array<double, 4> largest{0, 0, 0, 0};
+  double least_quadric = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& x = s.candidate[k];
     auto& h = s.score[k];
-    if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[k]) - area_before);
-    if (use.volume > 0) h[1] = double(s.volume[k]) / 6;
+    h = {0, 0, 0, 0};
     if (use.mean > 0) h[2] = mean_distance(x);
     if (use.quadric > 0) h[3] = q(x.x, x.y, x.z);
-    for (int i = 0; i < 4; ++i) largest[i] = std::max(largest[i], h[i]);
+    largest[2] = std::max(largest[2], h[2]);
+    largest[3] = std::max(largest[3], h[3]);
+    least_quadric = std::min(least_quadric, h[3]);
   }
+  s.m = 0;
+  if (use.quadric > 0 && largest[3] > 0) {
+    const double slack = (use.area + use.volume + (largest[2] > 0 ? use.mean : 0)) * largest[3];
+    for (std::size_t k = 0; k < n; ++k)
+      if (use.quadric * (s.score[k][3] - least_quadric) <= slack)
+        s.contender[s.m++] = static_cast<std::uint32_t>(k);
+  } else {
+    for (std::size_t k = 0; k < n; ++k) s.contender[s.m++] = static_cast<std::uint32_t>(k);
+  }
+  const std::size_t m = s.m;
+  const bool measure = ctx.faces != nullptr && (use.area > 0 || use.volume > 0);
+  if (measure && m > 1) {
+    // The triangles of the previous level that use a vertex of the cell.
+    const std::uint32_t first = ctx.faces->start[cell], last = ctx.faces->start[cell + 1];
+    assert(last > first);
+    double area_before = 0;
+    s.reserve_faces(last - first);
+    s.tris = s.edges = 0;
+    for (std::uint32_t k = first; k < last; ++k) {
+      const std::uint32_t f = ctx.faces->entry[k] >> 2, inside = ctx.faces->entry[k] & 3;
+      const Triangle& t = prev.tris[f];
+      const Vec3 a = prev.pos[t[0]] - origin, b = prev.pos[t[1]] - origin,
+                 c = prev.pos[t[2]] - origin;
+      const Vec3 nrm = cross(b - a, c - a);
+      area_before += 0.5 * double(length(nrm));
+      const std::size_t i = s.tris++;
+      s.nx[i] = nrm.x, s.ny[i] = nrm.y, s.nz[i] = nrm.z;
+      s.nd[i] = dot(nrm, a);
+      if (inside == 3) continue;
+      // The corners after and before the inside one keep the orientation.
+      const Vec3& p = inside == 0 ? b : a;
+      const Vec3& r = inside == 2 ? b : c;
+      const Vec3 pr = cross(p, r), d = r - p;
+      const std::size_t e = s.edges++;
+      s.ex[e] = pr.x, s.ey[e] = pr.y, s.ez[e] = pr.z;
+      s.rx[e] = d.x, s.ry[e] = d.y, s.rz[e] = d.z;
+    }
+    const std::size_t padded = (m + kLanes - 1) / kLanes * kLanes;
+    for (std::size_t k = 0; k < padded; ++k) {
+      const Vec3 r = s.candidate[s.contender[std::min(k, m - 1)]] - origin;
+      s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
+    }
+    score_faces(s, padded, use.area > 0, use.volume > 0);
+    for (std::size_t c = 0; c < m; ++c) {
+      auto& h = s.score[s.contender[c]];
+      if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[c]) - area_before);
+      if (use.volume > 0) h[1] = double(s.volume[c]) / 6;
+      largest[0] = std::max(largest[0], h[0]);
+      largest[1] = std::max(largest[1], h[1]);
+    }
+  }
+  if (m == 1) return {s.candidate[s.contender[0]], s.candidate_orig[s.contender[0]]};
   const double weight[4] = {use.area, use.volume, use.mean, use.quadric};
-  std::size_t best = 0;
+  double factor[4];
+  for (int i = 0; i < 4; ++i)
+    factor[i] = weight[i] > 0 && largest[i] > 0 ? weight[i] / largest[i] : 0;
+  std::size_t best = s.contender[0];
   double best_score = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k) {
-    double score = 0;
-    for (int i = 0; i < 4; ++i)
-      if (weight[i] > 0 && largest[i] > 0) score += weight[i] * s.score[k][i] / largest[i];
-    if (score < best_score) best_score = score, best = k;
+  for (std::size_t c = 0; c < m; ++c) {
+    const auto& h = s.score[s.contender[c]];
+    const double score = factor[0] * h[0] + factor[1] * h[1] + factor[2] * h[2] + factor[3] * h[3];
+    if (score < best_score) best_score = score, best = s.contender[c];
   }
   return {s.candidate[best], s.candidate_orig[best]};
 }
@@ -918,16 +959,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   }
   node_of = {};
   order = {};
-  // Each distinct triangle's plane quadric goes to its three corners (level 0
-  // positions are the input's).
-  if (quadrics) {
-    cut.quadric.assign(cut.size(), Quadric{});
-    for (const Triangle& t : cut.tris) {
-      Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
-      for (std::uint32_t v : t) cut.quadric[v] += k;
-    }
-  }
-
   std::vector<SimplifyResult> chain;
   const std::size_t input_tris = mesh.triangle_count();
   const bool count_target = options.target.triangles > 0 || options.target.ratio > 0;
@@ -952,7 +983,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
 
   std::vector<std::uint32_t> cell_of;
   std::vector<std::uint32_t> cell_begin;
-  std::vector<TriangleNormal> normals;
+  std::vector<char> corner, wanted;
   CellFaces cell_faces;
   tbb::enumerable_thread_specific<Scratch> scratches;
   std::array<std::size_t, kMaxDepth + 1> histogram{};
@@ -998,46 +1029,64 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     next.weight.resize(cells);
     next.orig.resize(cells);
     next.code.resize(cells);
-    if (quadrics) next.quadric.resize(cells);
-    const bool measure = !cut.tris.empty() && (weights.area > 0 || weights.volume > 0);
-    if (measure) {
-      normals.resize(cut.tris.size());
-      for_chunks(cut.tris.size(), [&](std::size_t lo, std::size_t hi) {
-        for (std::size_t f = lo; f < hi; ++f) {
-          const Triangle& t = cut.tris[f];
-          const Vec3 n = cross(cut.pos[t[1]] - cut.pos[t[0]], cut.pos[t[2]] - cut.pos[t[0]]);
-          normals[f] = {n.x, n.y, n.z, length(n)};
-        }
-      });
-    } else {
-      normals.clear();
+    // Each cell's quadric: the sum of its vertices' (a vertex's is the sum of
+    // the plane quadrics of the input triangles around it). Level 0 keeps
+    // none: the first level adds each distinct triangle's plane quadric to
+    // the cells of its three corners directly (level 0 positions are the
+    // input's), which writes a third of the memory.
+    const bool quadrics_from_triangles = quadrics && cut.quadric.empty();
+    if (quadrics) next.quadric.assign(cells, Quadric{});
+    if (quadrics_from_triangles) {
+      for (const Triangle& t : cut.tris) {
+        const Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
+        for (std::uint32_t v : t) next.quadric[cell_of[v]] += k;
+      }
     }
-    cell_faces.build(cut.tris, cell_of, cells);
-    const LevelContext ctx{cut, normals, cell_faces, weights};
+    // Which vertices are corners of a triangle (all of them unless the level
+    // has lines: a vertex nothing uses is never kept).
+    corner.clear();
+    if (!cut.lines.empty()) {
+      corner.assign(n_prev, 0);
+      for (const Triangle& t : cut.tris) corner[t[0]] = corner[t[1]] = corner[t[2]] = 1;
+    }
     const float cell_size = static_cast<float>(octree.cell_side(depth));
+    // Only cells of several vertices choose a representative, and only those
+    // with more than one contender (see choose_representative) read the
+    // triangles around them; listing those for the others is wasted, but
+    // which cells have one contender is only known after the quadric terms,
+    // and a second pass over the cells costs more than it saves.
+    wanted.resize(cells);
+    for (std::uint32_t j = 0; j < cells; ++j) wanted[j] = cell_begin[j + 1] - cell_begin[j] > 1;
+    const bool measure = !cut.tris.empty() && (weights.area > 0 || weights.volume > 0);
+    if (measure) cell_faces.build(cut.tris, cell_of, wanted);
+    const LevelContext ctx{cut, measure ? &cell_faces : nullptr, weights};
     // Cells are independent: each reads the previous level and writes its own slot.
     for_chunks(cells, [&](std::size_t lo, std::size_t hi) {
       Scratch& scratch = scratches.local();
       for (auto j = static_cast<std::uint32_t>(lo); j < hi; ++j) {
-        std::uint32_t b = cell_begin[j], e = cell_begin[j + 1];
+        const std::uint32_t b = cell_begin[j], e = cell_begin[j + 1];
         next.code[j] = cut.code[b];
         std::uint32_t weight = 0;
         for (std::uint32_t i = b; i < e; ++i) weight += cut.weight[i];
         next.weight[j] = weight;
-        Quadric q;
-        if (quadrics) {
-          for (std::uint32_t i = b; i < e; ++i) q += cut.quadric[i];
-          next.quadric[j] = q;
-        }
         if (e - b == 1) {
           next.pos[j] = cut.pos[b];
           next.orig[j] = cut.orig[b];
+          if (quadrics && !quadrics_from_triangles) next.quadric[j] = cut.quadric[b];
           continue;
         }
-        auto [p, o] = choose_representative(ctx, j, b, e, octree.cell_lo(cut.code[b], depth),
-                                            cell_size, q, scratch);
-        next.pos[j] = p;
-        next.orig[j] = o;
+        if (quadrics && !quadrics_from_triangles) {
+          Quadric sum;
+          for (std::uint32_t i = b; i < e; ++i) sum += cut.quadric[i];
+          next.quadric[j] = sum;
+        }
+        const Quadric& q = quadrics ? next.quadric[j] : Quadric{};
+        bool has_faces = corner.empty();
+        for (std::uint32_t i = b; i < e && !has_faces; ++i) has_faces = corner[i] != 0;
+        const Choice c = choose_representative(
+            ctx, j, b, e, has_faces, octree.cell_lo(cut.code[b], depth), cell_size, q, scratch);
+        next.pos[j] = c.pos;
+        next.orig[j] = c.orig;
       }
     });
     std::vector<Segment> line_candidates;

@@ -19,7 +19,11 @@
 /// Representative choice, per merged cell with vertices (candidates) x_i; each
 /// heuristic's values are divided by their largest value over the cell's
 /// candidates (so each lies in [0, 1]) before weighting, and the candidate
-/// with the smallest weighted sum wins (ties: the first in octree order):
+/// with the smallest weighted sum wins (ties: the first in octree order).
+/// With the quadric heuristic on, a candidate whose weighted quadric term
+/// exceeds the smallest one by more than the sum of the other weights cannot
+/// win; area and volume are computed, and normalised, over the candidates
+/// left (the contenders) only, and a cell with one contender takes it:
 ///
 /// | heuristic     | value for candidate x                                      | weight |
 /// |---------------|------------------------------------------------------------|--------|

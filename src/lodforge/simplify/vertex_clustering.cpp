@@ -288,63 +288,87 @@ std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
                                        std::span<const std::uint32_t> vertex_map,
                                        std::size_t new_count, bool no_lines,
                                        std::vector<Segment>& line_candidates, Cut& to) {
-  to.tris.clear();
-  to.tri_origin.clear();
+  // Triangles go straight to the output; a run of more than one (same
+  // smallest corner) is then sorted in place by its canonical rotation and
+  // the doublets squeezed out.
   to.lines.clear();
-  to.tris.reserve(count);
-  to.tri_origin.reserve(count);
+  to.tris.resize(count);
+  to.tri_origin.resize(count);
+  std::size_t out = 0, run_begin = 0;
   struct Entry {
-    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; index < count
-    Triangle tri;
+    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; position in the run
   };
   std::vector<Entry> run;
+  std::vector<Triangle> run_tris;
+  std::vector<std::uint32_t> run_origin;
   std::uint32_t run_vertex = kNone;
+  auto keys = [&](const Triangle& t) -> std::pair<std::uint32_t, std::uint32_t> {
+    if (t[0] == run_vertex) return {t[1], t[2]};
+    if (t[1] == run_vertex) return {t[2], t[0]};
+    return {t[0], t[1]};
+  };
   auto flush = [&] {
-    if (run.size() > 1) {
-      auto less = [](const Entry& a, const Entry& b) {
-        if (a.k1 != b.k1) return a.k1 < b.k1;
-        if (a.k2 != b.k2) return a.k2 < b.k2;
-        return a.index < b.index;
-      };
-      if (run.size() <= 16) {
-        for (std::size_t i = 1; i < run.size(); ++i)  // insertion sort
-          for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j)
-            std::swap(run[j], run[j - 1]);
-      } else {
-        std::sort(run.begin(), run.end(), less);
+    const std::size_t n = out - run_begin;
+    if (n < 2) return;
+    if (n == 2) {
+      const auto k0 = keys(to.tris[run_begin]), k1 = keys(to.tris[run_begin + 1]);
+      if (k0 == k1) {
+        out = run_begin + 1;
+      } else if (k1 < k0) {
+        std::swap(to.tris[run_begin], to.tris[run_begin + 1]);
+        std::swap(to.tri_origin[run_begin], to.tri_origin[run_begin + 1]);
       }
+      return;
     }
-    for (std::size_t i = 0; i < run.size(); ++i) {
+    run.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = keys(to.tris[run_begin + i]);
+      run[i] = {k.first, k.second, static_cast<std::uint32_t>(i)};
+    }
+    auto less = [](const Entry& a, const Entry& b) {
+      if (a.k1 != b.k1) return a.k1 < b.k1;
+      if (a.k2 != b.k2) return a.k2 < b.k2;
+      return a.index < b.index;
+    };
+    if (n <= 16) {
+      for (std::size_t i = 1; i < n; ++i)  // insertion sort
+        for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j)
+          std::swap(run[j], run[j - 1]);
+    } else {
+      std::sort(run.begin(), run.end(), less);
+    }
+    run_tris.assign(to.tris.begin() + run_begin, to.tris.begin() + out);
+    run_origin.assign(to.tri_origin.begin() + run_begin, to.tri_origin.begin() + out);
+    out = run_begin;
+    for (std::size_t i = 0; i < n; ++i) {
       if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
-      to.tris.push_back(run[i].tri);
-      to.tri_origin.push_back(origin(run[i].index));
+      to.tris[out] = run_tris[run[i].index];
+      to.tri_origin[out] = run_origin[run[i].index];
+      ++out;
     }
-    run.clear();
   };
   for (std::size_t f = 0; f < count; ++f) {
     const Triangle t = mapped(f);
     const std::uint32_t a = t[0], b = t[1], c = t[2];
     if (a != b && b != c && c != a) {
-      std::uint32_t lo = std::min({a, b, c});
-      Entry e{0, 0, static_cast<std::uint32_t>(f), t};
-      if (lo == a)
-        e.k1 = b, e.k2 = c;
-      else if (lo == b)
-        e.k1 = c, e.k2 = a;
-      else
-        e.k1 = a, e.k2 = b;
+      const std::uint32_t lo = std::min({a, b, c});
       if (lo != run_vertex) {
         assert(run_vertex == kNone || lo > run_vertex);
         flush();
         run_vertex = lo;
+        run_begin = out;
       }
-      run.push_back(e);
+      to.tris[out] = t;
+      to.tri_origin[out] = origin(f);
+      ++out;
     } else if (!no_lines && (a != b || b != c)) {
       std::uint32_t other = a != b ? b : c;
       line_candidates.push_back({std::min(a, other), std::max(a, other)});
     }
   }
   flush();
+  to.tris.resize(out);
+  to.tri_origin.resize(out);
   for (const Segment& s : lines) {
     std::uint32_t a = vertex_map[s[0]], b = vertex_map[s[1]];
     if (a != b) line_candidates.push_back({std::min(a, b), std::max(a, b)});
@@ -414,19 +438,18 @@ struct CellFaces {
   std::vector<std::uint32_t> start;
   std::vector<std::uint32_t> entry;
 
+  /// `mapped`: the triangles with their corners replaced by their cells.
   /// Lists only the cells with `wanted[cell]` (the others get empty lists).
-  void build(std::span<const Triangle> tris, std::span<const std::uint32_t> cell_of,
-             std::span<const char> wanted) {
+  void build(std::span<const Triangle> mapped, std::span<const char> wanted) {
     const std::size_t cells = wanted.size();
     start.assign(cells + 1, 0);
     auto visit = [&](auto&& add_any) {
       auto add = [&](std::uint32_t cell, std::uint32_t e) {
         if (wanted[cell]) add_any(cell, e);
       };
-      for (std::size_t f = 0; f < tris.size(); ++f) {
+      for (std::size_t f = 0; f < mapped.size(); ++f) {
         const auto g = static_cast<std::uint32_t>(4 * f);
-        const std::uint32_t a = cell_of[tris[f][0]], b = cell_of[tris[f][1]],
-                            c = cell_of[tris[f][2]];
+        const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
         if (a == b) {
           add(a, g + 3);
           if (c != a) add(c, g + 2);
@@ -443,11 +466,15 @@ struct CellFaces {
         }
       }
     };
+    // Count into start[cell + 1], turn the counts into starts, fill with
+    // start[cell]++ (which leaves the starts shifted down by one cell) and
+    // shift them back.
     visit([&](std::uint32_t cell, std::uint32_t) { ++start[cell + 1]; });
     for (std::size_t j = 0; j < cells; ++j) start[j + 1] += start[j];
     entry.resize(start[cells]);
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    visit([&](std::uint32_t cell, std::uint32_t e) { entry[fill[cell]++] = e; });
+    visit([&](std::uint32_t cell, std::uint32_t e) { entry[start[cell]++] = e; });
+    std::copy_backward(start.begin(), start.end() - 1, start.end());
+    start[0] = 0;
   }
 };
 
@@ -903,46 +930,66 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
 
   Cut cut;
   std::vector<std::uint32_t> node_of(nv, kNone);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    std::uint32_t v = order[i].vertex;
-    if (i == 0 || mesh.positions[v] != mesh.positions[order[i - 1].vertex]) {
-      cut.pos.push_back(mesh.positions[v]);
-      cut.weight.push_back(1);
-      cut.orig.push_back(v);
-      cut.code.push_back(order[i].code);
+  {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < order.size(); ++i)
+      count += i == 0 || mesh.positions[order[i].vertex] != mesh.positions[order[i - 1].vertex];
+    cut.pos.resize(count);
+    cut.weight.assign(count, 1);
+    cut.orig.resize(count);
+    cut.code.resize(count);
+    std::uint32_t node = kNone;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const std::uint32_t v = order[i].vertex;
+      if (i == 0 || mesh.positions[v] != mesh.positions[order[i - 1].vertex]) {
+        ++node;
+        cut.pos[node] = mesh.positions[v];
+        cut.orig[node] = v;
+        cut.code[node] = order[i].code;
+      }
+      node_of[v] = node;
     }
-    node_of[v] = static_cast<std::uint32_t>(cut.pos.size() - 1);
   }
   {
     // The input's triangles are in any order: sort those with three distinct
-    // corners by their smallest corner (a stable counting sort); the others
-    // become line candidates in input order.
+    // corners by their smallest corner (a stable counting sort of the mapped
+    // triangles and their origins, so the remap reads them in sequence); the
+    // others become line candidates in input order.
     const std::size_t count = cut.pos.size();
-    auto mapped = [&](const Triangle& t) {
-      return Triangle{node_of[t[0]], node_of[t[1]], node_of[t[2]]};
-    };
+    const std::size_t nf = mesh.triangles.size();
+    std::vector<Triangle> mapped(nf);
     std::vector<Segment> line_candidates;
     std::vector<std::uint32_t> start(count + 1, 0);
-    for (const Triangle& input : mesh.triangles) {
-      const Triangle t = mapped(input);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const Triangle& input = mesh.triangles[f];
+      const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
       if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
         ++start[std::min({t[0], t[1], t[2]}) + 1];
-      } else if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
+        mapped[f] = t;
+        continue;
+      }
+      mapped[f][0] = kNone;
+      if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
         std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
         line_candidates.push_back({std::min(t[0], other), std::max(t[0], other)});
       }
     }
     for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
-    std::vector<std::uint32_t> sorted(start[count]);
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-      const Triangle t = mapped(mesh.triangles[f]);
-      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
-        sorted[start[std::min({t[0], t[1], t[2]})]++] = static_cast<std::uint32_t>(f);
+    struct Sorted {
+      Triangle t;
+      std::uint32_t origin;
+    };
+    std::vector<Sorted> sorted(start[count]);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const Triangle& t = mapped[f];
+      if (t[0] != kNone)
+        sorted[start[std::min({t[0], t[1], t[2]})]++] = {t, static_cast<std::uint32_t>(f)};
     }
+    mapped = {};
     std::vector<std::uint32_t> keep = remap_faces(
-        sorted.size(), [&](std::size_t i) { return mapped(mesh.triangles[sorted[i]]); },
-        [&](std::size_t i) { return sorted[i]; }, mesh.lines, node_of, count, options.no_lines,
-        line_candidates, cut);
+        sorted.size(), [&](std::size_t i) { return sorted[i].t; },
+        [&](std::size_t i) { return sorted[i].origin; }, mesh.lines, node_of, count,
+        options.no_lines, line_candidates, cut);
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
   }
@@ -984,6 +1031,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   std::vector<std::uint32_t> cell_of;
   std::vector<std::uint32_t> cell_begin;
   std::vector<char> corner, wanted;
+  std::vector<Triangle> mapped;
   CellFaces cell_faces;
   tbb::enumerable_thread_specific<Scratch> scratches;
   std::array<std::size_t, kMaxDepth + 1> histogram{};
@@ -1036,10 +1084,18 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // input's), which writes a third of the memory.
     const bool quadrics_from_triangles = quadrics && cut.quadric.empty();
     if (quadrics) next.quadric.assign(cells, Quadric{});
+    // The triangles with their corners mapped to the new cells (read three
+    // times below).
+    mapped.resize(cut.tris.size());
+    for (std::size_t f = 0; f < cut.tris.size(); ++f) {
+      const Triangle& t = cut.tris[f];
+      mapped[f] = {cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
+    }
     if (quadrics_from_triangles) {
-      for (const Triangle& t : cut.tris) {
+      for (std::size_t f = 0; f < cut.tris.size(); ++f) {
+        const Triangle& t = cut.tris[f];
         const Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
-        for (std::uint32_t v : t) next.quadric[cell_of[v]] += k;
+        for (std::uint32_t c : mapped[f]) next.quadric[c] += k;
       }
     }
     // Which vertices are corners of a triangle (all of them unless the level
@@ -1058,7 +1114,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     wanted.resize(cells);
     for (std::uint32_t j = 0; j < cells; ++j) wanted[j] = cell_begin[j + 1] - cell_begin[j] > 1;
     const bool measure = !cut.tris.empty() && (weights.area > 0 || weights.volume > 0);
-    if (measure) cell_faces.build(cut.tris, cell_of, wanted);
+    if (measure) cell_faces.build(mapped, wanted);
     const LevelContext ctx{cut, measure ? &cell_faces : nullptr, weights};
     // Cells are independent: each reads the previous level and writes its own slot.
     for_chunks(cells, [&](std::size_t lo, std::size_t hi) {
@@ -1091,11 +1147,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     });
     std::vector<Segment> line_candidates;
     std::vector<std::uint32_t> keep = remap_faces(
-        cut.tris.size(),
-        [&](std::size_t f) {
-          const Triangle& t = cut.tris[f];
-          return Triangle{cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
-        },
+        cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
         [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
         options.no_lines, line_candidates, next);
     if (next.tris.empty() && next.lines.empty())

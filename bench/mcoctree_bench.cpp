@@ -4,8 +4,10 @@
 // and memory per full-resolution triangle. Input: the Stanford bunny.
 //
 //   mcoctree_bench [benchmark flags]
-// Counters: tri_per_s (extraction), input_triangles (time / input_triangles x 1e6 =
-// seconds per million input triangles), bytes_per_tri.
+// Counters: tri_per_s (extraction: BM_McoExtract the index
+// buffer, BM_McoExtractMesh the compacted mesh), input_triangles (time /
+// input_triangles x 1e6 = seconds per million input triangles), bytes_per_tri
+// (the run-time model, mc_lod_model.h; BM_McoMemory beside the build-time tree).
 // Issue 6's targets: >= 100 M triangles/s, <= 2 s per M input triangles,
 // <= 64 bytes per full-resolution triangle.
 #include <benchmark/benchmark.h>
@@ -17,6 +19,7 @@
 
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
+#include "lodforge/mcoctree/mc_lod_model.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/simplify/quadric_collapse.h"
 
@@ -50,25 +53,81 @@ const McOctree* model(int resolution) {
   return &it->second;
 }
 
+// The run-time model extraction reads (the tree is not needed after this).
+const McLodModel* lod_model(int resolution) {
+  static std::map<int, McLodModel> cache;
+  auto it = cache.find(resolution);
+  if (it == cache.end()) it = cache.emplace(resolution, compile_mc_lod(*model(resolution))).first;
+  return &it->second;
+}
+
+// Counters shared by the extraction benchmarks: the level's triangles, the
+// rate (1e9 / tri_per_s = nanoseconds per triangle) and the run-time model's
+// bytes per full-resolution triangle.
+void extraction_counters(benchmark::State& state, const McLodModel& m, std::size_t level_tris,
+                         std::size_t total_tris) {
+  state.counters["triangles"] = static_cast<double>(level_tris);
+  state.counters["tri_per_s"] =
+      benchmark::Counter(static_cast<double>(total_tris), benchmark::Counter::kIsRate);
+  state.counters["bytes_per_tri"] =
+      static_cast<double>(m.memory_bytes()) / static_cast<double>(m.full_triangles());
+}
+
+// Index-buffer extraction (what a renderer does per level: the vertex table
+// is static, the level is an index buffer). Args: percent, resolution.
 void BM_McoExtract(benchmark::State& state) {
   if (!bunny()) return state.SkipWithError("bunny missing");
-  const McOctree* t = model(static_cast<int>(state.range(1)));
+  const McLodModel* m = lod_model(static_cast<int>(state.range(1)));
   auto n = priority_for_triangles(
-      *t, t->full_triangles() * static_cast<std::uint64_t>(state.range(0)) / 100);
-  McExtractor ex(*t);
-  TriangleMesh out;
+      *m, m->full_triangles() * static_cast<std::uint64_t>(state.range(0)) / 100);
+  std::vector<Triangle> out;
   std::size_t tris = 0;
-  for (auto _ : state) tris += ex.extract(n, out);
-  state.counters["triangles"] = static_cast<double>(out.triangle_count());
-  state.counters["tri_per_s"] =
-      benchmark::Counter(static_cast<double>(tris), benchmark::Counter::kIsRate);
-  state.counters["bytes_per_tri"] =
-      static_cast<double>(t->memory_bytes()) / static_cast<double>(t->full_triangles());
+  for (auto _ : state) {
+    tris += extract_mc_indices(*m, n, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  extraction_counters(state, *m, out.size(), tris);
 }
 BENCHMARK(BM_McoExtract)
     ->ArgsProduct({{5, 20, 50, 100}, {128}})
-    ->Unit(benchmark::kMillisecond)
+    ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+
+// Extraction as a standalone mesh: the index buffer, then the used vertices
+// compacted (positions, decoded normals). Args: percent, resolution.
+void BM_McoExtractMesh(benchmark::State& state) {
+  if (!bunny()) return state.SkipWithError("bunny missing");
+  const McLodModel* m = lod_model(static_cast<int>(state.range(1)));
+  auto n = priority_for_triangles(
+      *m, m->full_triangles() * static_cast<std::uint64_t>(state.range(0)) / 100);
+  McExtractor ex(*m);
+  TriangleMesh out;
+  std::size_t tris = 0;
+  for (auto _ : state) tris += ex.extract(n, out);
+  extraction_counters(state, *m, out.triangle_count(), tris);
+}
+BENCHMARK(BM_McoExtractMesh)
+    ->ArgsProduct({{5, 20, 50, 100}, {128}})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+// Memory of the run-time model against the build-time tree, per
+// full-resolution triangle (one iteration: a size, not a time).
+void BM_McoMemory(benchmark::State& state) {
+  if (!bunny()) return state.SkipWithError("bunny missing");
+  const int resolution = static_cast<int>(state.range(0));
+  const McOctree* t = model(resolution);
+  const McLodModel* m = lod_model(resolution);
+  for (auto _ : state) benchmark::DoNotOptimize(m->memory_bytes());
+  const auto full = static_cast<double>(m->full_triangles());
+  state.counters["full_triangles"] = full;
+  state.counters["bytes_per_tri"] = static_cast<double>(m->memory_bytes()) / full;
+  state.counters["tree_bytes_per_tri"] = static_cast<double>(t->memory_bytes()) / full;
+  state.counters["stored_per_full_tri"] = static_cast<double>(m->stored_triangles()) / full;
+  state.counters["intervals_per_cell"] =
+      static_cast<double>(m->intervals.size() - 1) / static_cast<double>(m->cell_count());
+}
+BENCHMARK(BM_McoMemory)->Arg(64)->Arg(128)->Iterations(1);
 
 void BM_McoBuild(benchmark::State& state) {
   if (!bunny()) return state.SkipWithError("bunny missing");

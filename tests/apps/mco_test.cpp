@@ -46,15 +46,15 @@ TEST_F(McoCli, BuildInfoExtract) {
   auto info = run_lodforge("mco info " + m + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   auto j = nlohmann::json::parse(info.out);
-  for (const char* k : {"version", "depth", "nodes", "priorities", "full_triangles", "levels"})
+  for (const char* k : {"version", "depth", "cells", "priorities", "full_triangles", "levels"})
     EXPECT_TRUE(j.contains(k)) << k;
-  EXPECT_EQ(j["version"].get<int>(), 2);
+  EXPECT_EQ(j["version"].get<int>(), 3);
   const auto full = j["full_triangles"].get<std::uint64_t>();
   const auto priorities = j["priorities"].get<std::uint64_t>();
 
   auto text = run_lodforge("mco info " + m);
   EXPECT_EQ(text.exit_code, 0);
-  EXPECT_THAT(text.err, HasSubstr("marching-cube octree, version 2"));
+  EXPECT_THAT(text.err, HasSubstr("marching-cube octree, version 3"));
 
   std::string out = path("full.ply");
   auto r = run_lodforge("mco extract " + m + " -o " + out);

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
@@ -11,10 +13,13 @@
 namespace lodforge {
 namespace {
 
-McOctree small_model(bool colored) {
+McOctree small_tree(bool colored) {
   auto torus = test::make_torus(1.0f, 0.3f, 32, 16);
   if (colored) torus.colors.assign(torus.positions.size(), Vec3{0.2f, 0.4f, 0.6f});
   return build_mc_octree(torus, {.resolution = 16}).tree;
+}
+McLodModel small_model(bool colored) {
+  return compile_mc_lod(small_tree(colored));
 }
 
 void expect_message(std::string_view data, const std::string& text) {
@@ -28,25 +33,34 @@ void expect_message(std::string_view data, const std::string& text) {
 
 TEST(McoFile, RoundTripExtractsTheSameMeshes) {
   for (bool colored : {false, true}) {
-    McOctree t = small_model(colored);
+    McOctree tree = small_tree(colored);
+    McLodModel t = compile_mc_lod(tree);
     std::string data = write_mco_data(t);
-    McOctree r = read_mco_data(data, "m.mco");
+    McLodModel r = read_mco_data(data, "m.mco");
+    // The model is stored as it is: every array comes back.
+    EXPECT_EQ(r.depth, t.depth);
+    EXPECT_EQ(r.cell_size, t.cell_size);
     EXPECT_EQ(r.accumulated, t.accumulated);
-    // Stored in need order: the same nodes, renumbered.
-    ASSERT_EQ(r.lod.size(), t.lod.size());
-    for (std::size_t k = 0; k < t.lod.size(); ++k) {
-      EXPECT_EQ(r.nodes[r.lod[k]].coords, t.nodes[t.lod[k]].coords);
-      EXPECT_EQ(r.nodes[r.lod[k]].level, t.nodes[t.lod[k]].level);
-    }
-    EXPECT_EQ(r.colors.size(), t.colors.size());
+    EXPECT_EQ(r.group, t.group);
+    EXPECT_EQ(r.cells, t.cells);
+    EXPECT_EQ(r.intervals, t.intervals);
+    EXPECT_EQ(r.triangles, t.triangles);
+    EXPECT_EQ(r.positions, t.positions);
+    EXPECT_EQ(r.normals, t.normals);
+    EXPECT_EQ(r.colors, t.colors);
+    EXPECT_EQ(r.centroids, t.centroids);
+    EXPECT_EQ(r.colors.size(), colored ? r.positions.size() : 0);
     for (double pct : {100.0, 50.0, 10.0}) {
-      auto a = extract_mc_mesh(t, {.percent = pct}).mesh;
+      auto a = extract_mc_mesh(tree, {.percent = pct}).mesh;
       auto b = extract_mc_mesh(r, {.percent = pct}).mesh;
       EXPECT_EQ(a.triangles, b.triangles);
       EXPECT_EQ(a.positions, b.positions);
       EXPECT_EQ(a.colors, b.colors);
     }
   }
+  // An empty model round-trips too.
+  McLodModel empty = read_mco_data(write_mco_data(McLodModel{}), "m.mco");
+  EXPECT_EQ(extract_mc_mesh(empty).mesh.triangle_count(), 0u);
 }
 
 TEST(McoFile, BadFiles) {
@@ -65,21 +79,71 @@ TEST(McoFile, BadFiles) {
   expect_message("", "truncated .mco file (0 bytes)");
 }
 
+std::uint64_t fnv1a(std::string_view d) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : d) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+// An uncoloured file with the first index of its first triangle set to v, the
+// chunk's checksum recomputed (see the layout in mco_file.h).
+std::string with_first_triangle_index(std::string data, std::uint32_t v) {
+  auto pad8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
+  std::size_t at = 88;
+  for (;;) {
+    std::uint32_t n[5];
+    std::memcpy(n, data.data() + at, sizeof n);
+    const auto [cells, intervals, triangles, vertices, centroids] = n;
+    std::size_t tri_at = at + 32 + pad8(16 * std::size_t{vertices}) + 8 * std::size_t{cells} +
+                         8 * std::size_t{intervals};
+    std::size_t size = tri_at - at + pad8(12 * std::size_t{triangles} + 4 * std::size_t{centroids});
+    if (triangles > 0) {
+      std::memcpy(data.data() + tri_at, &v, 4);
+      std::uint64_t h = fnv1a(std::string_view(data).substr(at, size));
+      std::memcpy(data.data() + at + size, &h, 8);
+      return data;
+    }
+    at += size + 8;
+  }
+}
+
+// Data that pass the checksums but not the structure: extraction trusts the
+// accumulation table (it sizes its output) and the indices, so reading checks
+// them. The chunk is re-sealed after the change so only the check can catch it.
+TEST(McoFile, InconsistentDataAreRejected) {
+  McLodModel t = small_model(false);
+  auto reseal_and_expect = [&](McLodModel bad, const std::string& text) {
+    expect_message(write_mco_data(bad), text);
+  };
+  McLodModel acc = t;
+  acc.accumulated[acc.accumulated.size() / 2] += 1;
+  reseal_and_expect(acc, "accumulation table disagrees with the cells");
+  expect_message(with_first_triangle_index(write_mco_data(t), 1u << 30),
+                 "vertex index out of range");
+  // A vertex of a later chunk is out of range too: a prefix must stand alone.
+  expect_message(with_first_triangle_index(write_mco_data(t),
+                                           static_cast<std::uint32_t>(t.positions.size() - 1)),
+                 "vertex index out of range");
+  McLodModel until = t;
+  until.cells[until.cell_count() - 1].until = 0;
+  reseal_and_expect(until, "cell out of range");
+}
+
 // Progressive order: the first bytes of a file extract every level up to the
 // priority they were cut after, exactly as the whole model does.
 TEST(McoFile, PrefixExtractsTheSameLevels) {
   for (bool colored : {false, true}) {
-    McOctree t = small_model(colored);
+    McLodModel t = small_model(colored);
     std::string data = write_mco_data(t);
-    const auto L = static_cast<std::uint32_t>(t.lod.size());
+    const auto L = t.priorities();
     std::uint64_t previous = 0;
     for (std::uint32_t n : {0u, 1u, 2u, 5u, L / 10, L / 3, L / 2, L - 1, L}) {
       std::uint64_t size = mco_prefix_size(data, n, "m.mco");
       EXPECT_GE(size, previous);
       previous = size;
       std::string_view prefix = std::string_view(data).substr(0, size);
-      McOctree r = read_mco_data(prefix, "m.mco", {.max_priority = n});
-      EXPECT_EQ(r.lod.size(), n);
+      McLodModel r = read_mco_data(prefix, "m.mco", {.max_priority = n});
+      EXPECT_EQ(r.priorities(), n);
       for (std::uint32_t k : {0u, n / 2, n}) {
         auto a = extract_mc_mesh(t, {.priority = k}).mesh;
         auto b = extract_mc_mesh(r, {.priority = k}).mesh;

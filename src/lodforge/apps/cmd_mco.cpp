@@ -6,6 +6,7 @@
 // Human text goes to stderr; `info --json` prints JSON on stdout.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
+#include "lodforge/mcoctree/mc_lod_model.h"
 #include "lodforge/mcoctree/mco_file.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mcoctree/scan_mesh.h"
@@ -85,13 +87,17 @@ void add_mco_command(CLI::App& app, Runner& run) {
         r = build_mc_octree(mesh, options);
         what = fmt::format("{} triangles", mesh.triangle_count());
       }
-      write_mco_file(r.tree, b->output);
+      McLodModel model = compile_mc_lod(r.tree);
+      write_mco_file(model, b->output);
       double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fmt::print(stderr,
                  "{}: {} -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "
-                 "full resolution; {:.2f} s\n",
-                 b->output, what, r.tree.nodes.size(), r.stats.leaves, r.tree.positions.size(),
-                 r.tree.lod.size(), r.tree.full_triangles(), s);
+                 "full resolution, {:.1f} bytes per triangle at run time; {:.2f} s\n",
+                 b->output, what, r.tree.nodes.size(), r.stats.leaves, model.positions.size(),
+                 model.priorities(), model.full_triangles(),
+                 static_cast<double>(model.memory_bytes()) /
+                     static_cast<double>(std::max<std::uint64_t>(model.full_triangles(), 1)),
+                 s);
       return 0;
     };
   });
@@ -119,15 +125,15 @@ void add_mco_command(CLI::App& app, Runner& run) {
     run = [e] {
       // --priority N reads only what priorities 0..N need (the file is
       // progressive: a prefix, e.g. a partial download, is enough).
-      McOctree tree = read_mco_file(e->input, {.max_priority = e->priority});
+      McLodModel model = read_mco_file(e->input, {.max_priority = e->priority});
       auto r = extract_mc_mesh(
-          tree, {.priority = e->priority, .triangles = e->triangles, .percent = e->percent});
+          model, {.priority = e->priority, .triangles = e->triangles, .percent = e->percent});
       if (r.clamped)
         fmt::print(stderr, "warning: request beyond the model's range, clamped to priority {}\n",
                    r.priority);
       write_mesh(r.mesh, e->output);
       fmt::print(stderr, "{}: priority {} of {}{}, {} triangles, {} vertices", e->output,
-                 r.priority, tree.lod.size(), e->priority >= 0 ? " read" : "",
+                 r.priority, model.priorities(), e->priority >= 0 ? " read" : "",
                  r.mesh.triangle_count(), r.mesh.vertex_count());
       if (e->triangles >= 0 || e->percent >= 0)
         fmt::print(stderr, " (requested {}, nearest reachable)", r.requested);
@@ -146,7 +152,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
   info->add_flag("--json", i->json, "Print JSON on stdout");
   info->callback([i, &run] {
     run = [i] {
-      McOctree t = read_mco_file(i->input);
+      McLodModel t = read_mco_file(i->input);
       nlohmann::ordered_json j;
       j["file"] = i->input;
       j["version"] = kMcoVersion;
@@ -154,8 +160,10 @@ void add_mco_command(CLI::App& app, Runner& run) {
       j["cell_size"] = t.cell_size;
       j["origin"] = {t.origin.x, t.origin.y, t.origin.z};
       j["vertices"] = t.positions.size();
-      j["nodes"] = t.nodes.size();
-      j["priorities"] = t.lod.size();
+      j["cells"] = t.cell_count();
+      j["intervals"] = t.intervals.size() - 1;
+      j["stored_triangles"] = t.stored_triangles();
+      j["priorities"] = t.priorities();
       j["full_triangles"] = t.full_triangles();
       j["colors"] = !t.colors.empty();
       j["memory_bytes"] = t.memory_bytes();
@@ -170,11 +178,13 @@ void add_mco_command(CLI::App& app, Runner& run) {
         return 0;
       }
       fmt::print(stderr, "{}: marching-cube octree, version {}\n", i->input, kMcoVersion);
-      fmt::print(stderr, "  depth {} (cell {:.6g}), {} nodes, {} vertices{}\n", t.depth,
-                 t.cell_size, t.nodes.size(), t.positions.size(),
-                 t.colors.empty() ? "" : ", coloured");
+      fmt::print(stderr,
+                 "  depth {} (cell {:.6g}), {} cells, {} intervals, {} stored triangles, {} "
+                 "vertices{}\n",
+                 t.depth, t.cell_size, t.cell_count(), t.intervals.size() - 1, t.stored_triangles(),
+                 t.positions.size(), t.colors.empty() ? "" : ", coloured");
       fmt::print(stderr, "  {} priorities, {} triangles at full resolution, {} bytes in memory\n",
-                 t.lod.size(), t.full_triangles(), t.memory_bytes());
+                 t.priorities(), t.full_triangles(), t.memory_bytes());
       for (const auto& l : levels)
         fmt::print(stderr, "  {:3}%: priority {:8}, {:9} triangles\n", l["percent"].get<int>(),
                    l["priority"].get<std::uint32_t>(), l["triangles"].get<std::uint64_t>());

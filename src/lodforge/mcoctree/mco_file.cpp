@@ -1,22 +1,24 @@
 // Reading and writing .mco models as a progressive stream (see mco_file.h).
 //
-// Extraction at priority N reads (a) the nodes of priority <= N, (b) their
-// children, which it triangulates, and (c) the children of a triangulated
-// cell whose face or edge a neighbour splits (slot_vertex takes the split
-// edge's points from them). (c) can come before the cell itself is expanded,
-// so "store the children with their parent's priority" is not enough: a
-// node x with parent p is stored in chunk
-//   need(x) = min(p.priority, max(tri(p), split(p)))
-// where tri(p) is the priority at which p starts being triangulated (its own
-// parent's priority; 0 for the root) and split(p) the smallest of p's face
-// and edge split priorities. Siblings share need(), so they stay contiguous.
-// Each chunk has its own checksum, so a prefix can be verified on its own.
+// The run-time model is already in stream order: its cells are grouped by
+// their parent's priority, and its vertices are numbered in order of first
+// use by those groups, so chunk k is group k's cells with all their
+// intervals and triangles, plus the vertices that group uses first. Each
+// chunk has its own checksum, so a prefix can be verified on its own.
+//
+// A reader cannot trust the accumulation table blindly: extraction sizes its
+// output by it. So reading recomputes, from the cells' intervals, how the
+// triangle count changes at each priority and checks every entry:
+//
+//   event                              | change at priority
+//   -----------------------------------+-----------------------------
+//   cell of group g appears            | + its first interval's count, at g
+//   its interval j > 0 starts at s     | + count(j) - count(j - 1), at s
+//   it is expanded (until = u)         | - its last interval's count, at u
 #include "lodforge/mcoctree/mco_file.h"
 
 #include <algorithm>
 #include <cstring>
-#include <numeric>
-#include <type_traits>
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
@@ -25,9 +27,8 @@ namespace lodforge {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'F', 'M', 'C', 'O', '\r', '\n', '\x1a'};
-constexpr std::size_t kHeader = 72;
-constexpr std::size_t kChunkHeader = 24;
-static_assert(std::is_trivially_copyable_v<McNode>);
+constexpr std::size_t kHeader = 88;
+constexpr std::size_t kChunkHeader = 32;
 
 std::uint64_t fnv1a(std::string_view data) {
   std::uint64_t h = 1469598103934665603ULL;
@@ -46,23 +47,18 @@ std::uint64_t padded(std::uint64_t n) {
   return (n + 7) / 8 * 8;
 }
 
-std::uint32_t min_split(const McNode& n) {
-  std::uint32_t m = McNode::kNone;
-  for (auto f : n.face_split) m = std::min(m, f);
-  for (auto e : n.edge_split) m = std::min(m, e);
-  return m;
-}
-// Chunk of p's children, given tri(p).
-std::uint32_t children_need(const McNode& p, std::uint32_t tri) {
-  return std::min(p.priority, std::max(tri, min_split(p)));
-}
-
 struct Header {
-  std::uint32_t version = 0, flags = 0, depth = 0, node_size = 0;
-  std::uint64_t nv = 0, nn = 0, nl = 0;
+  std::uint32_t version = 0, flags = 0, depth = 0;
+  std::uint64_t nv = 0, nc = 0, ni = 0, nt = 0, nl = 0;
+  std::uint64_t vertex_size() const { return 16 + (flags & 1 ? 3 : 0); }
 };
 
-Header read_header(std::string_view data, McOctree& t, const std::string& name) {
+struct ChunkCounts {
+  std::uint32_t cells = 0, intervals = 0, triangles = 0, vertices = 0, centroids = 0;
+  std::uint64_t accumulated = 0;
+};
+
+Header read_header(std::string_view data, McLodModel& m, const std::string& name) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   if (data.size() < kHeader)
     throw fail("truncated .mco file (" + std::to_string(data.size()) + " bytes)");
@@ -73,52 +69,68 @@ Header read_header(std::string_view data, McOctree& t, const std::string& name) 
     at += sizeof(v);
   };
   Header h;
+  std::uint32_t zero;
   std::uint64_t checksum;
   get(h.version);
   if (h.version != kMcoVersion) throw fail("unsupported .mco version " + std::to_string(h.version));
   get(h.flags);
   get(h.depth);
-  get(t.origin);
-  get(t.cell_size);
-  get(h.node_size);
+  get(m.origin);
+  get(m.cell_size);
+  get(zero);
   get(h.nv);
-  get(h.nn);
+  get(h.nc);
+  get(h.ni);
+  get(h.nt);
   get(h.nl);
   get(checksum);
-  if (fnv1a(data.substr(0, 64)) != checksum) throw fail("checksum mismatch in the header");
-  if (h.node_size != sizeof(McNode))
-    throw fail("node record of " + std::to_string(h.node_size) + " bytes");
+  if (fnv1a(data.substr(0, kHeader - 8)) != checksum) throw fail("checksum mismatch in the header");
   if (h.depth > 20) throw fail("depth " + std::to_string(h.depth) + " out of range");
-  if (h.nn > UINT32_MAX || h.nv > UINT32_MAX || h.nl >= h.nn + 1) throw fail("counts out of range");
-  t.depth = static_cast<int>(h.depth);
+  constexpr std::uint64_t kMax = UINT32_MAX - 16;  // indices and sentinels fit in u32
+  if (h.nv > kMax || h.nc > kMax || h.ni > kMax || h.nt > kMax || h.nl >= h.nc + 1)
+    throw fail("counts out of range");
+  m.depth = static_cast<int>(h.depth);
   return h;
 }
 
-// Walks chunks 0..last; calls fn(k, chunk bytes) for each, after checking it.
+// Walks chunks 0..last; calls fn(k, chunk bytes, counts) for each, after
+// checking its size and checksum. Returns the end offset.
 template <class Fn>
 std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t last,
                         const std::string& name, Fn&& fn) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
-  const std::uint64_t vsize = 24 + (h.flags & 1 ? 3 : 0);
   std::size_t at = kHeader;
+  ChunkCounts total;
   for (std::uint64_t k = 0; k <= last; ++k) {
     auto truncated = [&] {
       return fail("truncated .mco file: priority " + std::to_string(k) + " of " +
                   std::to_string(h.nl) + " missing (" + std::to_string(data.size()) + " bytes)");
     };
     if (data.size() - at < kChunkHeader) throw truncated();
-    std::uint32_t nodes, verts;
-    std::memcpy(&nodes, data.data() + at, 4);
-    std::memcpy(&verts, data.data() + at + 4, 4);
-    std::uint64_t size =
-        kChunkHeader + padded(verts * vsize) + padded(std::uint64_t{nodes} * sizeof(McNode));
-    if (nodes > h.nn || verts > h.nv || data.size() - at < size + 8) throw truncated();
+    ChunkCounts c;
+    std::memcpy(&c.cells, data.data() + at, 4);
+    std::memcpy(&c.intervals, data.data() + at + 4, 4);
+    std::memcpy(&c.triangles, data.data() + at + 8, 4);
+    std::memcpy(&c.vertices, data.data() + at + 12, 4);
+    std::memcpy(&c.centroids, data.data() + at + 16, 4);
+    std::memcpy(&c.accumulated, data.data() + at + 24, 8);
+    // Against the header's totals first: no size computed below can overflow.
+    if (c.cells > h.nc - total.cells || c.intervals > h.ni - total.intervals ||
+        c.triangles > h.nt - total.triangles || c.vertices > h.nv - total.vertices ||
+        c.centroids > c.vertices)
+      throw fail("counts out of range at priority " + std::to_string(k));
+    total.cells += c.cells, total.intervals += c.intervals, total.triangles += c.triangles;
+    total.vertices += c.vertices;
+    std::uint64_t size = kChunkHeader + padded(std::uint64_t{c.vertices} * h.vertex_size()) +
+                         8 * std::uint64_t{c.cells} + 8 * std::uint64_t{c.intervals} +
+                         padded(12 * std::uint64_t{c.triangles} + 4 * std::uint64_t{c.centroids});
+    if (data.size() - at < size + 8) throw truncated();
     std::uint64_t checksum;
     std::memcpy(&checksum, data.data() + at + size, 8);
     std::string_view chunk = data.substr(at, size);
     if (fnv1a(chunk) != checksum)
       throw fail("checksum mismatch at priority " + std::to_string(k) + " (corrupted file)");
-    fn(k, chunk, nodes, verts);
+    fn(k, chunk, c);
     at += size + 8;
   }
   return at;
@@ -126,159 +138,190 @@ std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t la
 
 }  // namespace
 
-std::string write_mco_data(const McOctree& t) {
-  const std::size_t nn = t.nodes.size(), nv = t.positions.size(), nl = t.lod.size();
-  // need[] per node and vertex (see the top of the file).
-  std::vector<std::uint32_t> need(nn, McNode::kNone), tri(nn, 0), vneed(nv, McNode::kNone);
-  if (nn) need[0] = 0;
-  for (std::size_t i = 0; i < nn; ++i) {  // parents come before children
-    const McNode& p = t.nodes[i];
-    if (p.leaf()) continue;
-    std::uint32_t c = children_need(p, tri[i]);
-    for (int o = 0; o < 8; ++o)
-      if (auto ch = p.child(o); ch != McNode::kNone) need[ch] = c, tri[ch] = p.priority;
-  }
-  for (std::size_t i = 0; i < nn; ++i)
-    for (auto v : t.nodes[i].edge_vertex)
-      if (v != McNode::kNone) vneed[v] = std::min(vneed[v], need[i]);
-  auto order_by = [](const std::vector<std::uint32_t>& key) {
-    std::vector<std::uint32_t> order(key.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-    std::vector<std::uint32_t> rank(key.size());
-    for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
-    return std::pair{order, rank};
-  };
-  auto [node_order, node_rank] = order_by(need);
-  auto [vertex_order, vertex_rank] = order_by(vneed);
-
+std::string write_mco_data(const McLodModel& m) {
+  const std::uint32_t L = m.priorities();
+  const std::size_t nc = m.cell_count(), nv = m.positions.size();
   std::string out(kMagic, 8);
   put(out, kMcoVersion);
-  put(out, static_cast<std::uint32_t>(t.colors.empty() ? 0 : 1));
-  put(out, static_cast<std::uint32_t>(t.depth));
-  put(out, t.origin);
-  put(out, t.cell_size);
-  put(out, static_cast<std::uint32_t>(sizeof(McNode)));
+  put(out, static_cast<std::uint32_t>(m.colors.empty() ? 0 : 1));
+  put(out, static_cast<std::uint32_t>(m.depth));
+  put(out, m.origin);
+  put(out, m.cell_size);
+  put(out, 0u);
   put(out, static_cast<std::uint64_t>(nv));
-  put(out, static_cast<std::uint64_t>(nn));
-  put(out, static_cast<std::uint64_t>(nl));
+  put(out, static_cast<std::uint64_t>(nc));
+  put(out, static_cast<std::uint64_t>(nc ? m.intervals.size() - 1 : 0));
+  put(out, static_cast<std::uint64_t>(m.stored_triangles()));
+  put(out, static_cast<std::uint64_t>(L));
   put(out, fnv1a(out));
-  std::size_t ni = 0, vi = 0;
-  for (std::size_t k = 0; k <= nl; ++k) {
-    std::size_t n_end = ni, v_end = vi;
-    while (n_end < nn && need[node_order[n_end]] <= k) ++n_end;
-    while (v_end < nv && vneed[vertex_order[v_end]] <= k) ++v_end;
-    std::size_t start = out.size();
-    put(out, static_cast<std::uint32_t>(n_end - ni));
-    put(out, static_cast<std::uint32_t>(v_end - vi));
-    put(out, k == 0 ? 0u : node_rank[t.lod[k - 1]]);
+  if (m.group.empty()) {  // a default-constructed model: one empty chunk
+    const std::size_t start = out.size();
+    out.append(kChunkHeader, '\0');
+    put(out, fnv1a(std::string_view(out).substr(start)));
+    return out;
+  }
+  std::uint32_t v_begin = 0;
+  auto centroid = m.centroids.begin();
+  for (std::uint32_t k = 0; k <= L; ++k) {
+    const std::uint32_t c0 = m.group[k], c1 = m.group[k + 1];
+    const std::uint32_t i0 = m.cells[c0].first_interval, i1 = m.cells[c1].first_interval;
+    const std::uint32_t t0 = m.intervals[i0].first_triangle, t1 = m.intervals[i1].first_triangle;
+    // Vertices are numbered by first use: this group's new ones follow the
+    // previous groups'. The last chunk takes any vertex no triangle uses.
+    std::uint32_t v_end = v_begin;
+    for (std::uint32_t t = t0; t < t1; ++t)
+      for (auto v : m.triangles[t]) v_end = std::max(v_end, v + 1);
+    if (k == L) v_end = static_cast<std::uint32_t>(nv);
+    auto centroid_end = std::lower_bound(centroid, m.centroids.end(), v_end);
+    const std::size_t start = out.size();
+    put(out, c1 - c0);
+    put(out, i1 - i0);
+    put(out, t1 - t0);
+    put(out, v_end - v_begin);
+    put(out, static_cast<std::uint32_t>(centroid_end - centroid));
     put(out, 0u);
-    put(out, t.accumulated[k]);
-    for (; vi < v_end; ++vi) {
-      auto v = vertex_order[vi];
-      put(out, t.positions[v]);
-      put(out, t.normals[v]);
-      if (!t.colors.empty()) put(out, t.colors[v]);
+    put(out, m.accumulated[k]);
+    for (std::uint32_t v = v_begin; v < v_end; ++v) {
+      put(out, m.positions[v]);
+      put(out, m.normals[v]);
+      if (!m.colors.empty()) put(out, m.colors[v]);
     }
     pad(out);
-    for (; ni < n_end; ++ni) {
-      McNode n = t.nodes[node_order[ni]];
-      if (!n.leaf()) n.first_child = node_rank[n.first_child];
-      for (auto& v : n.edge_vertex)
-        if (v != McNode::kNone) v = vertex_rank[v];
-      put(out, n);
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      put(out, m.cells[c].until);
+      put(out, m.cells[c + 1].first_interval - m.cells[c].first_interval);
     }
+    for (std::uint32_t i = i0; i < i1; ++i) {
+      put(out, m.intervals[i].from);
+      put(out, m.intervals[i + 1].first_triangle - m.intervals[i].first_triangle);
+    }
+    for (std::uint32_t t = t0; t < t1; ++t) put(out, m.triangles[t]);
+    for (; centroid != centroid_end; ++centroid) put(out, *centroid);
     pad(out);
     put(out, fnv1a(std::string_view(out).substr(start)));
+    v_begin = v_end;
   }
   return out;
 }
 
-void write_mco_file(const McOctree& tree, const std::string& path) {
-  write_file_atomic(path, write_mco_data(tree));
+void write_mco_file(const McLodModel& model, const std::string& path) {
+  write_file_atomic(path, write_mco_data(model));
 }
 
-McOctree read_mco_data(std::string_view data, const std::string& name,
-                       const McoReadOptions& options) {
+McLodModel read_mco_data(std::string_view data, const std::string& name,
+                         const McoReadOptions& options) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
-  McOctree t;
-  Header h = read_header(data, t, name);
+  McLodModel m;
+  Header h = read_header(data, m, name);
   const std::uint64_t last =
       options.max_priority < 0
           ? h.nl
           : std::min<std::uint64_t>(h.nl, static_cast<std::uint64_t>(options.max_priority));
   const bool colored = h.flags & 1;
-  t.nodes.reserve(last == h.nl ? h.nn : 0);
-  t.positions.reserve(last == h.nl ? h.nv : 0);
-  walk_chunks(
-      data, h, last, name,
-      [&](std::uint64_t k, std::string_view chunk, std::uint32_t nodes, std::uint32_t verts) {
-        std::size_t at = 8;
-        std::uint32_t lod;
-        std::uint64_t acc;
-        std::memcpy(&lod, chunk.data() + at, 4);
-        std::memcpy(&acc, chunk.data() + 16, 8);
-        at = kChunkHeader;
-        if (k > 0) t.lod.push_back(lod);
-        t.accumulated.push_back(acc);
-        for (std::uint32_t v = 0; v < verts; ++v) {
-          Vec3 p, n;
-          std::memcpy(&p, chunk.data() + at, 12);
-          std::memcpy(&n, chunk.data() + at + 12, 12);
-          at += 24;
-          t.positions.push_back(p);
-          t.normals.push_back(n);
-          if (colored) {
-            Rgb8 c;
-            std::memcpy(c.data(), chunk.data() + at, 3);
-            at += 3;
-            t.colors.push_back(c);
-          }
-        }
-        at = padded(at);
-        for (std::uint32_t i = 0; i < nodes; ++i) {
-          McNode n;
-          std::memcpy(static_cast<void*>(&n), chunk.data() + at, sizeof(McNode));
-          at += sizeof(McNode);
-          t.nodes.push_back(n);
-        }
-      });
-  if (t.nodes.empty() && h.nn > 0) throw fail("no root node");
-  // Structure: every index extraction up to `last` follows must be loaded.
-  const std::uint64_t nn = t.nodes.size(), nv = t.positions.size();
-  std::vector<std::uint32_t> tri(nn, 0);
-  for (std::size_t i = 0; i < nn; ++i) {
-    const McNode& n = t.nodes[i];
-    for (auto v : n.edge_vertex)
-      if (v != McNode::kNone && v >= nv) throw fail("vertex index out of range");
-    if (n.leaf()) continue;
-    std::uint64_t end = std::uint64_t{n.first_child} + __builtin_popcount(n.child_mask);
-    if (end > h.nn) throw fail("child index out of range");
-    if (end <= nn) {
-      for (int o = 0; o < 8; ++o)
-        if (auto c = n.child(o); c != McNode::kNone) {
-          if (c <= i) throw fail("child index out of range");
-          tri[c] = n.priority;
-        }
-    } else if (children_need(n, tri[i]) <= last) {
-      throw fail("child index out of range");
-    }
+  if (last == h.nl) {
+    m.positions.reserve(h.nv);
+    m.normals.reserve(h.nv);
+    m.cells.reserve(h.nc + 1);
+    m.intervals.reserve(h.ni + 1);
+    m.triangles.reserve(h.nt + McLodModel::kCopyBlock);
   }
-  for (std::size_t k = 0; k < t.lod.size(); ++k)
-    if (t.lod[k] >= nn || t.nodes[t.lod[k]].priority != k + 1)
-      throw fail("LOD array entry out of range");
-  return t;
+  // delta[k]: the change of the triangle count at priority k (see the top).
+  std::vector<std::int64_t> delta(last + 2, 0);
+  m.group.reserve(last + 2);
+  walk_chunks(data, h, last, name,
+              [&](std::uint64_t k, std::string_view chunk, const ChunkCounts& c) {
+                auto bad = [&](const char* what) {
+                  return fail(std::string(what) + " at priority " + std::to_string(k));
+                };
+                std::size_t at = kChunkHeader;
+                auto get = [&](auto& v) {
+                  std::memcpy(&v, chunk.data() + at, sizeof(v));
+                  at += sizeof(v);
+                };
+                m.group.push_back(static_cast<std::uint32_t>(m.cells.size()));
+                m.accumulated.push_back(c.accumulated);
+                for (std::uint32_t v = 0; v < c.vertices; ++v) {
+                  Vec3 p;
+                  std::uint32_t n;
+                  get(p);
+                  get(n);
+                  m.positions.push_back(p);
+                  m.normals.push_back(n);
+                  if (colored) {
+                    Rgb8 col;
+                    get(col);
+                    m.colors.push_back(col);
+                  }
+                }
+                at = padded(at);
+                // Cells, then their intervals in order: check the shape as they come.
+                const std::size_t cell_at = at, interval_at = at + 8 * std::size_t{c.cells};
+                std::size_t interval_count = 0, triangle_count = 0;
+                at = interval_at;
+                for (std::uint32_t i = 0; i < c.cells; ++i) {
+                  std::uint32_t until, n;
+                  std::memcpy(&until, chunk.data() + cell_at + 8 * i, 4);
+                  std::memcpy(&n, chunk.data() + cell_at + 8 * i + 4, 4);
+                  if (until <= k || n == 0 || n > c.intervals - interval_count)
+                    throw bad("cell out of range");
+                  m.cells.push_back({until, static_cast<std::uint32_t>(m.intervals.size())});
+                  interval_count += n;
+                  std::int64_t previous = 0;
+                  std::uint32_t previous_from = 0;
+                  for (std::uint32_t j = 0; j < n; ++j) {
+                    std::uint32_t from, count;
+                    get(from);
+                    get(count);
+                    if ((j == 0 && from != k) || (j > 0 && from <= previous_from) ||
+                        from >= until || count > c.triangles - triangle_count)
+                      throw bad("interval out of range");
+                    m.intervals.push_back(
+                        {from, static_cast<std::uint32_t>(m.triangles.size() + triangle_count)});
+                    triangle_count += count;
+                    if (from <= last) delta[from] += static_cast<std::int64_t>(count) - previous;
+                    previous = count, previous_from = from;
+                  }
+                  if (until <= last) delta[until] -= previous;
+                }
+                if (interval_count != c.intervals || triangle_count != c.triangles)
+                  throw bad("interval counts disagree");
+                const auto nv = static_cast<std::uint32_t>(m.positions.size());
+                for (std::uint32_t t = 0; t < c.triangles; ++t) {
+                  Triangle tri;
+                  get(tri);
+                  for (auto v : tri)
+                    if (v >= nv) throw bad("vertex index out of range");
+                  m.triangles.push_back(tri);
+                }
+                for (std::uint32_t i = 0; i < c.centroids; ++i) {
+                  std::uint32_t v;
+                  get(v);
+                  if (v >= nv || (!m.centroids.empty() && v <= m.centroids.back()))
+                    throw bad("centroid index out of range");
+                  m.centroids.push_back(v);
+                }
+              });
+  m.group.push_back(static_cast<std::uint32_t>(m.cells.size()));
+  m.cells.push_back({0, static_cast<std::uint32_t>(m.intervals.size())});
+  m.intervals.push_back({McLodModel::kNever, static_cast<std::uint32_t>(m.triangles.size())});
+  m.triangles.resize(m.triangles.size() + McLodModel::kCopyBlock, Triangle{0, 0, 0});
+  std::int64_t count = 0;
+  for (std::uint64_t k = 0; k <= last; ++k) {
+    count += delta[k];
+    if (count < 0 || static_cast<std::uint64_t>(count) != m.accumulated[k])
+      throw fail("accumulation table disagrees with the cells at priority " + std::to_string(k));
+  }
+  return m;
 }
 
-McOctree read_mco_file(const std::string& path, const McoReadOptions& options) {
+McLodModel read_mco_file(const std::string& path, const McoReadOptions& options) {
   return read_mco_data(read_file(path), path, options);
 }
 
 std::uint64_t mco_prefix_size(std::string_view data, std::uint32_t priority,
                               const std::string& name) {
-  McOctree t;
-  Header h = read_header(data, t, name);
+  McLodModel m;
+  Header h = read_header(data, m, name);
   return walk_chunks(data, h, std::min<std::uint64_t>(priority, h.nl), name, [](auto&&...) {});
 }
 

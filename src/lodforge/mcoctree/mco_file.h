@@ -1,63 +1,70 @@
 #pragma once
-/// The .mco model file: a marching-cube octree as built, to extract levels
-/// from later without rebuilding. Progressive: the data come in priority
-/// order, so that a reader can stop after priority N (a prefix of the file,
-/// e.g. a partial download) and still extract any level up to N.
+/// The .mco model file: the run-time model of a marching-cube octree
+/// (mc_lod_model.h), to extract levels from later without rebuilding.
+/// Progressive: the data come in priority order, so that a reader can stop
+/// after priority N (a prefix of the file, e.g. a partial download) and still
+/// extract any level up to N.
 ///
 /// Layout (little-endian):
 ///
 ///   offset  size  field
 ///   0       8     magic "LFMCO\r\n\x1a" (catches text-mode mangling)
-///   8       4     version (2)
+///   8       4     version (3)
 ///   12      4     flags: bit 0 = colours present
 ///   16      4     depth
 ///   20      12    origin (3 x f32)
 ///   32      4     cell size (f32)
-///   36      4     sizeof(McNode) (the node record, checked on reading)
+///   36      4     0
 ///   40      8     vertex count V
-///   48      8     node count
-///   56      8     LOD array length L
-///   64      8     FNV-1a 64 of bytes 0..63
-///   72      ...   chunks 0..L, chunk k holding what extraction at priority k
-///                 needs beyond chunk k-1:
-///                   u32 nodes, u32 vertices, u32 LOD entry k (0 for k = 0),
-///                   u32 0, u64 accumulated[k],
-///                   vertices (position, normal: 6 x f32, colour 3 x u8 if
-///                   coloured) padded to 8, node records padded to 8,
+///   48      8     cell count C
+///   56      8     interval count I
+///   64      8     triangle count T (over all cells and intervals)
+///   72      8     priorities L
+///   80      8     FNV-1a 64 of bytes 0..79
+///   88      ...   chunks 0..L, chunk k holding the cells whose parent has
+///                 priority k (k = 0: the root) and the vertices they use
+///                 first:
+///                   u32 cells, u32 intervals, u32 triangles, u32 vertices,
+///                   u32 centroid vertices, u32 0, u64 accumulated[k],
+///                   vertices (position 3 x f32, octahedral normal u32,
+///                   colour 3 x u8 if coloured) padded to 8,
+///                   cells (u32 until, u32 interval count),
+///                   intervals (u32 from, u32 triangle count),
+///                   triangles (3 x u32 vertex index),
+///                   centroid vertex indices (u32) padded to 8,
 ///                   u64 FNV-1a 64 of the chunk's bytes before it
 ///
-/// Nodes and vertices are numbered in the order they are stored. A node is
-/// needed from the priority at which its parent is expanded or, earlier, at
-/// which its parent is a cell with a split face or edge (whose vertices are
-/// its children's); a vertex from the first needed node that uses it.
+/// Version 2 stored the build-time tree; version 3 stores what extraction
+/// reads, so reading does no triangulation.
 #include <string>
 #include <string_view>
 
-#include "lodforge/mcoctree/mc_octree.h"
+#include "lodforge/mcoctree/mc_lod_model.h"
 
 namespace lodforge {
 
-inline constexpr std::uint32_t kMcoVersion = 2;
+inline constexpr std::uint32_t kMcoVersion = 3;
 
 /// The file's bytes. Never throws except std::bad_alloc.
-std::string write_mco_data(const McOctree& tree);
+std::string write_mco_data(const McLodModel& model);
 /// Writes atomically. Throws DataError when the file cannot be written.
-void write_mco_file(const McOctree& tree, const std::string& path);
+void write_mco_file(const McLodModel& model, const std::string& path);
 
 struct McoReadOptions {
-  /// Read only what priorities 0..N need (the LOD array and accumulation
-  /// table end at N); -1 = everything. The rest of the file is not looked at.
+  /// Read only what priorities 0..N need (the accumulation table ends at N);
+  /// -1 = everything. The rest of the file is not looked at.
   std::int64_t max_priority = -1;
 };
 
 /// Parses a model (or its first priorities); `name` is used in messages.
 /// Throws DataError ("name: ...") for a wrong magic, an unknown version, a
-/// file truncated before the data asked for, a checksum mismatch, or
-/// indices out of range (vertex, child, LOD entry). A tree read up to N
-/// extracts exactly the meshes of the whole tree at priorities 0..N.
-McOctree read_mco_data(std::string_view data, const std::string& name,
-                       const McoReadOptions& options = {});
-McOctree read_mco_file(const std::string& path, const McoReadOptions& options = {});
+/// file truncated before the data asked for, a checksum mismatch, indices out
+/// of range, intervals out of order, or triangle counts that disagree with
+/// the accumulation table (so extraction can trust it). A model read up to N
+/// extracts exactly the meshes of the whole model at priorities 0..N.
+McLodModel read_mco_data(std::string_view data, const std::string& name,
+                         const McoReadOptions& options = {});
+McLodModel read_mco_file(const std::string& path, const McoReadOptions& options = {});
 
 /// Bytes of `data` (a whole .mco file) that priorities 0..N need: the prefix
 /// to send or keep. Throws DataError as read_mco_data.

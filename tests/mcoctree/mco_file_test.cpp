@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
@@ -85,26 +86,41 @@ std::uint64_t fnv1a(std::string_view d) {
   return h;
 }
 
-// An uncoloured file with the first index of its first triangle set to v, the
-// chunk's checksum recomputed (see the layout in mco_file.h).
-std::string with_first_triangle_index(std::string data, std::uint32_t v) {
+// The chunks of an uncoloured file (see the layout in mco_file.h): where each
+// starts, its size before the checksum, and where its triangles start.
+struct ChunkPlace {
+  std::size_t at, size, triangles_at;
+  std::uint32_t triangles;
+};
+std::vector<ChunkPlace> chunk_places(const std::string& data) {
   auto pad8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
-  std::size_t at = 88;
-  for (;;) {
+  std::vector<ChunkPlace> out;
+  for (std::size_t at = 88; at < data.size();) {
     std::uint32_t n[5];
     std::memcpy(n, data.data() + at, sizeof n);
     const auto [cells, intervals, triangles, vertices, centroids] = n;
     std::size_t tri_at = at + 32 + pad8(16 * std::size_t{vertices}) + 8 * std::size_t{cells} +
                          8 * std::size_t{intervals};
     std::size_t size = tri_at - at + pad8(12 * std::size_t{triangles} + 4 * std::size_t{centroids});
-    if (triangles > 0) {
-      std::memcpy(data.data() + tri_at, &v, 4);
-      std::uint64_t h = fnv1a(std::string_view(data).substr(at, size));
-      std::memcpy(data.data() + at + size, &h, 8);
-      return data;
-    }
+    out.push_back({at, size, tri_at, triangles});
     at += size + 8;
   }
+  return out;
+}
+void reseal(std::string& data, const ChunkPlace& c) {
+  std::uint64_t h = fnv1a(std::string_view(data).substr(c.at, c.size));
+  std::memcpy(data.data() + c.at + c.size, &h, 8);
+}
+
+// The first index of the first triangle set to v, the chunk re-sealed.
+std::string with_first_triangle_index(std::string data, std::uint32_t v) {
+  for (const auto& c : chunk_places(data))
+    if (c.triangles > 0) {
+      std::memcpy(data.data() + c.triangles_at, &v, 4);
+      reseal(data, c);
+      break;
+    }
+  return data;
 }
 
 // Data that pass the checksums but not the structure: extraction trusts the
@@ -127,6 +143,41 @@ TEST(McoFile, InconsistentDataAreRejected) {
   McLodModel until = t;
   until.cells[until.cell_count() - 1].until = 0;
   reseal_and_expect(until, "cell out of range");
+}
+
+// Random damage to the data of a chunk, re-sealed so that the checksum does
+// not catch it: reading either throws DataError or returns a model whose
+// every level extracts with indices in range and the counts of its table.
+TEST(McoFile, ResealedDamageIsRejectedOrHarmless) {
+  const std::string data = write_mco_data(small_model(false));
+  const auto places = chunk_places(data);
+  std::mt19937 rng(11);
+  int rejected = 0, accepted = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::string bad = data;
+    const auto& c = places[rng() % places.size()];
+    if (c.size <= 32) continue;
+    std::size_t at = c.at + 32 + rng() % (c.size - 32);
+    bad[at] = static_cast<char>(bad[at] ^ (1 + rng() % 255));
+    reseal(bad, c);
+    McLodModel m;
+    try {
+      m = read_mco_data(bad, "m.mco");
+    } catch (const DataError&) {
+      ++rejected;
+      continue;
+    }
+    ++accepted;
+    std::vector<Triangle> tris;
+    for (std::uint32_t n = 0; n <= m.priorities(); ++n) {
+      ASSERT_EQ(extract_mc_indices(m, n, tris), m.accumulated[n]);
+      for (const auto& t : tris)
+        for (auto v : t) ASSERT_LT(v, m.positions.size());
+    }
+  }
+  std::printf("damaged files: %d rejected, %d accepted (damage to positions, normals, ...)\n",
+              rejected, accepted);
+  EXPECT_GT(rejected, 0);
 }
 
 // Progressive order: the first bytes of a file extract every level up to the

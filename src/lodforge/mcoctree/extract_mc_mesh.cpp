@@ -124,32 +124,50 @@ std::size_t McExtractor::extract(std::uint32_t priority, TriangleMesh& out) {
   out.lines.clear();
   centroids_ = 0;
   extract_mc_indices(m, priority, indices_);
-  if (stamp_.size() != m.positions.size()) {
-    stamp_.assign(m.positions.size(), 0);
-    remap_.assign(m.positions.size(), 0);
+  if (seen_.size() != m.positions.size()) {
+    seen_.assign(m.positions.size(), {0, 0});
     epoch_ = 0;
   }
   if (++epoch_ == 0) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+    std::fill(seen_.begin(), seen_.end(), Seen{0, 0});
     epoch_ = 1;
   }
+  // Three passes without a data-dependent branch (a "first time seen?" test
+  // per corner mispredicts about once a triangle): mark the used vertices,
+  // number and copy them in table order (vertices are in order of first use,
+  // so all used ones lie below the largest index, and the walk is
+  // sequential), then renumber the triangles.
+  Seen* seen = seen_.data();
+  std::uint32_t end = 0;
+  for (const auto& t : indices_)
+    for (auto v : t) {
+      seen[v].epoch = epoch_;
+      end = std::max(end, v + 1);
+    }
   const bool colored = !m.colors.empty();
+  const Vec3* positions = m.positions.data();
+  const std::uint32_t* normals = m.normals.data();
+  // One spare slot: an unused vertex writes to the slot of the next used one.
+  out.positions.resize(end + 1);
+  out.normals.resize(end + 1);
+  if (colored) out.colors.resize(end + 1);
+  std::uint32_t next = 0;
+  for (std::uint32_t v = 0; v < end; ++v) {
+    seen[v].index = next;
+    out.positions[next] = positions[v];
+    out.normals[next] = decode_normal(normals[v]);
+    if (colored)
+      out.colors[next] =
+          Vec3{m.colors[v][0] / 255.0f, m.colors[v][1] / 255.0f, m.colors[v][2] / 255.0f};
+    next += seen[v].epoch == epoch_;
+  }
+  out.positions.resize(next);
+  out.normals.resize(next);
+  if (colored) out.colors.resize(next);
   out.triangles.resize(indices_.size());
   for (std::size_t i = 0; i < indices_.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t v = indices_[i][k];
-      if (stamp_[v] != epoch_) {
-        stamp_[v] = epoch_;
-        remap_[v] = static_cast<std::uint32_t>(out.positions.size());
-        out.positions.push_back(m.positions[v]);
-        out.normals.push_back(decode_normal(m.normals[v]));
-        if (colored)
-          out.colors.push_back(
-              Vec3{m.colors[v][0] / 255.0f, m.colors[v][1] / 255.0f, m.colors[v][2] / 255.0f});
-      }
-      out.triangles[i][k] = remap_[v];
-    }
-  for (auto v : m.centroids) centroids_ += stamp_[v] == epoch_;
+    for (int k = 0; k < 3; ++k) out.triangles[i][k] = seen[indices_[i][k]].index;
+  for (auto v : m.centroids) centroids_ += seen_[v].epoch == epoch_;
   return out.triangles.size();
 }
 

@@ -94,7 +94,10 @@ class McExtractor {
   std::unique_ptr<const McLodModel> owned_;
   const McLodModel* model_;
   std::vector<Triangle> indices_;
-  std::vector<std::uint32_t> stamp_, remap_;
+  struct Seen {
+    std::uint32_t epoch, index;  ///< index in the output when epoch is the current one
+  };
+  std::vector<Seen> seen_;
   std::uint32_t epoch_ = 0;
   std::size_t centroids_ = 0;
 };

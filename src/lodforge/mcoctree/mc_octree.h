@@ -1,6 +1,7 @@
 #pragma once
-/// The marching-cube octree: the model `build_mc_octree` makes, `extract_mc_mesh`
-/// reads and `write_mco_file` / `read_mco_file` store.
+/// The marching-cube octree: the build-time model `build_mc_octree` makes and
+/// `compile_mc_lod` turns into the run-time model (mc_lod_model.h) that
+/// extraction reads and `write_mco_file` / `read_mco_file` store.
 ///
 /// A node is a marching cube: the signs of its corners (and of the points of
 /// its 3x3x3 half-spacing lattice, which its children's corners give) and, on

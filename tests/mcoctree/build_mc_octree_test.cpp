@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/cell_polygonize.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mesh/adjacency.h"
+#include "lodforge/metrics/triangle_bvh.h"
 #include "mcoctree/crack_check.h"
 #include "mesh/test_meshes.h"
 
@@ -63,6 +65,77 @@ TEST(BuildMcOctree, BadInput) {
   for (auto& p : point.positions) p = {1, 2, 3};
   EXPECT_THROW(build_mc_octree(point), DataError);
   EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1}), std::invalid_argument);
+  EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1001}),
+               std::invalid_argument);
+}
+
+// An icosphere without its top (z > 0.5): a round hole, rim at z ~ 0.5.
+TriangleMesh make_open_sphere() {
+  auto sphere = test::make_icosphere(3);
+  TriangleMesh open;
+  open.positions = sphere.positions;
+  for (const auto& f : sphere.triangles) {
+    float z = 0;
+    for (auto v : f) z = std::max(z, sphere.positions[v].z);
+    if (z <= 0.5f) open.triangles.push_back(f);
+  }
+  return open;
+}
+
+// McHoles::kOpen: no surface over the hole at any priority, borders only
+// along the input's rim, and otherwise crack-free (no T-junction, no
+// non-manifold or inconsistent edge); McHoles::kCapped closes the hole.
+TEST(BuildMcOctree, OpenMeshGetsBordersNotCaps) {
+  auto open = make_open_sphere();
+  TriangleBvh bvh(open);
+  auto built = build_mc_octree(open, {.resolution = 24, .holes = McHoles::kOpen});
+  const McOctree& t = built.tree;
+  EXPECT_GT(built.stats.hole_nodes, 0u);
+  const float h = t.cell_size;
+  McExtractor ex(t);
+  TriangleMesh m;
+  for (std::uint32_t n = 1; n <= t.lod.size(); ++n) {
+    if (ex.extract(n, m) == 0) continue;
+    auto report = test::crack_report(m);
+    ASSERT_EQ(report.t_junctions, 0u) << "priority " << n;
+    ASSERT_EQ(report.topology.non_manifold_edges, 0u) << "priority " << n;
+    ASSERT_EQ(report.topology.inconsistent_edges, 0u) << "priority " << n;
+    ASSERT_GT(report.topology.boundary_edges, 0u) << "priority " << n;
+  }
+  // Full resolution: every point within a cell diagonal of the input, none
+  // over the hole, and the borders at the rim.
+  auto full = extract_mc_mesh(t).mesh;
+  for (const auto& p : full.positions) {
+    EXPECT_LE(std::sqrt(bvh.closest_point(p).distance_squared), 1.8f * h);
+    EXPECT_LE(p.z, 0.5f + 2 * h);
+  }
+  auto adj = build_adjacency(full);
+  ASSERT_GT(adj.boundary_edges.size(), 0u);
+  for (auto e : adj.boundary_edges)
+    for (auto v : adj.edges[e]) EXPECT_NEAR(full.positions[v].z, 0.5f, 3 * h);
+
+  auto capped = build_mc_octree(open, {.resolution = 24, .holes = McHoles::kCapped}).tree;
+  McExtractor cx(capped);
+  for (std::uint32_t n = 1; n <= capped.lod.size(); ++n) {
+    if (cx.extract(n, m) == 0) continue;
+    auto report = test::crack_report(m);
+    ASSERT_TRUE(report.ok()) << "capped, priority " << n << ": " << report.describe();
+  }
+}
+
+// Resolution 0: about as many triangles at full resolution as the input.
+TEST(BuildMcOctree, DefaultResolutionMatchesTheInputCount) {
+  for (const auto& mesh : {test::make_icosphere(4), test::make_torus(1.0f, 0.3f, 96, 48)}) {
+    auto r = build_mc_octree(mesh);
+    EXPECT_GT(r.stats.resolution, 2);
+    double ratio = static_cast<double>(r.tree.full_triangles()) / mesh.triangle_count();
+    EXPECT_GT(ratio, 0.6);
+    EXPECT_LT(ratio, 1.6);
+    EXPECT_EQ(r.stats.hole_nodes, 0u);  // closed: nothing invented
+    std::printf("default resolution %d: %llu triangles for %zu input triangles\n",
+                r.stats.resolution, static_cast<unsigned long long>(r.tree.full_triangles()),
+                mesh.triangle_count());
+  }
 }
 
 TEST(ExtractMcMesh, SphereIsCrackFreeAtEveryPriority) {

@@ -48,6 +48,7 @@
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/adjacency.h"
 #include "lodforge/mesh/weld.h"
+#include "lodforge/metrics/closest_point_on_triangle.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
 namespace lodforge {
@@ -58,7 +59,10 @@ double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-constexpr std::uint8_t kInside = 1, kExact = 2, kAssigned = 4;
+// kMeasured: a point nearest an open rim, measured without a sign.
+constexpr std::uint8_t kInside = 1, kExact = 2, kAssigned = 4, kMeasured = 8;
+// A surface point more than kRimGap cells beyond an open rim is invented.
+constexpr float kRimGap = 0.25f;
 
 // Signed distance to a mesh: exact closest point, side by pseudo-normal.
 class SignedDistance {
@@ -100,48 +104,41 @@ class SignedDistance {
   struct Sample {
     float distance;  // signed: negative inside
     ClosestPoint at;
+    bool open;  // nearest an open rim: the side is unknown (distance >= 0)
   };
   Sample operator()(const Vec3& p, std::uint32_t hint = ClosestPoint::kNone) const {
-    ClosestPoint cp = bvh_->closest_point(p, hint);
+    return sample(p, bvh_->closest_point(p, hint));
+  }
+  // The signed distance of p whose closest surface point is cp.
+  Sample sample(const Vec3& p, const ClosestPoint& cp) const {
+    auto [n, open] = feature(cp);
+    float d = std::sqrt(cp.distance_squared);
+    // Nearest to a hole's rim the pseudo-normal's side is a half-plane that
+    // runs off to infinity: such points are left to the flood fill.
+    if (open) return {d, cp, true};
+    return {dot(p - cp.point, n) < 0 ? -d : d, cp, false};
+  }
+  // The pseudo-normal at a closest point (face, edge or vertex normal by
+  // where on the triangle it lies) and whether that feature is an open rim.
+  std::pair<Vec3, bool> feature(const ClosestPoint& cp) const {
     const auto& b = cp.barycentric;
     const auto& f = mesh_.triangles[cp.triangle];
     constexpr float kTol = 1e-5f;
     int zeros = (b[0] < kTol) + (b[1] < kTol) + (b[2] < kTol);
-    Vec3 n = face_normal_[cp.triangle];
-    bool open = false;
     if (zeros >= 2) {
       int k = b[0] >= b[1] && b[0] >= b[2] ? 0 : b[1] >= b[2] ? 1 : 2;
-      n = vertex_normal_[f[k]];
-      open = open_vertex_[f[k]];
-    } else if (zeros == 1) {
+      return {vertex_normal_[f[k]], open_vertex_[f[k]] != 0};
+    }
+    if (zeros == 1) {
       int side = b[2] < kTol ? 0 : b[0] < kTol ? 1 : 2;
       auto e = adjacency_.triangle_edges[cp.triangle][side];
-      if (e != MeshAdjacency::kNoEdge) n = edge_normal_[e], open = open_edge_[e];
+      if (e != MeshAdjacency::kNoEdge) return {edge_normal_[e], open_edge_[e] != 0};
     }
-    float d = std::sqrt(cp.distance_squared);
-    // Nearest to a hole's rim the pseudo-normal's side is a half-plane that
-    // runs off to infinity; the generalized winding number (Jacobson et al.
-    // 2013) says which side of the hole the point is on.
-    bool inside = open ? winding_number(p) > 0.5 : dot(p - cp.point, n) < 0;
-    return {inside ? -d : d, cp};
+    return {face_normal_[cp.triangle], false};
   }
+  bool has_rims() const { return !adjacency_.boundary_edges.empty(); }
   const TriangleMesh& mesh() const { return mesh_; }
   const TriangleBvh& bvh() const { return *bvh_; }
-
-  // Sum of the signed solid angles of the triangles seen from p, over 4 pi
-  // (Van Oosterom & Strackee). O(F): only for points nearest an open rim.
-  double winding_number(const Vec3& p) const {
-    double total = 0;
-    for (const auto& f : mesh_.triangles) {
-      Vec3 a = mesh_.positions[f[0]] - p, b = mesh_.positions[f[1]] - p,
-           c = mesh_.positions[f[2]] - p;
-      double la = length(a), lb = length(b), lc = length(c);
-      double num = dot(a, cross(b, c));
-      double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-      total += 2 * std::atan2(num, den);
-    }
-    return total / (4 * 3.14159265358979323846);
-  }
 
  private:
   TriangleMesh mesh_;
@@ -176,25 +173,45 @@ struct Lattice {
                         h;
   }
   bool inside(std::int64_t idx) const { return state[idx] & kInside; }
+  bool on_border(std::int64_t idx) const {
+    std::int64_t c[3] = {idx % n, (idx / n) % n, idx / (n * n)};
+    for (auto v : c)
+      if (v == 0 || v == n - 1) return true;
+    return false;
+  }
 };
 
-void measure(Lattice& lat, const SignedDistance& sd, const std::vector<std::int64_t>& points) {
+// Exact signed distances at `points`; a point nearest an open rim keeps the
+// sign it has (none yet in the band: the flood fill gives it one). Returns
+// the points whose sign changed.
+std::vector<std::int64_t> measure(Lattice& lat, const SignedDistance& sd,
+                                  const std::vector<std::int64_t>& points) {
   std::vector<float> d(points.size());
+  std::vector<std::uint8_t> open(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       std::uint32_t hint = ClosestPoint::kNone;
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
                         auto s = sd(lat.point(points[i]), hint);
                         hint = s.at.triangle;
+                        open[i] = s.open;
                         // A point on the surface counts as outside, a hair away.
                         d[i] = s.distance == 0 ? 1e-6f * lat.h : s.distance;
                       }
                     });
+  std::vector<std::int64_t> changed;
   for (std::size_t i = 0; i < points.size(); ++i) {
     auto& st = lat.state[points[i]];
-    st = kExact | kAssigned | (d[i] < 0 ? kInside : 0);
+    if (open[i]) {
+      st |= kMeasured;
+      continue;
+    }
+    std::uint8_t next = kExact | kAssigned | (d[i] < 0 ? kInside : 0);
+    if ((st & kInside) != (next & kInside)) changed.push_back(points[i]);
+    st = next;
     lat.distance.emplace_back(points[i], d[i]);
   }
+  return changed;
 }
 
 // An empty lattice whose root cube holds `box` with one cell to spare.
@@ -231,7 +248,7 @@ void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildSta
     queue.pop_front();
     lattice_neighbours(lat, idx, [&](std::int64_t q) {
       if (lat.state[q] & kAssigned) return;
-      lat.state[q] = kAssigned | (lat.state[idx] & kInside);
+      lat.state[q] = (lat.state[q] & kMeasured) | kAssigned | (lat.state[idx] & kInside);
       ++stats.flooded_points;
       queue.push_back(q);
     });
@@ -242,51 +259,145 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   const TriangleMesh& m = sd.mesh();
   Lattice lat = empty_lattice(m.bounds(), resolution);
 
-  // Band: lattice points within one cell of a triangle's bounding box.
-  std::vector<std::int64_t> band;
-  auto to_cell = [&](float v, float o) { return (v - o) / lat.h; };
-  for (const auto& f : m.triangles) {
-    Box3 tb;
-    for (int k = 0; k < 3; ++k) tb.add(m.positions[f[k]]);
+  // Band: every lattice point within a cell of the surface gets its exact
+  // closest point by scanning each triangle over the lattice points of its
+  // bounding box grown by a cell (those points include every point within a
+  // cell of it), keeping the nearest: a few dozen point-triangle tests per
+  // triangle instead of a hierarchy query per point. Both ends of a lattice
+  // edge the surface crosses are within a cell of it, so these points
+  // separate the inside from the outside and the flood fill below cannot
+  // carry a sign across the surface. The lattice is cut into slabs of
+  // kSlab layers, each scanned by one task with the triangles that reach it.
+  constexpr std::int64_t kSlab = 4;
+  const std::int64_t n = lat.n, slabs = (n + kSlab - 1) / kSlab;
+  struct Range {
     std::int64_t lo[3], hi[3];
+  };
+  std::vector<Range> range(m.triangles.size());
+  std::vector<std::vector<std::uint32_t>> bucket(static_cast<std::size_t>(slabs));
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    Box3 tb;
+    for (int k = 0; k < 3; ++k) tb.add(m.positions[m.triangles[t][k]]);
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max<std::int64_t>(
-          0, static_cast<std::int64_t>(std::floor(to_cell(tb.lo[a], lat.origin[a]))) - 1);
-      hi[a] = std::min<std::int64_t>(
-          lat.n - 1, static_cast<std::int64_t>(std::ceil(to_cell(tb.hi[a], lat.origin[a]))) + 1);
+      range[t].lo[a] = std::max<std::int64_t>(
+          0, static_cast<std::int64_t>(std::ceil((tb.lo[a] - lat.origin[a]) / lat.h - 1)));
+      range[t].hi[a] = std::min<std::int64_t>(
+          n - 1, static_cast<std::int64_t>(std::floor((tb.hi[a] - lat.origin[a]) / lat.h + 1)));
     }
-    for (auto k = lo[2]; k <= hi[2]; ++k)
-      for (auto j = lo[1]; j <= hi[1]; ++j)
-        for (auto i = lo[0]; i <= hi[0]; ++i) {
-          auto idx = lat.index(i, j, k);
-          if (lat.state[idx] & kAssigned) continue;
-          lat.state[idx] = kAssigned;
-          band.push_back(idx);
-        }
+    for (auto s = range[t].lo[2] / kSlab; s <= range[t].hi[2] / kSlab; ++s)
+      bucket[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(t));
   }
-  std::sort(band.begin(), band.end());
-  measure(lat, sd, band);
-  stats.band_points = band.size();
+  struct Found {
+    std::int64_t idx;
+    float distance;  // signed; NaN: nearest an open rim
+  };
+  std::vector<std::vector<Found>> found(static_cast<std::size_t>(slabs));
+  const float h2 = lat.h * lat.h;
+  tbb::parallel_for(std::int64_t{0}, slabs, [&](std::int64_t s) {
+    struct Best {
+      float d2 = INFINITY;
+      std::uint32_t triangle = 0;
+      std::array<float, 3> barycentric{};
+    };
+    const std::int64_t z0 = s * kSlab, z1 = std::min(n, z0 + kSlab);
+    std::vector<Best> best(static_cast<std::size_t>((z1 - z0) * n * n));
+    for (auto t : bucket[static_cast<std::size_t>(s)]) {
+      const auto& f = m.triangles[t];
+      const Vec3 &a = m.positions[f[0]], &b = m.positions[f[1]], &c = m.positions[f[2]];
+      const Range& r = range[t];
+      // Points farther than a cell from the triangle's plane are skipped
+      // before the exact test (most of the box of a slanted triangle).
+      Vec3 normal = cross(b - a, c - a);
+      float scale = length(normal);
+      if (scale > 0) normal = normal / scale;
+      for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
+        for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
+          for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
+            Vec3 x =
+                lat.origin +
+                Vec3{static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)} * lat.h;
+            float plane = dot(x - a, normal);
+            if (plane * plane > h2) continue;
+            TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
+            Best& bt = best[static_cast<std::size_t>(i + n * (j + n * (k - z0)))];
+            if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
+          }
+    }
+    auto& out = found[static_cast<std::size_t>(s)];
+    for (std::size_t p = 0; p < best.size(); ++p) {
+      const Best& bt = best[p];
+      if (!(bt.d2 <= h2)) continue;
+      std::int64_t idx = z0 * n * n + static_cast<std::int64_t>(p);
+      ClosestPoint cp;
+      cp.triangle = bt.triangle, cp.barycentric = bt.barycentric, cp.distance_squared = bt.d2;
+      const auto& f = m.triangles[bt.triangle];
+      for (int k = 0; k < 3; ++k) cp.point += m.positions[f[k]] * bt.barycentric[k];
+      auto sample = sd.sample(lat.point(idx), cp);
+      // A point on the surface counts as outside, a hair away; so does the
+      // root cube's boundary (a cell or more from the mesh's box).
+      float d = sample.distance == 0 ? 1e-6f * lat.h : sample.distance;
+      if (lat.on_border(idx)) d = std::abs(d);
+      out.push_back({idx, sample.open && !lat.on_border(idx) ? NAN : d});
+    }
+  });
+  std::vector<std::int64_t> seeds;
+  for (const auto& slab : found)
+    for (const auto& fd : slab) {
+      ++stats.band_points;
+      if (std::isnan(fd.distance)) {
+        lat.state[fd.idx] = kMeasured;
+        continue;
+      }
+      lat.state[fd.idx] = kExact | kAssigned | (fd.distance < 0 ? kInside : 0);
+      lat.distance.emplace_back(fd.idx, fd.distance);
+      seeds.push_back(fd.idx);
+    }
 
-  // Flood fill the rest from the band, breadth first (nearest band sign wins).
-  flood_fill(lat, band, stats);
+  // The rest of the root cube's boundary is outside and stays so: an open
+  // mesh's inside could otherwise flood out to it, and the surface would
+  // end there.
+  for (std::int64_t k = 0; k < n; ++k)
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t i = 0; i < n; ++i) {
+        if (!(k == 0 || k == n - 1 || j == 0 || j == n - 1) && i != 0) i = n - 1;
+        std::int64_t idx = lat.index(i, j, k);
+        if (lat.state[idx] & kExact) continue;
+        lat.state[idx] = kAssigned | kMeasured;
+        seeds.push_back(idx);
+      }
+
+  // Flood fill the rest from the band, breadth first (nearest band sign
+  // wins); band points nearest an open rim take their sign the same way, so
+  // that a hole is closed about midway between the inside and the outside.
+  flood_fill(lat, seeds, stats);
   auto neighbours = [&](std::int64_t idx, auto&& fn) { lattice_neighbours(lat, idx, fn); };
+  auto unsure = [&](std::int64_t idx) { return !(lat.state[idx] & (kExact | kMeasured)); };
   // Repair: a flooded point that disagrees with a neighbour gets an exact sign
-  // (an open mesh: the inside leaks through a hole), until none disagrees.
+  // (the inside leaks through a gap narrower than the band), and so do the
+  // unmeasured neighbours of each point whose sign that changes.
   std::vector<std::int64_t> work;
-  for (std::int64_t idx = 0; idx < static_cast<std::int64_t>(lat.state.size()); ++idx) {
-    if (lat.state[idx] & kExact) continue;
-    bool differs = false;
-    neighbours(idx, [&](std::int64_t q) { differs |= lat.inside(q) != lat.inside(idx); });
-    if (differs) work.push_back(idx);
-  }
+  const std::int64_t plane = n * n;
+  for (std::int64_t k = 0; k < n; ++k)
+    for (std::int64_t j = 0; j < n; ++j) {
+      const std::int64_t row = n * (j + n * k);
+      for (std::int64_t i = 0; i < n; ++i) {
+        const std::int64_t idx = row + i;
+        if (!unsure(idx)) continue;
+        const bool in = lat.inside(idx);
+        if ((i > 0 && lat.inside(idx - 1) != in) || (i + 1 < n && lat.inside(idx + 1) != in) ||
+            (j > 0 && lat.inside(idx - n) != in) || (j + 1 < n && lat.inside(idx + n) != in) ||
+            (k > 0 && lat.inside(idx - plane) != in) ||
+            (k + 1 < n && lat.inside(idx + plane) != in))
+          work.push_back(idx);
+      }
+    }
   while (!work.empty()) {
-    measure(lat, sd, work);
     stats.sign_repairs += work.size();
+    auto changed = measure(lat, sd, work);
     std::vector<std::int64_t> next;
-    for (auto idx : work)
+    for (auto idx : changed)
       neighbours(idx, [&](std::int64_t q) {
-        if (!(lat.state[q] & kExact) && lat.inside(q) != lat.inside(idx)) next.push_back(q);
+        if (unsure(q) && lat.inside(q) != lat.inside(idx)) next.push_back(q);
       });
     std::sort(next.begin(), next.end());
     next.erase(std::unique(next.begin(), next.end()), next.end());
@@ -615,12 +726,59 @@ std::uint32_t fill_unknown(std::uint32_t signs, std::uint32_t known) {
   return out;
 }
 
+// How far a surface point is from the input: the distance, over kRimGap
+// when the closest point is on an open rim (a crossing of a true sign change
+// lies within a cell edge of the surface; beyond a rim a quarter of that is
+// already a cap).
+struct Gap {
+  float gap = 0;
+  bool rim = false;
+};
+
+// Node by (level, coordinates): open addressing, linear probing. The
+// neighbour look-ups of the priority numbering are most of its time, which
+// std::unordered_map's chained buckets made several times slower.
+class NodeIndex {
+ public:
+  void reserve(std::size_t n) {
+    std::size_t size = 16;
+    shift_ = 60;
+    while (size < 2 * n) size *= 2, --shift_;
+    keys_.assign(size, kEmpty);
+    values_.assign(size, McNode::kNone);
+    mask_ = size - 1;
+  }
+  void insert(std::uint64_t key, std::uint32_t value) {
+    std::size_t i = slot(key);
+    while (keys_[i] != kEmpty) i = (i + 1) & mask_;
+    keys_[i] = key, values_[i] = value;
+  }
+  std::uint32_t find(std::uint64_t key) const {
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return values_[i];
+      if (keys_[i] == kEmpty) return McNode::kNone;
+    }
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  std::size_t slot(std::uint64_t key) const {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift_);
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> values_;
+  std::size_t mask_ = 0;
+  int shift_ = 60;
+};
+
 class Builder {
  public:
   Builder(McOctree& t, McBuildStats& stats) : t_(t), stats_(stats) {}
 
   // attr(x, hint, normal, colour) gives the normal (and the colour when
-  // `colored`) of the surface point x; hint is per-thread scratch.
+  // `colored`) of the surface point x and returns how far x is from the
+  // input (a Gap, see mark_holes; {} for range scans); hint is per-thread
+  // scratch.
   template <class Attr>
   void build_tree(const Lattice& lat, bool colored, Attr&& attr) {
     const int D = lat.depth;
@@ -632,17 +790,23 @@ class Builder {
     // Vertices: one per finest lattice edge whose ends differ in sign.
     std::vector<std::int64_t> edge_keys;  // point index * 3 + axis, ascending
     const std::int64_t step[3] = {1, n, n * n};
-    for (std::int64_t idx = 0; idx < static_cast<std::int64_t>(lat.state.size()); ++idx) {
-      std::int64_t c[3] = {idx % n, (idx / n) % n, idx / (n * n)};
-      for (int a = 0; a < 3; ++a)
-        if (c[a] + 1 < n && lat.inside(idx) != lat.inside(idx + step[a]))
-          edge_keys.push_back(idx * 3 + a);
-    }
+    for (std::int64_t k = 0; k < n; ++k)
+      for (std::int64_t j = 0; j < n; ++j) {
+        const std::int64_t row = n * (j + n * k);
+        for (std::int64_t i = 0; i < n; ++i) {
+          const std::int64_t idx = row + i;
+          const bool in = lat.inside(idx);
+          if (i + 1 < n && in != lat.inside(idx + 1)) edge_keys.push_back(idx * 3);
+          if (j + 1 < n && in != lat.inside(idx + step[1])) edge_keys.push_back(idx * 3 + 1);
+          if (k + 1 < n && in != lat.inside(idx + step[2])) edge_keys.push_back(idx * 3 + 2);
+        }
+      }
     if (edge_keys.empty())
       throw DataError("mcoctree: the surface crosses no lattice edge (resolution too low?)");
     t_.positions.resize(edge_keys.size());
     t_.normals.resize(edge_keys.size());
     if (colored) t_.colors.resize(edge_keys.size());
+    gap_.assign(edge_keys.size(), Gap{});
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         std::uint32_t hint = ClosestPoint::kNone;
@@ -658,7 +822,7 @@ class Builder {
                           t_.positions[v] = x;
                           // Fallback normal: along the edge, from inside to outside.
                           t_.normals[v] = normalized(lat.inside(p) ? b - a : a - b);
-                          attr(x, hint, t_.normals[v], colored ? &t_.colors[v] : nullptr);
+                          gap_[v] = attr(x, hint, t_.normals[v], colored ? &t_.colors[v] : nullptr);
                         }
                       });
     auto vertex_of = [&](std::int64_t p, int axis) {
@@ -668,22 +832,24 @@ class Builder {
                  : McNode::kNone;
     };
 
-    // Leaves: finest cells whose corners differ in sign.
+    // Leaves: finest cells whose corners differ in sign, i.e. the (up to)
+    // four cells around each crossed lattice edge.
     std::vector<std::vector<std::uint64_t>> codes(D + 1);
-    std::vector<std::int64_t> leaf_base;
-    for (std::int64_t k = 0; k < cells; ++k)
-      for (std::int64_t j = 0; j < cells; ++j)
-        for (std::int64_t i = 0; i < cells; ++i) {
-          auto base = lat.index(i, j, k);
-          std::uint8_t s = 0;
-          for (int c = 0; c < 8; ++c)
-            if (lat.inside(base + (c & 1) * step[0] + (c >> 1 & 1) * step[1] + (c >> 2) * step[2]))
-              s |= static_cast<std::uint8_t>(1u << c);
-          if (s != 0 && s != 0xff)
-            codes[D].push_back(morton(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
-                                      static_cast<std::uint32_t>(k)));
-        }
+    for (auto key : edge_keys) {
+      const std::int64_t p = key / 3, a = key % 3;
+      const std::int64_t c[3] = {p % n, (p / n) % n, p / (n * n)};
+      const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
+      for (int q = 0; q < 4; ++q) {
+        std::int64_t cell[3] = {c[0], c[1], c[2]};
+        cell[a1] -= q & 1, cell[a2] -= q >> 1;
+        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] >= cells || cell[a2] >= cells) continue;
+        codes[D].push_back(morton(static_cast<std::uint32_t>(cell[0]),
+                                  static_cast<std::uint32_t>(cell[1]),
+                                  static_cast<std::uint32_t>(cell[2])));
+      }
+    }
     std::sort(codes[D].begin(), codes[D].end());
+    codes[D].erase(std::unique(codes[D].begin(), codes[D].end()), codes[D].end());
     stats_.leaves = codes[D].size();
     for (int l = D - 1; l >= 0; --l) {
       for (auto c : codes[l + 1]) codes[l].push_back(c >> 3);
@@ -703,8 +869,8 @@ class Builder {
           for (int a = 0; a < 3; ++a)
             xyz[a] |= static_cast<std::uint32_t>((c >> (3 * b + a)) & 1) << b;
         node.coords = {xyz[0], xyz[1], xyz[2]};
-        index_[coord_key(l, xyz[0], xyz[1], xyz[2])] =
-            static_cast<std::uint32_t>(level_offset_[l] + i);
+        index_.insert(coord_key(l, xyz[0], xyz[1], xyz[2]),
+                      static_cast<std::uint32_t>(level_offset_[l] + i));
         if (l < D) {
           auto first = std::lower_bound(codes[l + 1].begin(), codes[l + 1].end(), c << 3);
           node.first_child =
@@ -730,6 +896,53 @@ class Builder {
     for (int l = D - 1; l >= 0; --l)
       for (std::size_t i = level_offset_[l]; i < level_offset_[l + 1]; ++i)
         make_parent(t_.nodes[i]);
+  }
+
+  // Holes of an open input. A node with a surface point farther from the
+  // input than the node's own cell edge lies on a cap over a hole and is a
+  // hole; so is a coarse node next to a rim one of whose triangles spans a
+  // hole between points on its rim (gap(x) at the triangle's centroid). Its
+  // corner signs are cleared after all parents are made, so that it has no
+  // triangles at any budget; its neighbours keep theirs, so the model has a
+  // border where the input has one, within about a cell of the node's level.
+  // Only the node's own triangulation reads its signs (a parent's come from
+  // the true signs, and split faces take their points from the children).
+  template <class GapAt>
+  void mark_holes(GapAt&& gap_at) {
+    std::vector<std::uint8_t> hole(t_.nodes.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, t_.nodes.size(), 64), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const McNode& node = t_.nodes[i];
+        float size = t_.cell_size * static_cast<float>(1u << (t_.depth - node.level)), worst = 0;
+        bool rim = false;
+        int points = 0, made_up = 0;
+        // Every point the node's triangulation may use: its edge points and,
+        // where neighbours split its faces, its children's on its boundary.
+        auto visit = [&](std::uint32_t v) {
+          if (v == McNode::kNone) return;
+          worst = std::max(worst, gap_[v].gap), rim |= gap_[v].rim;
+          ++points, made_up += gap_[v].gap > t_.cell_size;
+        };
+        for (auto v : node.edge_vertex) visit(v);
+        if (!node.leaf())
+          for (int slot = 0; slot < detail::kSlotCount; ++slot)
+            visit(detail::slot_vertex(t_, node, slot, 0xfff));
+        if (2 * made_up > points) worst = INFINITY;
+        if (worst <= size && rim && !node.leaf())
+          detail::triangulate_node(
+              t_, node, 0, 0,
+              [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+                if (worst <= size)
+                  worst = std::max(
+                      worst,
+                      gap_at((t_.positions[a] + t_.positions[b] + t_.positions[c]) * (1.0f / 3)));
+              },
+              [](const std::uint8_t*, int, std::uint16_t) { return McNode::kNone; });
+        hole[i] = worst > size;
+      }
+    });
+    for (std::size_t i = 0; i < hole.size(); ++i)
+      if (hole[i]) t_.nodes[i].signs27 = 0, ++stats_.hole_nodes;
   }
 
   void make_parent(McNode& node) {
@@ -761,22 +974,39 @@ class Builder {
   std::uint32_t find(int level, std::int64_t x, std::int64_t y, std::int64_t z) const {
     std::int64_t size = std::int64_t{1} << level;
     if (x < 0 || y < 0 || z < 0 || x >= size || y >= size || z >= size) return McNode::kNone;
-    auto it = index_.find(coord_key(level, x, y, z));
-    return it == index_.end() ? McNode::kNone : it->second;
+    return index_.find(coord_key(level, x, y, z));
   }
   std::uint32_t neighbour(const McNode& n, int dx, int dy, int dz) const {
     return find(n.level, std::int64_t{n.coords[0]} + dx, std::int64_t{n.coords[1]} + dy,
                 std::int64_t{n.coords[2]} + dz);
   }
-  // The same-level nodes sharing face f / edge e with n.
+  // The same-level node at offset (dx, dy, dz) from node i, from the table
+  // of internal nodes' neighbours; kNone for a leaf's (leaves are never
+  // expanded, so nothing a leaf's neighbours do splits a leaf or a cell).
+  std::uint32_t near(std::uint32_t i, int dx, int dy, int dz) const {
+    if (i >= internal_) return McNode::kNone;
+    return near_[27 * static_cast<std::size_t>(i) + (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1)];
+  }
+  void make_near() {
+    internal_ = static_cast<std::uint32_t>(level_offset_[t_.depth]);
+    near_.resize(27 * static_cast<std::size_t>(internal_));
+    tbb::parallel_for(std::uint32_t{0}, internal_, [&](std::uint32_t i) {
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            near_[27 * static_cast<std::size_t>(i) + (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1)] =
+                neighbour(t_.nodes[i], dx, dy, dz);
+    });
+  }
+  // The same-level nodes sharing face f / edge e with node i.
   template <class Fn>
-  void face_neighbour(const McNode& n, int f, Fn&& fn) const {
+  void face_neighbour(std::uint32_t i, int f, Fn&& fn) const {
     int d[3] = {0, 0, 0};
     d[f / 2] = f % 2 ? 1 : -1;
-    fn(neighbour(n, d[0], d[1], d[2]));
+    fn(near(i, d[0], d[1], d[2]));
   }
   template <class Fn>
-  void edge_neighbours(const McNode& n, int e, Fn&& fn) const {
+  void edge_neighbours(std::uint32_t i, int e, Fn&& fn) const {
     int a = e / 4, b = e % 4;
     int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
     int s1 = b & 1 ? 1 : -1, s2 = b >> 1 ? 1 : -1;
@@ -784,24 +1014,25 @@ class Builder {
       int d[3] = {0, 0, 0};
       if (k & 1) d[a1] = s1;
       if (k & 2) d[a2] = s2;
-      fn(neighbour(n, d[0], d[1], d[2]));
+      fn(near(i, d[0], d[1], d[2]));
     }
   }
-  std::pair<std::uint16_t, std::uint8_t> context(const McNode& n) const {
+  std::pair<std::uint16_t, std::uint8_t> context(std::uint32_t i) const {
     std::uint16_t halved = 0;
     std::uint8_t split = 0;
+    if (i >= internal_) return {halved, split};
     for (int f = 0; f < 6; ++f)
-      face_neighbour(n, f, [&](std::uint32_t m) {
+      face_neighbour(i, f, [&](std::uint32_t m) {
         if (m != McNode::kNone && expanded_[m]) split |= static_cast<std::uint8_t>(1u << f);
       });
     for (int e = 0; e < 12; ++e)
-      edge_neighbours(n, e, [&](std::uint32_t m) {
+      edge_neighbours(i, e, [&](std::uint32_t m) {
         if (m != McNode::kNone && expanded_[m]) halved |= static_cast<std::uint16_t>(1u << e);
       });
     return {halved, split};
   }
   int count_now(std::uint32_t i) const {
-    auto [halved, split] = context(t_.nodes[i]);
+    auto [halved, split] = context(i);
     return detail::node_triangle_count(t_.nodes[i], halved, split);
   }
   double own_area(const McNode& n) const {
@@ -838,7 +1069,8 @@ class Builder {
   }
 
   void number() {
-    const std::size_t count = t_.nodes.size();
+    const auto count = static_cast<std::uint32_t>(t_.nodes.size());
+    make_near();
     expanded_.assign(count, 0);
     std::vector<float> metric(count, 0);
     std::vector<double> area(count);
@@ -849,7 +1081,21 @@ class Builder {
       double children = 0;
       for (int o = 0; o < 8; ++o)
         if (auto c = n.child(o); c != McNode::kNone) children += area[c];
-      metric[i] = static_cast<float>(children - area[i]);
+      // The thesis's metric is the area the expansion adds; a node over a
+      // hole of an open input (its children are partly holes) removes area
+      // by expanding, which is as much a change of shape: the magnitude.
+      metric[i] = static_cast<float>(std::abs(children - area[i]));
+    }
+    // A node without triangles of its own (no crossing on its edges: a thin
+    // feature, such as an ear tip, that its corners miss, or a hole) is
+    // expanded no later than its most urgent descendant, which cannot be
+    // expanded before it: such a feature adds no area while its cells stay
+    // coarser than it, and its ancestors would wait at the end of the queue.
+    for (std::size_t i = count; i-- > 0;) {
+      const McNode& n = t_.nodes[i];
+      for (int o = 0; o < 8; ++o)
+        if (auto c = n.child(o); c != McNode::kNone && !t_.nodes[c].leaf() && metric[c] > area[i])
+          metric[i] = std::max(metric[i], metric[c]);
     }
     std::vector<int> tri(count, 0);
     std::vector<std::vector<std::uint32_t>> waiting(count);
@@ -877,7 +1123,7 @@ class Builder {
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
             if (!dx && !dy && !dz) continue;
-            std::uint32_t a = neighbour(n, dx, dy, dz);
+            std::uint32_t a = near(i, dx, dy, dz);
             if (a != McNode::kNone && !expanded_[a]) around.push_back(a);
           }
       std::int64_t delta = -tri[i];
@@ -899,16 +1145,17 @@ class Builder {
       waiting[i].shrink_to_fit();
     }
     // Split priorities for extraction.
-    for (auto& n : t_.nodes) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      McNode& n = t_.nodes[i];
       for (int f = 0; f < 6; ++f) {
         n.face_split[f] = McNode::kNone;
-        face_neighbour(n, f, [&](std::uint32_t m) {
+        face_neighbour(i, f, [&](std::uint32_t m) {
           if (m != McNode::kNone) n.face_split[f] = std::min(n.face_split[f], t_.nodes[m].priority);
         });
       }
       for (int e = 0; e < 12; ++e) {
         n.edge_split[e] = McNode::kNone;
-        edge_neighbours(n, e, [&](std::uint32_t m) {
+        edge_neighbours(i, e, [&](std::uint32_t m) {
           if (m != McNode::kNone) n.edge_split[e] = std::min(n.edge_split[e], t_.nodes[m].priority);
         });
       }
@@ -919,15 +1166,49 @@ class Builder {
   McOctree& t_;
   McBuildStats& stats_;
   std::vector<std::size_t> level_offset_;
-  std::unordered_map<std::uint64_t, std::uint32_t> index_;
+  NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
+  std::vector<Gap> gap_;             // per vertex
+  std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
+  std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours
 };
+
+// The resolution at which the full-resolution model has about as many
+// triangles as the input: marching cubes make about kTrianglesPerCellFace
+// triangles per h x h of surface (2.9 measured on the bunny, a sphere and a
+// torus), so h = sqrt(kTrianglesPerCellFace x area / triangles).
+constexpr double kTrianglesPerCellFace = 2.9;
+int mesh_resolution(const TriangleMesh& m) {
+  double area = 0;
+  for (const auto& f : m.triangles)
+    area += 0.5 * length(cross(m.positions[f[1]] - m.positions[f[0]],
+                               m.positions[f[2]] - m.positions[f[0]]));
+  Vec3 size = m.bounds().size();
+  double extent = std::max({size.x, size.y, size.z});
+  double h = std::sqrt(kTrianglesPerCellFace * area / static_cast<double>(m.triangles.size()));
+  if (!(h > 0)) return 2;
+  return static_cast<int>(std::clamp(std::lround(extent / h), 2L, 1000L));
+}
+
+// Range scans: cells twice the median point spacing (Kim sec. 4.4: finer
+// cells leave holes between the range points).
+int scan_resolution(const std::vector<RangeScan>& scans, const Box3& bounds) {
+  std::vector<float> spacing;
+  for (const auto& s : scans)
+    if (float d = s.spacing(); d > 0) spacing.push_back(d);
+  if (spacing.empty()) return 64;
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  Vec3 size = bounds.size();
+  double extent = std::max({size.x, size.y, size.z});
+  return static_cast<int>(
+      std::clamp(std::lround(extent / (2.0 * spacing[spacing.size() / 2])), 2L, 1000L));
+}
 
 }  // namespace
 
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options) {
-  if (options.resolution < 2 || options.resolution > 1000)
-    throw std::invalid_argument("mcoctree: resolution must be in 2..1000");
+  if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
+    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
   if (mesh.triangles.empty()) throw DataError("mcoctree: the mesh has no triangles");
   for (const auto& p : mesh.positions)
     if (!is_finite(p)) throw DataError("mcoctree: the mesh has a non-finite coordinate");
@@ -945,34 +1226,46 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   SignedDistance sd(weld(source).mesh);
   if (sd.mesh().triangles.empty())
     throw DataError("mcoctree: the mesh has only degenerate triangles");
-  Lattice lat = make_lattice(sd, options.resolution, result.stats);
+  result.stats.resolution = options.resolution ? options.resolution : mesh_resolution(sd.mesh());
+  Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);
+  // Closed inputs invent nothing (every sign change is a crossing of the
+  // surface); not testing them keeps them closed whatever the rounding.
+  const bool holes = options.holes == McHoles::kOpen && sd.has_rims();
+  auto gap = [&](const ClosestPoint& cp) {
+    float d = std::sqrt(cp.distance_squared);
+    bool rim = sd.feature(cp).second;
+    return Gap{rim ? d / kRimGap : d, rim};
+  };
   builder.build_tree(lat, sd.mesh().has_colors(),
                      [&](const Vec3& x, std::uint32_t& hint, Vec3& normal, Rgb8* color) {
                        ClosestPoint cp = sd.bvh().closest_point(x, hint);
                        hint = cp.triangle;
                        normal = sd.bvh().normal_at(cp);
-                       if (!color) return;
-                       const auto& f = sd.mesh().triangles[cp.triangle];
-                       Vec3 col{};
-                       for (int k = 0; k < 3; ++k)
-                         col += sd.mesh().colors[f[k]] * cp.barycentric[k];
-                       for (int k = 0; k < 3; ++k)
-                         (*color)[k] = static_cast<std::uint8_t>(
-                             std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
+                       if (color) {
+                         const auto& f = sd.mesh().triangles[cp.triangle];
+                         Vec3 col{};
+                         for (int k = 0; k < 3; ++k)
+                           col += sd.mesh().colors[f[k]] * cp.barycentric[k];
+                         for (int k = 0; k < 3; ++k)
+                           (*color)[k] = static_cast<std::uint8_t>(
+                               std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
+                       }
+                       return holes ? gap(cp) : Gap{};
                      });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
+  if (holes) builder.mark_holes([&](const Vec3& x) { return gap(sd.bvh().closest_point(x)).gap; });
   builder.number();
   result.stats.seconds_priorities = since(t2);
   return result;
 }
 
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuildOptions& options) {
-  if (options.resolution < 2 || options.resolution > 1000)
-    throw std::invalid_argument("mcoctree: resolution must be in 2..1000");
+  if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
+    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
   if (scans.empty()) throw DataError("mcoctree: no range scans");
   std::unique_ptr<tbb::global_control> limit;
   if (options.threads > 0)
@@ -981,7 +1274,9 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   McBuildResult result;
   auto t0 = Clock::now();
   ScanField field(scans);
-  Lattice lat = make_scan_lattice(field, scans, options.resolution, result.stats);
+  result.stats.resolution =
+      options.resolution ? options.resolution : scan_resolution(scans, field.bounds());
+  Lattice lat = make_scan_lattice(field, scans, result.stats.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);
@@ -989,12 +1284,13 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
       lat, field.colored(), [&](const Vec3& x, std::uint32_t&, Vec3& normal, Rgb8* color) {
         auto e = field.estimate(x, 2);
         if (!e.found) e = field.estimate(x, 4);
-        if (!e.found) return;  // a cap far from the data: the edge's direction
+        if (!e.found) return Gap{};  // a cap far from the data: the edge's direction
         normal = e.normal;
         if (color)
           for (int k = 0; k < 3; ++k)
             (*color)[k] =
                 static_cast<std::uint8_t>(std::lround(std::clamp(e.color[k], 0.0f, 255.0f)));
+        return Gap{};
       });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();

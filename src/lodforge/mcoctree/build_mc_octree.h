@@ -12,13 +12,27 @@
 
 namespace lodforge {
 
+/// What the model of an open mesh does at the input's holes.
+enum class McHoles {
+  kOpen,   ///< no surface where the input has none: the model has borders there
+  kCapped  ///< closed across each hole (a cap about midway between inside and outside)
+};
+
 struct McBuildOptions {
-  /// Finest cells across the longest side of the mesh's bounding box (2..1000).
-  /// The root cube has the next power of two above resolution + 2 cells per
-  /// axis, so that one empty cell surrounds the mesh. The sign lattice takes
-  /// one byte per lattice point ((2^depth + 1)^3): about 135 MB at 500.
-  int resolution = 64;
+  /// Finest cells across the longest side of the mesh's bounding box (2..1000),
+  /// or 0: chosen so that the full-resolution model has about as many
+  /// triangles as the input (a mesh: from its area, about 2.9 triangles per
+  /// cell face of surface; range scans: cells twice the scans' point spacing,
+  /// Kim sec. 4.4). The root cube has the next power of two above
+  /// resolution + 2 cells per axis, so that one empty cell surrounds the
+  /// mesh. The sign lattice takes one byte per lattice point
+  /// ((2^depth + 1)^3): about 135 MB at 500.
+  int resolution = 0;
   int threads = 0;  ///< worker threads for the distance queries; 0 = all cores
+  /// Meshes only (range scans are always capped where no scan saw the
+  /// object). kCapped by default while extraction's checks expect closed
+  /// output; kOpen is the model without invented surface.
+  McHoles holes = McHoles::kCapped;
 };
 
 struct McBuildStats {
@@ -28,6 +42,8 @@ struct McBuildStats {
   std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
+  std::size_t hole_nodes = 0;       ///< nodes left without triangles over the input's holes
+  int resolution = 0;               ///< the resolution used (options.resolution or the chosen one)
   double seconds_signs = 0, seconds_tree = 0, seconds_priorities = 0;
 };
 
@@ -43,11 +59,18 @@ struct McBuildResult {
 /// duplicated) and the side of it by the angle-weighted pseudo-normal
 /// (Baerentzen & Aanaes 2005: face, edge or vertex normal by where the closest
 /// point lies), computed in a band one cell wide around the triangles; the
-/// rest of the lattice takes its sign by flood fill from the band, and any
-/// flooded point whose sign disagrees with a neighbour's gets an exact one
-/// (so open meshes close across their holes where the pseudo-normal says).
-/// Edge points from the signed distances' ratio, normals and colours from the
-/// closest point of the mesh.
+/// rest of the lattice, and the band points nearest an open rim (where the
+/// pseudo-normal's side is meaningless), take their sign by flood fill from
+/// the band, and any flooded point whose sign disagrees with a neighbour's
+/// gets an exact one where it has one. Edge points from the signed
+/// distances' ratio, normals and colours from the closest point of the mesh.
+///
+/// Holes (McHoles::kOpen): a surface point is invented when it lies farther
+/// from the input than a finest cell's edge, or more than a quarter of that
+/// beyond an open rim; a node most of whose edge points are invented has no
+/// triangles (its signs are cleared). The model's borders then follow the
+/// input's rims to within about a cell, at every level; closed inputs invent
+/// nothing and stay closed.
 ///
 /// Throws DataError for a mesh without triangles, with non-finite
 /// coordinates, with all vertices at one point, or whose surface crosses no
@@ -56,7 +79,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 
 /// Builds the octree of range scans, merged without zippering in the world
 /// frame their alignment gives (Kim, ch. 4; `resolution` counts cells across
-/// the longest side of all points' bounding box).
+/// the longest side of all points' bounding box; `holes` is not used).
 ///
 /// Corner signs: within two cells of the data, the distance to the tangent
 /// plane of the nearest range point (its normal from its 4 lattice

@@ -232,7 +232,8 @@ struct Cut {
 /// the segment was new.
 class SegmentSet {
  public:
-  explicit SegmentSet(std::size_t expected) {
+  /// Empties the set, sized for `expected` segments (keeps its memory).
+  void reset(std::size_t expected) {
     std::size_t cap = 16;
     while (cap < 2 * expected) cap *= 2;
     slots_.assign(cap, {kNone, kNone});
@@ -258,14 +259,30 @@ class SegmentSet {
   std::size_t mask_ = 0;
 };
 
+/// The buffers of remap_faces, kept over the levels of one call: allocating
+/// them afresh per level costs page faults (freed large blocks go back to
+/// the system) more than the work in them.
+struct RemapScratch {
+  struct Entry {
+    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; position in the run
+  };
+  std::vector<Entry> run;
+  std::vector<Triangle> run_tris;
+  std::vector<std::uint32_t> run_origin;
+  std::vector<std::uint32_t> off, vt;  // vertex -> kept triangles (when there are lines)
+  std::vector<Segment> not_edges;
+  SegmentSet seen_lines;
+  std::vector<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
+};
+
 /// Builds the faces of `to` (which holds the new vertices, new_count of them)
 /// from the previous level's faces: `mapped(i)` for i < count is the i-th
 /// triangle with its corners already mapped to new vertices, and the triangles
 /// with three distinct corners must come sorted by their smallest corner (they
 /// do: the previous level's triangles are sorted by smallest vertex and the
 /// map to cells is monotone); `origin(i)` is its input triangle. Applies the
-/// face rules, drops the new vertices nothing uses and returns the compaction
-/// map (new vertex -> kept index or kNone). `line_candidates` holds the lines
+/// face rules, drops the new vertices nothing uses and leaves the compaction
+/// map (new vertex -> kept index or kNone) in `scratch.keep`. `line_candidates` holds the lines
 /// found before (they come first); the remapped `lines` follow.
 ///
 /// | remapped triangle          | becomes                                    |
@@ -283,11 +300,10 @@ class SegmentSet {
 /// The output stays sorted by smallest vertex, so that neighbours in memory
 /// are neighbours in space for the levels to come.
 template <class Mapped, class Origin>
-std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
-                                       const Origin& origin, std::span<const Segment> lines,
-                                       std::span<const std::uint32_t> vertex_map,
-                                       std::size_t new_count, bool no_lines,
-                                       std::vector<Segment>& line_candidates, Cut& to) {
+void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
+                 std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
+                 std::size_t new_count, bool no_lines, std::vector<Segment>& line_candidates,
+                 Cut& to, RemapScratch& scratch) {
   // Triangles go straight to the output; a run of more than one (same
   // smallest corner) is then sorted in place by its canonical rotation and
   // the doublets squeezed out.
@@ -295,12 +311,10 @@ std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
   to.tris.resize(count);
   to.tri_origin.resize(count);
   std::size_t out = 0, run_begin = 0;
-  struct Entry {
-    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; position in the run
-  };
-  std::vector<Entry> run;
-  std::vector<Triangle> run_tris;
-  std::vector<std::uint32_t> run_origin;
+  using Entry = RemapScratch::Entry;
+  auto& run = scratch.run;
+  auto& run_tris = scratch.run_tris;
+  auto& run_origin = scratch.run_origin;
   std::uint32_t run_vertex = kNone;
   auto keys = [&](const Triangle& t) -> std::pair<std::uint32_t, std::uint32_t> {
     if (t[0] == run_vertex) return {t[1], t[2]};
@@ -375,36 +389,45 @@ std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
   }
 
   if (!line_candidates.empty()) {
-    // vertex -> kept triangles, for "a line equal to an edge of a triangle".
-    std::vector<std::uint32_t> off(new_count + 1, 0);
+    // vertex -> kept triangles, for "a line equal to an edge of a triangle"
+    // (counts into off[v + 1], starts, fill with off[v]++, shift back).
+    auto& off = scratch.off;
+    auto& vt = scratch.vt;
+    off.assign(new_count + 1, 0);
     for (const Triangle& t : to.tris)
       for (std::uint32_t v : t) ++off[v + 1];
     for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
-    std::vector<std::uint32_t> vt(off[new_count]);
-    {
-      std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-      for (std::size_t f = 0; f < to.tris.size(); ++f)
-        for (std::uint32_t v : to.tris[f]) vt[fill[v]++] = static_cast<std::uint32_t>(f);
-    }
-    SegmentSet seen_lines(line_candidates.size());
+    vt.resize(off[new_count]);
+    for (std::size_t f = 0; f < to.tris.size(); ++f)
+      for (std::uint32_t v : to.tris[f]) vt[off[v]++] = static_cast<std::uint32_t>(f);
+    std::copy_backward(off.begin(), off.end() - 1, off.end());
+    off[0] = 0;
+    // Most candidates are edges of kept triangles: the set of lines seen is
+    // sized for the others.
+    auto& not_edges = scratch.not_edges;
+    not_edges.clear();
     for (const Segment& s : line_candidates) {
       bool is_edge = false;
       for (std::uint32_t k = off[s[0]]; k < off[s[0] + 1] && !is_edge; ++k) {
         const Triangle& t = to.tris[vt[k]];
         is_edge = t[0] == s[1] || t[1] == s[1] || t[2] == s[1];
       }
-      if (!is_edge && seen_lines.insert(s)) to.lines.push_back(s);
+      if (!is_edge) not_edges.push_back(s);
     }
+    scratch.seen_lines.reset(not_edges.size());
+    for (const Segment& s : not_edges)
+      if (scratch.seen_lines.insert(s)) to.lines.push_back(s);
   }
 
   // Compact: keep the vertices a triangle or line uses, in order.
-  std::vector<std::uint32_t> keep(new_count, kNone);
+  auto& keep = scratch.keep;
+  keep.assign(new_count, kNone);
   for (const Triangle& t : to.tris) keep[t[0]] = keep[t[1]] = keep[t[2]] = 0;
   for (const Segment& s : to.lines) keep[s[0]] = keep[s[1]] = 0;
   std::uint32_t kept = 0;
   for (std::size_t v = 0; v < new_count; ++v)
     if (keep[v] != kNone) keep[v] = kept++;
-  if (kept == new_count) return keep;  // every vertex used: the identity
+  if (kept == new_count) return;  // every vertex used: the identity
   for (Triangle& t : to.tris)
     for (std::uint32_t& v : t) v = keep[v];
   for (Segment& s : to.lines)
@@ -420,7 +443,6 @@ std::vector<std::uint32_t> remap_faces(std::size_t count, const Mapped& mapped,
   compact(to.orig);
   compact(to.code);
   compact(to.quadric);
-  return keep;
 }
 
 // ------------------------------------------------------ choosing representatives
@@ -557,15 +579,6 @@ constexpr std::size_t kLanes = 4;
 /// structure-of-arrays layout, single precision, relative to the cell's
 /// weighted mean (small numbers).
 struct Scratch {
-  /// Each triangle around the cell (`tris` of them): its normal n (twice the
-  /// area) and d = n . a, so that 6 x volume(a, b, c, x) = |d - n . x|.
-  std::vector<float> nx, ny, nz, nd;
-  /// Each triangle with one corner inside the cell (`edges` of them), by its
-  /// two corners p, r outside as p x r and r - p: moving the inside corner to
-  /// x gives area 0.5 |p x r - x x (r - p)|. Triangles with two or three
-  /// corners inside collapse.
-  std::vector<float> ex, ey, ez, rx, ry, rz;
-  std::size_t tris = 0, edges = 0;
   std::vector<std::uint32_t> order;  ///< a large cell's vertices, nearest the mean first
   /// The candidates (the cell's vertices, then Lindstrom's point), their
   /// input vertices and scores (area, volume, mean, quadric); fixed arrays:
@@ -580,37 +593,51 @@ struct Scratch {
   /// kLanes, and their area and volume sums.
   static constexpr std::size_t kPadded = (kMaxCandidates + 1 + kLanes - 1) / kLanes * kLanes;
   std::array<float, kPadded> cx, cy, cz, area, volume;
-
-  void reserve_faces(std::size_t n) {
-    if (nx.size() >= n) return;
-    for (auto* v : {&nx, &ny, &nz, &nd, &ex, &ey, &ez, &rx, &ry, &rz}) v->resize(2 * n);
-  }
 };
 
-/// For each of the first n (a multiple of kLanes) padded candidates k: area[k] = sum over the edges
-/// of |p x r - x_k x (r - p)| and volume[k] = sum over the triangles of |d - n . x_k|.
-void score_faces(Scratch& s, std::size_t n, bool area, bool volume) {
+/// Sums the area and volume heuristics of the first n (a multiple of kLanes)
+/// padded contenders over the triangles around cell `cell` of the previous
+/// level, straight from the triangles (no intermediate arrays): for each
+/// triangle (a, b, c), relative to `origin`, with n = (b - a) x (c - a) (twice
+/// the area normal), 6 x volume(a, b, c, x) = |n . a - n . x|; for each with
+/// one corner inside the cell and the two outside p, r (in orientation
+/// order), moving the inside corner to x gives area 0.5 |p x r - x x (r - p)|
+/// (triangles with two or three corners inside collapse). Returns the area of
+/// the triangles before the move.
+double score_faces(const LevelContext& ctx, std::uint32_t cell, const Vec3& origin, Scratch& s,
+                   std::size_t n, bool area, bool volume) {
+  const Cut& prev = ctx.prev;
+  const std::uint32_t first = ctx.faces->start[cell], last = ctx.faces->start[cell + 1];
+  assert(last > first);
+  double area_before = 0;
   for (std::size_t g = 0; g < n; g += kLanes) {
     const F4 x = F4::load(&s.cx[g]), y = F4::load(&s.cy[g]), z = F4::load(&s.cz[g]);
-    if (area) {
-      F4 acc = F4::splat(0);
-      for (std::size_t e = 0; e < s.edges; ++e) {
-        const F4 rx = F4::splat(s.rx[e]), ry = F4::splat(s.ry[e]), rz = F4::splat(s.rz[e]);
-        const F4 ax = F4::splat(s.ex[e]) - (y * rz - z * ry);
-        const F4 ay = F4::splat(s.ey[e]) - (z * rx - x * rz);
-        const F4 az = F4::splat(s.ez[e]) - (x * ry - y * rx);
-        acc = acc + sqrt(ax * ax + ay * ay + az * az);
-      }
-      acc.store(&s.area[g]);
+    F4 area_sum = F4::splat(0), volume_sum = F4::splat(0);
+    for (std::uint32_t k = first; k < last; ++k) {
+      const std::uint32_t f = ctx.faces->entry[k] >> 2, inside = ctx.faces->entry[k] & 3;
+      const Triangle& t = prev.tris[f];
+      const Vec3 a = prev.pos[t[0]] - origin, b = prev.pos[t[1]] - origin,
+                 c = prev.pos[t[2]] - origin;
+      const Vec3 nrm = cross(b - a, c - a);
+      if (g == 0) area_before += 0.5 * double(length(nrm));
+      if (volume)
+        volume_sum =
+            volume_sum + abs(F4::splat(dot(nrm, a)) -
+                             (F4::splat(nrm.x) * x + F4::splat(nrm.y) * y + F4::splat(nrm.z) * z));
+      if (!area || inside == 3) continue;
+      const Vec3& p = inside == 0 ? b : a;
+      const Vec3& r = inside == 2 ? b : c;
+      const Vec3 pr = cross(p, r), d = r - p;
+      const F4 dx = F4::splat(d.x), dy = F4::splat(d.y), dz = F4::splat(d.z);
+      const F4 ax = F4::splat(pr.x) - (y * dz - z * dy);
+      const F4 ay = F4::splat(pr.y) - (z * dx - x * dz);
+      const F4 az = F4::splat(pr.z) - (x * dy - y * dx);
+      area_sum = area_sum + sqrt(ax * ax + ay * ay + az * az);
     }
-    if (volume) {
-      F4 acc = F4::splat(0);
-      for (std::size_t f = 0; f < s.tris; ++f)
-        acc = acc + abs(F4::splat(s.nd[f]) -
-                        (F4::splat(s.nx[f]) * x + F4::splat(s.ny[f]) * y + F4::splat(s.nz[f]) * z));
-      acc.store(&s.volume[g]);
-    }
+    area_sum.store(&s.area[g]);
+    volume_sum.store(&s.volume[g]);
   }
+  return area_before;
 }
 
 /// What choose_representative decided for a cell: its representative's
@@ -725,37 +752,13 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
   const std::size_t m = s.m;
   const bool measure = ctx.faces != nullptr && (use.area > 0 || use.volume > 0);
   if (measure && m > 1) {
-    // The triangles of the previous level that use a vertex of the cell.
-    const std::uint32_t first = ctx.faces->start[cell], last = ctx.faces->start[cell + 1];
-    assert(last > first);
-    double area_before = 0;
-    s.reserve_faces(last - first);
-    s.tris = s.edges = 0;
-    for (std::uint32_t k = first; k < last; ++k) {
-      const std::uint32_t f = ctx.faces->entry[k] >> 2, inside = ctx.faces->entry[k] & 3;
-      const Triangle& t = prev.tris[f];
-      const Vec3 a = prev.pos[t[0]] - origin, b = prev.pos[t[1]] - origin,
-                 c = prev.pos[t[2]] - origin;
-      const Vec3 nrm = cross(b - a, c - a);
-      area_before += 0.5 * double(length(nrm));
-      const std::size_t i = s.tris++;
-      s.nx[i] = nrm.x, s.ny[i] = nrm.y, s.nz[i] = nrm.z;
-      s.nd[i] = dot(nrm, a);
-      if (inside == 3) continue;
-      // The corners after and before the inside one keep the orientation.
-      const Vec3& p = inside == 0 ? b : a;
-      const Vec3& r = inside == 2 ? b : c;
-      const Vec3 pr = cross(p, r), d = r - p;
-      const std::size_t e = s.edges++;
-      s.ex[e] = pr.x, s.ey[e] = pr.y, s.ez[e] = pr.z;
-      s.rx[e] = d.x, s.ry[e] = d.y, s.rz[e] = d.z;
-    }
     const std::size_t padded = (m + kLanes - 1) / kLanes * kLanes;
     for (std::size_t k = 0; k < padded; ++k) {
       const Vec3 r = s.candidate[s.contender[std::min(k, m - 1)]] - origin;
       s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
     }
-    score_faces(s, padded, use.area > 0, use.volume > 0);
+    const double area_before =
+        score_faces(ctx, cell, origin, s, padded, use.area > 0, use.volume > 0);
     for (std::size_t c = 0; c < m; ++c) {
       auto& h = s.score[s.contender[c]];
       if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[c]) - area_before);
@@ -928,6 +931,12 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     i = j;
   }
 
+  // Every buffer below lives for the whole call and is reused level after
+  // level (the two cuts swap): freeing and reallocating them per level would
+  // fault their pages in again.
+  RemapScratch remap_scratch;
+  std::vector<Segment> line_candidates;
+  std::vector<Triangle> mapped;  ///< a level's triangles, corners mapped to the next
   Cut cut;
   std::vector<std::uint32_t> node_of(nv, kNone);
   {
@@ -957,8 +966,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // others become line candidates in input order.
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
-    std::vector<Triangle> mapped(nf);
-    std::vector<Segment> line_candidates;
+    mapped.resize(nf);
     std::vector<std::uint32_t> start(count + 1, 0);
     for (std::size_t f = 0; f < nf; ++f) {
       const Triangle& input = mesh.triangles[f];
@@ -985,11 +993,11 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       if (t[0] != kNone)
         sorted[start[std::min({t[0], t[1], t[2]})]++] = {t, static_cast<std::uint32_t>(f)};
     }
-    mapped = {};
-    std::vector<std::uint32_t> keep = remap_faces(
+    remap_faces(
         sorted.size(), [&](std::size_t i) { return sorted[i].t; },
         [&](std::size_t i) { return sorted[i].origin; }, mesh.lines, node_of, count,
-        options.no_lines, line_candidates, cut);
+        options.no_lines, line_candidates, cut, remap_scratch);
+    const std::vector<std::uint32_t>& keep = remap_scratch.keep;
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
   }
@@ -1028,10 +1036,11 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                   fmt::format("{} triangles <= target {}", cut.tris.size(), target_tris));
   }
 
+  Cut next;
+  std::vector<std::uint32_t> new_node;
   std::vector<std::uint32_t> cell_of;
   std::vector<std::uint32_t> cell_begin;
   std::vector<char> corner, wanted;
-  std::vector<Triangle> mapped;
   CellFaces cell_faces;
   tbb::enumerable_thread_specific<Scratch> scratches;
   std::array<std::size_t, kMaxDepth + 1> histogram{};
@@ -1071,7 +1080,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     assert(cell_begin.size() == cells);
     cell_begin.push_back(static_cast<std::uint32_t>(n_prev));
 
-    Cut next;
     next.depth = depth;
     next.pos.resize(cells);
     next.weight.resize(cells);
@@ -1145,18 +1153,19 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         next.orig[j] = c.orig;
       }
     });
-    std::vector<Segment> line_candidates;
-    std::vector<std::uint32_t> keep = remap_faces(
+    line_candidates.clear();
+    remap_faces(
         cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
         [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
-        options.no_lines, line_candidates, next);
+        options.no_lines, line_candidates, next, remap_scratch);
+    const std::vector<std::uint32_t>& keep = remap_scratch.keep;
     if (next.tris.empty() && next.lines.empty())
       return finish(StopReason::kCannotSimplify,
                     fmt::format("the level at octree depth {} would be empty", depth));
 
     // The largest displacement of a represented input vertex, in double: a
     // float square overflows for coordinates beyond ~1.8e19.
-    std::vector<std::uint32_t> new_node(input_node.size());
+    new_node.resize(input_node.size());
     double error2 = 0;
     for (std::size_t i = 0; i < input_node.size(); ++i) {
       std::uint32_t n = input_node[i] == kNone ? kNone : keep[cell_of[input_node[i]]];
@@ -1178,8 +1187,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         depth, cell_size, std::sqrt(3.0) * cell_size, n_prev, next.size(),
         100.0 * (1.0 - double(next.size()) / double(n_prev)), next.tris.size(), next.lines.size(),
         error);
-    cut = std::move(next);
-    input_node = std::move(new_node);
+    std::swap(cut, next);
+    std::swap(input_node, new_node);
     chain.push_back(make_result(mesh, cut, error, StopReason::kTargetReached, std::move(detail)));
     if (count_target && cut.tris.size() <= target_tris)
       return finish(StopReason::kTargetReached,

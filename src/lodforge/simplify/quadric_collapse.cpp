@@ -359,7 +359,7 @@ class Collapser {
   void collect_wedge_pairs(std::uint32_t u, std::uint32_t v);
   double attribute_quadric(std::uint32_t u, std::uint32_t v, Quadric& q);
   void update_wedge_attributes(std::uint32_t v);
-  D3 position_of_corner(std::uint32_t t, int k) const { return vx_[tv_[3 * t + k]].pos; }
+  D3 position_of_corner(std::uint32_t t, int k) const { return vx_[tri_[t].v[k]].pos; }
   std::uint32_t* tris_begin(std::uint32_t p) { return refs_.data() + vx_[p].ref_start; }
   const std::uint32_t* tris_begin(std::uint32_t p) const { return refs_.data() + vx_[p].ref_start; }
   std::uint32_t tris_count(std::uint32_t p) const { return vx_[p].ref_count; }
@@ -374,7 +374,6 @@ class Collapser {
   struct alignas(64) Vertex {
     Quadric q;
     D3 pos;
-    std::uint32_t version = 0;
     std::uint32_t ref_start = 0, ref_count = 0;  // its live triangles in refs_
     std::uint32_t mark = 0;                      // scratch stamp
     std::uint32_t first_wedge = kNone;
@@ -385,6 +384,9 @@ class Collapser {
   };
   static_assert(sizeof(Vertex) == 128);
   std::vector<Vertex> vx_;
+  // Versions apart, 4 bytes each: most queue entries are stale, and checking
+  // one reads two versions, which should stay in cache.
+  std::vector<std::uint32_t> version_;
   std::vector<std::uint32_t> refs_;
   std::uint32_t stamp_ = 0;
 
@@ -401,9 +403,14 @@ class Collapser {
   std::vector<float> wedge_attr_;      // channels_ per wedge, current values
 
   // Triangles (the input's, minus those using a position twice).
-  std::vector<std::uint32_t> tv_, tw_;  // 3 per triangle: positions, wedges
-  std::vector<std::uint8_t> tri_alive_;
-  std::vector<float> tri_error_;  // the bound e(T)
+  // One 32-byte record per triangle, two to a cache line.
+  struct alignas(32) Tri {
+    std::uint32_t v[3];  // positions
+    std::uint32_t w[3];  // wedges
+    float error;         // the bound e(T)
+    std::uint32_t alive;
+  };
+  std::vector<Tri> tri_;
   std::size_t live_triangles_ = 0;
 
   CollapseQueue heap_;
@@ -468,6 +475,7 @@ void Collapser::build() {
   }
   const std::size_t np = position_first_input.size();
   vx_.resize(np);
+  version_.assign(np, 0);
   std::vector<std::uint32_t> last_input(np, kNone);
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t p = vertex_position[i];
@@ -497,24 +505,19 @@ void Collapser::build() {
   }
 
   // Triangles: drop those using a position twice.
-  tv_.reserve(3 * nf);
-  tw_.reserve(3 * nf);
-  tv_.resize(3 * nf);
-  tw_.resize(3 * nf);
-  tri_alive_.assign(nf, 0);
-  tri_error_.assign(nf, 0.0f);
+  tri_.assign(nf, Tri{{0, 0, 0}, {0, 0, 0}, 0.0f, 0});
   std::vector<std::uint8_t> used(np, 0);
   for (std::size_t t = 0; t < nf; ++t) {
     for (int k = 0; k < 3; ++k) {
       std::uint32_t i = mesh_.triangles[t][k];
-      tv_[3 * t + k] = vertex_position[i];
-      tw_[3 * t + k] = input_wedge_[i];
+      tri_[t].v[k] = vertex_position[i];
+      tri_[t].w[k] = input_wedge_[i];
     }
-    std::uint32_t a = tv_[3 * t], b = tv_[3 * t + 1], c = tv_[3 * t + 2];
+    std::uint32_t a = tri_[t].v[0], b = tri_[t].v[1], c = tri_[t].v[2];
     if (a != b && b != c && c != a) {
-      tri_alive_[t] = 1;
+      tri_[t].alive = 1;
       ++live_triangles_;
-      for (int k = 0; k < 3; ++k) used[tv_[3 * t + k]] = 1;
+      for (int k = 0; k < 3; ++k) used[tri_[t].v[k]] = 1;
     }
   }
   for (std::size_t p = 0; p < np; ++p)
@@ -527,8 +530,8 @@ void Collapser::build() {
 
   // Vertex -> triangle lists (CSR, later rewritten by appending).
   for (std::size_t t = 0; t < nf; ++t)
-    if (tri_alive_[t])
-      for (int k = 0; k < 3; ++k) ++vx_[tv_[3 * t + k]].ref_count;
+    if (tri_[t].alive)
+      for (int k = 0; k < 3; ++k) ++vx_[tri_[t].v[k]].ref_count;
   std::uint32_t sum = 0;
   for (std::size_t p = 0; p < np; ++p) {
     vx_[p].ref_start = sum;
@@ -538,9 +541,9 @@ void Collapser::build() {
   refs_.reserve(std::size_t{sum} * 3);
   refs_.resize(sum);
   for (std::size_t t = 0; t < nf; ++t)
-    if (tri_alive_[t])
+    if (tri_[t].alive)
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t p = tv_[3 * t + k];
+        std::uint32_t p = tri_[t].v[k];
         refs_[vx_[p].ref_start + vx_[p].ref_count++] = static_cast<std::uint32_t>(t);
       }
 
@@ -591,7 +594,7 @@ void Collapser::compute_kinds() {
   const std::size_t np = vx_.size();
   struct Corner {
     std::uint32_t next, prev;  // the corners after and before p
-    std::uint32_t base;        // 3 * triangle
+    std::uint32_t t;           // triangle
     std::uint32_t k;           // p's corner in it
   };
   std::vector<Corner> fan;
@@ -607,9 +610,9 @@ void Collapser::compute_kinds() {
     fan.clear();
     const std::uint32_t* ts = tris_begin(p);
     for (std::uint32_t i = 0; i < vx_[p].ref_count; ++i) {
-      std::uint32_t base = 3 * ts[i];
-      auto k = static_cast<std::uint32_t>(corner_of(&tv_[base], p));
-      fan.push_back({tv_[base + kNext[k]], tv_[base + kPrev[k]], base, k});
+      const Tri& t = tri_[ts[i]];
+      auto k = static_cast<std::uint32_t>(corner_of(t.v, p));
+      fan.push_back({t.v[kNext[k]], t.v[kPrev[k]], ts[i], k});
     }
     const std::uint32_t counted = ++stamp_;
     for (std::uint32_t i = 0; i < fan.size(); ++i) {
@@ -637,9 +640,9 @@ void Collapser::compute_kinds() {
         } else {
           const Corner& f = fan[fwd_at[o]];
           const Corner& b = fan[bwd_at[o]];
-          bool seam = tw_[f.base + f.k] != tw_[b.base + b.k] ||
-                      tw_[f.base + kNext[f.k]] != tw_[b.base + kPrev[b.k]];
-          bool material = materials && mesh_.materials[f.base / 3] != mesh_.materials[b.base / 3];
+          bool seam = tri_[f.t].w[f.k] != tri_[b.t].w[b.k] ||
+                      tri_[f.t].w[kNext[f.k]] != tri_[b.t].w[kPrev[b.k]];
+          bool material = materials && mesh_.materials[f.t] != mesh_.materials[b.t];
           if (seam || material) ++features;
         }
       }
@@ -659,11 +662,11 @@ void Collapser::compute_kinds() {
 }
 
 void Collapser::compute_quadrics() {
-  const std::size_t nf = tri_alive_.size();
+  const std::size_t nf = tri_.size();
   if (attr_stride_ > 0) wedge_quadric_.assign(wedge_origin_.size() * attr_stride_, 0.0);
   const double border_weight = options_.border_weight;
   for (std::size_t t = 0; t < nf; ++t) {
-    if (!tri_alive_[t]) continue;
+    if (!tri_[t].alive) continue;
     D3 p[3] = {position_of_corner(t, 0), position_of_corner(t, 1), position_of_corner(t, 2)};
     D3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     D3 n = cross(e1, e2);
@@ -673,12 +676,12 @@ void Collapser::compute_quadrics() {
     n = n * (1 / len);
     Quadric q;
     q.add_plane(n, -dot(n, p[0]), area);
-    for (int k = 0; k < 3; ++k) vx_[tv_[3 * t + k]].q.add(q);
+    for (int k = 0; k < 3; ++k) vx_[tri_[t].v[k]].q.add(q);
 
     // Penalty planes through feature edges, perpendicular to the face.
     if (border_weight > 0) {
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
+        std::uint32_t a = tri_[t].v[k], b = tri_[t].v[(k + 1) % 3];
         if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool movable = false;
         if (!is_feature_edge(a, b, movable)) continue;
@@ -706,16 +709,16 @@ void Collapser::compute_quadrics() {
       std::array<double, kMaxChannels> off;
       for (int c = 0; c < channels_; ++c) {
         double sc = channel_scale_[c];
-        double s0 = wedge_attr_[tw_[3 * t] * channels_ + c] * sc;
-        double s1 = wedge_attr_[tw_[3 * t + 1] * channels_ + c] * sc;
-        double s2 = wedge_attr_[tw_[3 * t + 2] * channels_ + c] * sc;
+        double s0 = wedge_attr_[tri_[t].w[0] * channels_ + c] * sc;
+        double s1 = wedge_attr_[tri_[t].w[1] * channels_ + c] * sc;
+        double s2 = wedge_attr_[tri_[t].w[2] * channels_ + c] * sc;
         double r1 = s1 - s0, r2 = s2 - s0;
         double alpha = (g22 * r1 - g12 * r2) / det, beta = (g11 * r2 - g12 * r1) / det;
         grad[c] = e1 * alpha + e2 * beta;
         off[c] = s0 - dot(grad[c], p[0]);
       }
       for (int k = 0; k < 3; ++k) {
-        double* wq = &wedge_quadric_[std::size_t{tw_[3 * t + k]} * attr_stride_];
+        double* wq = &wedge_quadric_[std::size_t{tri_[t].w[k]} * attr_stride_];
         Quadric* qp = reinterpret_cast<Quadric*>(wq);
         static_assert(sizeof(Quadric) == 10 * sizeof(double));
         for (int c = 0; c < channels_; ++c) {
@@ -751,7 +754,7 @@ int Collapser::edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* t
   const std::uint32_t* ts = tris_begin(a);
   for (std::uint32_t i = 0; i < vx_[a].ref_count; ++i) {
     std::uint32_t t = ts[i];
-    if (tv_[3 * t] == b || tv_[3 * t + 1] == b || tv_[3 * t + 2] == b) {
+    if (tri_[t].v[0] == b || tri_[t].v[1] == b || tri_[t].v[2] == b) {
       if (n < 3) tris[n] = t;
       ++n;
     }
@@ -769,7 +772,7 @@ bool Collapser::is_feature_edge(std::uint32_t a, std::uint32_t b, bool& movable)
   if (n != 2) return true;
   auto wedge_at = [&](std::uint32_t tri, std::uint32_t q) {
     for (int k = 0; k < 3; ++k)
-      if (tv_[3 * tri + k] == q) return tw_[3 * tri + k];
+      if (tri_[tri].v[k] == q) return tri_[tri].w[k];
     return kNone;
   };
   if (wedge_at(t[0], a) != wedge_at(t[1], a) || wedge_at(t[0], b) != wedge_at(t[1], b)) return true;
@@ -785,8 +788,8 @@ void Collapser::collect_wedge_pairs(std::uint32_t u, std::uint32_t v) {
     std::uint32_t t = ts[i];
     std::uint32_t wu = kNone, wv = kNone;
     for (int k = 0; k < 3; ++k) {
-      if (tv_[3 * t + k] == u) wu = tw_[3 * t + k];
-      if (tv_[3 * t + k] == v) wv = tw_[3 * t + k];
+      if (tri_[t].v[k] == u) wu = tri_[t].w[k];
+      if (tri_[t].v[k] == v) wv = tri_[t].w[k];
     }
     if (wv == kNone) continue;
     bool known = false;
@@ -939,18 +942,17 @@ void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
   auto push = [&](std::uint32_t b) {
     if (collect_rejected && vx_[b].rejected) requeue_.push_back(b);
     Collapse c;
-    if (evaluate(a, b, c))
-      heap_.push({heap_key(c.cost, false), a, b, vx_[a].version + vx_[b].version});
+    if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
   };
   for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t* c = &tv_[3 * ts[i]];
+    const std::uint32_t* c = tri_[ts[i]].v;
     std::uint32_t b = c[kNext[corner_of(c, a)]];
     if (vx_[b].mark == s) continue;  // only in non-manifold or inconsistent fans
     vx_[b].mark = s;
     push(b);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t* c = &tv_[3 * ts[i]];
+    const std::uint32_t* c = tri_[ts[i]].v;
     std::uint32_t b = c[kPrev[corner_of(c, a)]];
     if (vx_[b].mark == s) continue;
     vx_[b].mark = s;
@@ -963,24 +965,23 @@ void Collapser::fill_heap() {
   // Every edge once, from the triangles: a half-edge a -> b stands for its
   // edge when a < b, or when there is no b -> a (an open border, which only
   // joins vertices that are not free).
-  const std::size_t nf = tri_alive_.size();
+  const std::size_t nf = tri_.size();
   for (std::size_t t = 0; t < nf; ++t) {
-    if (!tri_alive_[t]) continue;
+    if (!tri_[t].alive) continue;
     for (int k = 0; k < 3; ++k) {
-      std::uint32_t a = tv_[3 * t + k], b = tv_[3 * t + (k + 1) % 3];
+      std::uint32_t a = tri_[t].v[k], b = tri_[t].v[(k + 1) % 3];
       if (a > b) {
         if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool twin = false;
         const std::uint32_t* ts = tris_begin(b);
         for (std::uint32_t i = 0; i < vx_[b].ref_count && !twin; ++i) {
-          const std::uint32_t* c = &tv_[3 * ts[i]];
+          const std::uint32_t* c = tri_[ts[i]].v;
           twin = (c[0] == b && c[1] == a) || (c[1] == b && c[2] == a) || (c[2] == b && c[0] == a);
         }
         if (twin) continue;
       }
       Collapse c;
-      if (evaluate(a, b, c))
-        heap_.push({heap_key(c.cost, false), a, b, vx_[a].version + vx_[b].version});
+      if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
     }
   }
   collapses_since_fill_ = 0;
@@ -1006,7 +1007,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     std::uint32_t t = tu[i];
     bool has_v = false;
     for (int k = 0; k < 3; ++k) {
-      std::uint32_t x = tv_[3 * t + k];
+      std::uint32_t x = tri_[t].v[k];
       has_v |= x == v;
       vx_[x].mark = s_u;  // u too: it is skipped below
     }
@@ -1017,7 +1018,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     std::uint32_t t = tvv[i];
     for (int k = 0; k < 3; ++k) {
       // Branch-free: which corners match depends on the data.
-      std::uint32_t x = tv_[3 * t + k];
+      std::uint32_t x = tri_[t].v[k];
       bool hit = (vx_[x].mark == s_u) & (x != v) & (x != u);
       common += hit;
       vx_[x].mark = hit ? s_common : vx_[x].mark;
@@ -1036,7 +1037,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   const D3 pu = vx_[u].pos, pv = vx_[v].pos;
   const double move_u = std::sqrt(norm2(w - pu)), move_v = std::sqrt(norm2(w - pv));
   auto check = [&](std::uint32_t t, std::uint32_t moved, D3 pk, double move) {
-    const std::uint32_t* c = &tv_[3 * t];
+    const std::uint32_t* c = tri_[t].v;
     const int k = corner_of(c, moved);
     // Corners (moved, a, b) in the triangle's order; both normals are taken
     // against the edge a -> b that stays.
@@ -1059,7 +1060,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     }
     // Rounded up to float: the relative rounding error of float (2^-24) is
     // below the 1e-6 added first.
-    auto ef = static_cast<float>((tri_error_[t] + move) * (1 + 1e-6));
+    auto ef = static_cast<float>((tri_[t].error + move) * (1 + 1e-6));
     if (ef > max_error) {
       over_budget = true;
       return false;
@@ -1069,7 +1070,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   };
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    const std::uint32_t* c = &tv_[3 * t];
+    const std::uint32_t* c = tri_[t].v;
     const int k = corner_of(c, u);
     const std::uint32_t x = c[kNext[k]], y = c[kPrev[k]];
     if (x == v || y == v) continue;
@@ -1078,14 +1079,14 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       for (std::uint32_t j = 0; j < nv; ++j) {
         std::uint32_t t2 = tvv[j];
         int hits = 0;
-        for (int k = 0; k < 3; ++k) hits += tv_[3 * t2 + k] == x || tv_[3 * t2 + k] == y;
+        for (int k = 0; k < 3; ++k) hits += tri_[t2].v[k] == x || tri_[t2].v[k] == y;
         if (hits == 2) return Outcome::kRejected;
       }
     if (!check(t, u, pu, move_u)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (tv_[3 * t] == u || tv_[3 * t + 1] == u || tv_[3 * t + 2] == u) continue;
+    if (tri_[t].v[0] == u || tri_[t].v[1] == u || tri_[t].v[2] == u) continue;
     if (!check(t, v, pv, move_v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
   if (sliver) return Outcome::kSliver;
@@ -1120,20 +1121,20 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   }
   vx_[u].first_wedge = kNone;
 
-  for (auto& [t, e] : new_errors_) tri_error_[t] = e;
+  for (auto& [t, e] : new_errors_) tri_[t].error = e;
   // v's new list: its own triangles but the edge ones, then u's that stay.
   // The edge triangles die and leave the lists of their third corners too,
   // so that every list holds live triangles only.
   new_list_.clear();
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (tv_[3 * t] != u && tv_[3 * t + 1] != u && tv_[3 * t + 2] != u) new_list_.push_back(t);
+    if (tri_[t].v[0] != u && tri_[t].v[1] != u && tri_[t].v[2] != u) new_list_.push_back(t);
   }
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
-    std::uint32_t* c = &tv_[3 * t];
+    std::uint32_t* c = tri_[t].v;
     if (c[0] == v || c[1] == v || c[2] == v) {
-      tri_alive_[t] = 0;
+      tri_[t].alive = 0;
       --live_triangles_;
       std::uint32_t x = c[0] != u && c[0] != v ? c[0] : c[1] != u && c[1] != v ? c[1] : c[2];
       std::uint32_t* xs = tris_begin(x);
@@ -1149,8 +1150,8 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     for (int k = 0; k < 3; ++k)
       if (c[k] == u) {
         c[k] = v;
-        std::uint32_t wu = tw_[3 * t + k];
-        tw_[3 * t + k] = wedge_parent_[wu] != wu ? wedge_parent_[wu] : wu;
+        std::uint32_t wu = tri_[t].w[k];
+        tri_[t].w[k] = wedge_parent_[wu] != wu ? wedge_parent_[wu] : wu;
       }
     new_list_.push_back(t);
   }
@@ -1165,8 +1166,8 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
 
   vx_[v].q.add(vx_[u].q);
   vx_[v].pos = w;
-  ++vx_[u].version;
-  ++vx_[v].version;
+  ++version_[u];
+  ++version_[v];
   if (attr_stride_ > 0) update_wedge_attributes(v);
   return Outcome::kDone;
 }
@@ -1216,12 +1217,11 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     if (heap_.size() > 8 * live_triangles_ + 1024) {
       // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
       // dropping them keeps the heap shallow and in cache as the mesh shrinks.
-      heap_.drop_if(
-          [&](const HeapEntry& x) { return vx_[x.a].version + vx_[x.b].version != x.stamp; });
+      heap_.drop_if([&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; });
     }
     const HeapEntry e = heap_.pop();
     const bool deferred = is_deferred(e);
-    if (vx_[e.a].version + vx_[e.b].version != e.stamp) continue;
+    if (version_[e.a] + version_[e.b] != e.stamp) continue;
     Collapse c;
     if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than
@@ -1273,14 +1273,14 @@ SimplifyResult Collapser::snapshot() const {
   SimplifyResult r;
   const std::size_t nw = wedge_origin_.size();
   std::vector<std::uint32_t> out_index(nw, kNone);
-  const std::size_t nf = tri_alive_.size();
+  const std::size_t nf = tri_.size();
   auto root = [&](std::uint32_t w) {
     while (wedge_parent_[w] != w) w = wedge_parent_[w];
     return w;
   };
   for (std::size_t t = 0; t < nf; ++t)
-    if (tri_alive_[t])
-      for (int k = 0; k < 3; ++k) out_index[tw_[3 * t + k]] = 0;
+    if (tri_[t].alive)
+      for (int k = 0; k < 3; ++k) out_index[tri_[t].w[k]] = 0;
   for (const Segment& s : mesh_.lines)
     for (std::uint32_t i : s) out_index[root(input_wedge_[i])] = 0;
   std::uint32_t count = 0;
@@ -1317,12 +1317,12 @@ SimplifyResult Collapser::snapshot() const {
   r.face_map.reserve(live_triangles_);
   float error = 0;
   for (std::size_t t = 0; t < nf; ++t) {
-    if (!tri_alive_[t]) continue;
+    if (!tri_[t].alive) continue;
     m.triangles.push_back(
-        {out_index[tw_[3 * t]], out_index[tw_[3 * t + 1]], out_index[tw_[3 * t + 2]]});
+        {out_index[tri_[t].w[0]], out_index[tri_[t].w[1]], out_index[tri_[t].w[2]]});
     r.face_map.push_back(static_cast<std::uint32_t>(t));
     if (mesh_.has_materials()) m.materials.push_back(mesh_.materials[t]);
-    error = std::max(error, tri_error_[t]);
+    error = std::max(error, tri_[t].error);
   }
   for (const Segment& s : mesh_.lines)
     m.lines.push_back({out_index[root(input_wedge_[s[0]])], out_index[root(input_wedge_[s[1]])]});

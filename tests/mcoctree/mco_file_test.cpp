@@ -140,6 +140,18 @@ TEST(McoFile, InconsistentDataAreRejected) {
   expect_message(with_first_triangle_index(write_mco_data(t),
                                            static_cast<std::uint32_t>(t.positions.size() - 1)),
                  "vertex index out of range");
+  // A forged header (counts near 2^32, checksum recomputed) is a truncated
+  // file, not an allocation of its counts.
+  std::string forged = write_mco_data(t);
+  for (std::size_t at : {40u, 48u, 56u, 64u}) {
+    std::uint64_t n = 4'000'000'000u;
+    std::memcpy(forged.data() + at, &n, 8);
+  }
+  std::uint64_t priorities = 3'999'999'999u;
+  std::memcpy(forged.data() + 72, &priorities, 8);
+  std::uint64_t h = fnv1a(std::string_view(forged).substr(0, 80));
+  std::memcpy(forged.data() + 80, &h, 8);
+  expect_message(forged, "truncated .mco file: priority");
   McLodModel until = t;
   until.cells[until.cell_count() - 1].until = 0;
   reseal_and_expect(until, "cell out of range");

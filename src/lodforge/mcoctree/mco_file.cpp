@@ -217,13 +217,22 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
       options.max_priority < 0
           ? h.nl
           : std::min<std::uint64_t>(h.nl, static_cast<std::uint64_t>(options.max_priority));
+  // Each chunk takes at least its header and checksum: a file too short for
+  // `last` is truncated, found (with its message) before anything is sized
+  // by a forged count.
+  if ((last + 1) * (kChunkHeader + 8) > data.size() - kHeader)
+    walk_chunks(data, h, last, name, [](auto&&...) {});
   const bool colored = h.flags & 1;
   if (last == h.nl) {
-    m.positions.reserve(h.nv);
-    m.normals.reserve(h.nv);
-    m.cells.reserve(h.nc + 1);
-    m.intervals.reserve(h.ni + 1);
-    m.triangles.reserve(h.nt + McLodModel::kCopyBlock);
+    // At most what the data can hold: a forged header must not allocate more.
+    auto fit = [&](std::uint64_t n, std::uint64_t record) {
+      return static_cast<std::size_t>(std::min<std::uint64_t>(n, data.size() / record));
+    };
+    m.positions.reserve(fit(h.nv, 16));
+    m.normals.reserve(fit(h.nv, 16));
+    m.cells.reserve(fit(h.nc, 8) + 1);
+    m.intervals.reserve(fit(h.ni, 8) + 1);
+    m.triangles.reserve(fit(h.nt, 12) + McLodModel::kCopyBlock);
   }
   // delta[k]: the change of the triangle count at priority k (see the top).
   std::vector<std::int64_t> delta(last + 2, 0);

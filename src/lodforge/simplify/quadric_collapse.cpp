@@ -381,6 +381,9 @@ class Collapser {
     // Set on both ends of a rejected collapse; a change next to such a vertex
     // queues its edges again, since the change may have made them valid.
     std::uint8_t rejected = 0;
+    // It has one wedge (no attribute seam), so a collapse need not walk
+    // the wedge lists, which live elsewhere in memory.
+    std::uint8_t one_wedge = 1;
   };
   static_assert(sizeof(Vertex) == 128);
   std::vector<Vertex> vx_;
@@ -493,6 +496,7 @@ void Collapser::build() {
       wedge_origin_.push_back(i);
       wedge_vertex_.push_back(p);
       next_wedge_.push_back(vx_[p].first_wedge);
+      vx_[p].one_wedge = vx_[p].first_wedge == kNone;
       vx_[p].first_wedge = w;
     }
   }
@@ -651,7 +655,7 @@ void Collapser::compute_kinds() {
     else if (features == 2)
       vx_[p].kind = kFeature;
     else
-      vx_[p].kind = next_wedge_[vx_[p].first_wedge] == kNone ? kFree : kLocked;
+      vx_[p].kind = vx_[p].one_wedge ? kFree : kLocked;
   }
   for (const Segment& s : mesh_.lines)
     for (std::uint32_t i : s) {
@@ -1094,30 +1098,31 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   // Allowed: perform it. Wedges of u merge into the wedges of v they meet on
   // the edge triangles; others move to v as they are.
   const std::uint32_t fu = vx_[u].first_wedge, fv = vx_[v].first_wedge;
-  if (attr_stride_ == 0 && next_wedge_[fu] == kNone && next_wedge_[fv] == kNone) {
+  if (attr_stride_ == 0 && vx_[u].one_wedge && vx_[v].one_wedge) {
     // One wedge on each side (no attribute seams here): they merge.
-    wedge_pairs_.assign(1, {fu, fv});
+    wedge_parent_[fu] = fv;
   } else {
     collect_wedge_pairs(u, v);
-  }
-  for (std::uint32_t wu = vx_[u].first_wedge; wu != kNone;) {
-    std::uint32_t next = next_wedge_[wu];
-    std::uint32_t target = kNone;
-    for (auto& pr : wedge_pairs_)
-      if (pr.first == wu) target = pr.second;
-    if (target != kNone) {
-      wedge_parent_[wu] = target;
-      if (attr_stride_ > 0) {
-        double* dst = &wedge_quadric_[std::size_t{target} * attr_stride_];
-        const double* src = &wedge_quadric_[std::size_t{wu} * attr_stride_];
-        for (int i = 0; i < attr_stride_; ++i) dst[i] += src[i];
+    for (std::uint32_t wu = fu; wu != kNone;) {
+      std::uint32_t next = next_wedge_[wu];
+      std::uint32_t target = kNone;
+      for (auto& pr : wedge_pairs_)
+        if (pr.first == wu) target = pr.second;
+      if (target != kNone) {
+        wedge_parent_[wu] = target;
+        if (attr_stride_ > 0) {
+          double* dst = &wedge_quadric_[std::size_t{target} * attr_stride_];
+          const double* src = &wedge_quadric_[std::size_t{wu} * attr_stride_];
+          for (int i = 0; i < attr_stride_; ++i) dst[i] += src[i];
+        }
+      } else {
+        wedge_vertex_[wu] = v;
+        next_wedge_[wu] = vx_[v].first_wedge;
+        vx_[v].first_wedge = wu;
       }
-    } else {
-      wedge_vertex_[wu] = v;
-      next_wedge_[wu] = vx_[v].first_wedge;
-      vx_[v].first_wedge = wu;
+      wu = next;
     }
-    wu = next;
+    vx_[v].one_wedge = next_wedge_[vx_[v].first_wedge] == kNone;
   }
   vx_[u].first_wedge = kNone;
 

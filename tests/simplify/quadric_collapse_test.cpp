@@ -296,6 +296,40 @@ TEST(QuadricCollapse, BadDataThrows) {
   EXPECT_THROW(quadric_collapse(n, {.target = {.ratio = 0.5f}}), DataError);
 }
 
+// The result does not depend on the model's unit: scaled by 2^40 or 2^-40
+// (exact in float), the same triangles come out, with positions and error
+// scaled exactly. (Before the working units were normalised, costs, fourth
+// powers of lengths, overflowed or underflowed the float queue keys there.)
+TEST(QuadricCollapse, SameResultAtAnyScale) {
+  const TriangleMesh m = test::make_uv_sphere(40, 20);  // radius 1, with normals and texcoords
+  ASSERT_EQ(m.triangles.size(), 1520u);
+  const SimplifyResult base = quadric_collapse(m, {.target = {.ratio = 0.5f}});
+  ASSERT_EQ(base.mesh.triangles.size(), 760u);
+  for (int exponent : {40, -40}) {
+    SCOPED_TRACE(exponent);
+    const float s = std::ldexp(1.0f, exponent);
+    TriangleMesh scaled = m;
+    for (Vec3& p : scaled.positions) p = p * s;
+    const SimplifyResult r = quadric_collapse(scaled, {.target = {.ratio = 0.5f}});
+    EXPECT_EQ(r.mesh.triangles, base.mesh.triangles);
+    EXPECT_EQ(r.face_map, base.face_map);
+    EXPECT_EQ(r.vertex_map, base.vertex_map);
+    ASSERT_EQ(r.mesh.positions.size(), base.mesh.positions.size());
+    for (std::size_t i = 0; i < r.mesh.positions.size(); ++i) {
+      EXPECT_EQ(r.mesh.positions[i], base.mesh.positions[i] * s) << i;
+      EXPECT_EQ(r.mesh.normals[i], base.mesh.normals[i]) << i;
+      EXPECT_EQ(r.mesh.texcoords[i], base.mesh.texcoords[i]) << i;
+    }
+    EXPECT_EQ(r.error, base.error * s);
+    // An error budget scales the same way.
+    const SimplifyResult budget = quadric_collapse(m, {.target = {.max_error = 0.05f}});
+    const SimplifyResult scaled_budget =
+        quadric_collapse(scaled, {.target = {.max_error = 0.05f * s}});
+    EXPECT_EQ(scaled_budget.mesh.triangles, budget.mesh.triangles);
+    EXPECT_EQ(scaled_budget.error, budget.error * s);
+  }
+}
+
 // ---- The Stanford bunny ----------------------------------------------------
 
 const TriangleMesh* bunny() {

@@ -400,6 +400,7 @@ class Collapser {
   std::vector<std::uint32_t> wedge_parent_;  // wedge it merged into, or itself
   std::vector<std::uint32_t> input_wedge_;   // #V of the input: input vertex -> wedge
   int channels_ = 0;
+  double scale_ = 1;  // model units -> working units (a power of two)
   int attr_stride_ = 0;
   std::array<double, kMaxChannels> channel_scale_{};
   std::vector<double> wedge_quadric_;  // attr_stride_ per wedge
@@ -532,6 +533,28 @@ void Collapser::build() {
                         " has a non-finite coordinate");
     }
 
+  // Work in power-of-two units in which the bounding box's longest side is in
+  // [0.5, 1): multiplying by a power of two is exact, so every decision is
+  // the same at any scale (costs are fourth powers of lengths: in model units
+  // they overflowed or underflowed float keys beyond about 2^+-30), and the
+  // output is scaled back exactly.
+  D3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+        std::numeric_limits<double>::max()};
+  D3 hi = lo * -1;
+  for (std::size_t p = 0; p < np; ++p)
+    if (used[p]) {
+      const D3& q = vx_[p].pos;
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+    }
+  const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.0});
+  if (side > 0 && std::isfinite(side)) {
+    int exponent = 0;
+    std::frexp(side, &exponent);
+    scale_ = std::ldexp(1.0, -exponent);
+    for (std::size_t p = 0; p < np; ++p) vx_[p].pos = vx_[p].pos * scale_;
+  }
+
   // Vertex -> triangle lists (CSR, later rewritten by appending).
   for (std::size_t t = 0; t < nf; ++t)
     if (tri_[t].alive)
@@ -553,10 +576,8 @@ void Collapser::build() {
 
   // Attribute channels, scaled so that a unit difference costs like a
   // displacement of weight x diagonal.
-  Box3 box;
-  for (std::size_t p = 0; p < np; ++p)
-    if (used[p]) box.add(mesh_.positions[position_first_input[p]]);
-  const double diagonal = box.empty() ? 1.0 : std::max(1e-30, double(box.diagonal()));
+  const double diagonal =
+      side > 0 && std::isfinite(side) ? std::sqrt(norm2(hi - lo)) * scale_ : 1.0;
   auto add_channels = [&](bool present, int count, float weight) {
     if (!present) return;
     for (int i = 0; i < count; ++i)
@@ -1034,7 +1055,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   new_errors_.clear();
   const double min_q = allow_slivers ? 0.0 : double(options_.min_triangle_quality);
   bool sliver = false;
-  const double max_error = options_.target.max_error;
+  const double max_error = options_.target.max_error * scale_;
   bool over_budget = false;
   // The bound of a triangle that keeps its place in the mesh grows by the
   // distance its moved corner travels (see the header).
@@ -1304,7 +1325,9 @@ SimplifyResult Collapser::snapshot() const {
     std::uint32_t o = out_index[w];
     if (o == kNone) continue;
     const D3& p = vx_[wedge_vertex_[w]].pos;
-    m.positions[o] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+    const double back = 1 / scale_;  // exact: a power of two
+    m.positions[o] = {static_cast<float>(p.x * back), static_cast<float>(p.y * back),
+                      static_cast<float>(p.z * back)};
     r.vertex_map[o] = wedge_origin_[w];
     int c = 0;
     const float* a = channels_ > 0 ? &wedge_attr_[w * channels_] : nullptr;
@@ -1331,7 +1354,7 @@ SimplifyResult Collapser::snapshot() const {
   }
   for (const Segment& s : mesh_.lines)
     m.lines.push_back({out_index[root(input_wedge_[s[0]])], out_index[root(input_wedge_[s[1]])]});
-  r.error = error;
+  r.error = static_cast<float>(error / scale_);
   return r;
 }
 

@@ -8,10 +8,16 @@
 /// and within that range its triangles change only where a same-level
 /// neighbour's expansion splits one of its faces or edges (the split
 /// priorities of McNode). So each cell stores its triangles for each interval
-/// over which that split state is constant, as index triples into one static
-/// vertex table, and extraction copies, with no table look-up beyond a few
-/// integer compares and no floating point: a renderer uploads the vertex
-/// table once and an index buffer per level (continuous LOD by index buffer).
+/// over which that split state is constant (a split that changes none of its
+/// triangles starts no interval), as index triples into one static vertex
+/// table, and extraction copies them after a few integer compares, with no
+/// floating point: a renderer uploads the vertex table once and an index
+/// buffer per level (continuous LOD by index buffer).
+///
+/// Size: about 52 bytes per full-resolution triangle (the bunny, the horse,
+/// the bunny's range scans), of which 29 are the stored triangles (about 2.4
+/// per full-resolution triangle: coarser levels and split variants), 8 the
+/// vertices (12-byte position, 4-byte normal), 12 the cells and intervals.
 ///
 /// Cells are grouped by their parent's priority (group 0: the root), so the
 /// cells priority N can emit are a prefix of the cell array. Vertices are

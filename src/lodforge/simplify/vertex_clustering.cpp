@@ -308,9 +308,11 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
   // smallest corner) is then sorted in place by its canonical rotation and
   // the doublets squeezed out.
   to.lines.clear();
-  to.tris.resize(count);
-  to.tri_origin.resize(count);
-  std::size_t out = 0, run_begin = 0;
+  to.tris.clear();
+  to.tri_origin.clear();
+  to.tris.reserve(count);  // not resize: zeroing `count` entries touches pages never used
+  to.tri_origin.reserve(count);
+  std::size_t run_begin = 0;
   using Entry = RemapScratch::Entry;
   auto& run = scratch.run;
   auto& run_tris = scratch.run_tris;
@@ -322,12 +324,13 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
     return {t[0], t[1]};
   };
   auto flush = [&] {
-    const std::size_t n = out - run_begin;
+    const std::size_t n = to.tris.size() - run_begin;
     if (n < 2) return;
     if (n == 2) {
       const auto k0 = keys(to.tris[run_begin]), k1 = keys(to.tris[run_begin + 1]);
       if (k0 == k1) {
-        out = run_begin + 1;
+        to.tris.pop_back();
+        to.tri_origin.pop_back();
       } else if (k1 < k0) {
         std::swap(to.tris[run_begin], to.tris[run_begin + 1]);
         std::swap(to.tri_origin[run_begin], to.tri_origin[run_begin + 1]);
@@ -351,15 +354,17 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
     } else {
       std::sort(run.begin(), run.end(), less);
     }
-    run_tris.assign(to.tris.begin() + run_begin, to.tris.begin() + out);
-    run_origin.assign(to.tri_origin.begin() + run_begin, to.tri_origin.begin() + out);
-    out = run_begin;
+    run_tris.assign(to.tris.begin() + run_begin, to.tris.end());
+    run_origin.assign(to.tri_origin.begin() + run_begin, to.tri_origin.end());
+    std::size_t out = run_begin;
     for (std::size_t i = 0; i < n; ++i) {
       if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
       to.tris[out] = run_tris[run[i].index];
       to.tri_origin[out] = run_origin[run[i].index];
       ++out;
     }
+    to.tris.resize(out);
+    to.tri_origin.resize(out);
   };
   for (std::size_t f = 0; f < count; ++f) {
     const Triangle t = mapped(f);
@@ -370,19 +375,16 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
         assert(run_vertex == kNone || lo > run_vertex);
         flush();
         run_vertex = lo;
-        run_begin = out;
+        run_begin = to.tris.size();
       }
-      to.tris[out] = t;
-      to.tri_origin[out] = origin(f);
-      ++out;
+      to.tris.push_back(t);
+      to.tri_origin.push_back(origin(f));
     } else if (!no_lines && (a != b || b != c)) {
       std::uint32_t other = a != b ? b : c;
       line_candidates.push_back({std::min(a, other), std::max(a, other)});
     }
   }
   flush();
-  to.tris.resize(out);
-  to.tri_origin.resize(out);
   for (const Segment& s : lines) {
     std::uint32_t a = vertex_map[s[0]], b = vertex_map[s[1]];
     if (a != b) line_candidates.push_back({std::min(a, b), std::max(a, b)});

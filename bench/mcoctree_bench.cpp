@@ -129,19 +129,37 @@ void BM_McoMemory(benchmark::State& state) {
 }
 BENCHMARK(BM_McoMemory)->Arg(64)->Arg(128)->Iterations(1);
 
+// Wall seconds per iteration per million input triangles.
+void seconds_per_million(benchmark::State& state) {
+  state.counters["s_per_Mtri"] = benchmark::Counter(
+      static_cast<double>(bunny()->triangle_count()) / 1e6,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// Build: args resolution (0: the default, about the input's triangle count),
+// threads (0: all cores), holes (0: kOpen, 1: kCapped). s_per_Mtri = wall
+// seconds per million input triangles (issue 6: <= 2; compare with
+// BM_MeshoptSimplifyTo20's in the same run).
 void BM_McoBuild(benchmark::State& state) {
   if (!bunny()) return state.SkipWithError("bunny missing");
+  McBuildOptions options{.resolution = static_cast<int>(state.range(0)),
+                         .threads = static_cast<int>(state.range(1)),
+                         .holes = state.range(2) ? McHoles::kCapped : McHoles::kOpen};
+  McBuildResult r;
   for (auto _ : state) {
-    auto r = build_mc_octree(*bunny(), {.resolution = static_cast<int>(state.range(0))});
+    r = build_mc_octree(*bunny(), options);
     benchmark::DoNotOptimize(r.tree.nodes.data());
   }
   state.counters["input_triangles"] = static_cast<double>(bunny()->triangle_count());
+  state.counters["resolution"] = r.stats.resolution;
+  state.counters["full_triangles"] = static_cast<double>(r.tree.full_triangles());
+  seconds_per_million(state);
 }
 BENCHMARK(BM_McoBuild)
-    ->Arg(64)
-    ->Arg(128)
+    ->ArgsProduct({{0}, {1, 0}, {0, 1}})
+    ->Args({128, 0, 0})
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(1)
+    ->Iterations(3)
     ->UseRealTime();
 
 void BM_QuadricTo20(benchmark::State& state) {
@@ -151,6 +169,7 @@ void BM_QuadricTo20(benchmark::State& state) {
     benchmark::DoNotOptimize(r.mesh.triangles.data());
   }
   state.counters["input_triangles"] = static_cast<double>(bunny()->triangle_count());
+  seconds_per_million(state);
 }
 BENCHMARK(BM_QuadricTo20)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
@@ -166,6 +185,7 @@ void BM_MeshoptSimplifyTo20(benchmark::State& state) {
                                               m.positions.size(), sizeof(Vec3), idx.size() / 5,
                                               1.0f, 0, nullptr));
   state.counters["input_triangles"] = static_cast<double>(m.triangle_count());
+  seconds_per_million(state);
 }
 BENCHMARK(BM_MeshoptSimplifyTo20)->Unit(benchmark::kMillisecond)->UseRealTime();
 #endif

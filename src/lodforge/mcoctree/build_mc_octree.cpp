@@ -39,6 +39,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <mutex>
 #include <queue>
 #include <stdexcept>
 #include <unordered_map>
@@ -98,7 +99,6 @@ class SignedDistance {
       mesh_.normals.resize(P.size());
       for (std::size_t v = 0; v < P.size(); ++v) mesh_.normals[v] = normalized(vertex_normal[v]);
     }
-    bvh_ = std::make_unique<TriangleBvh>(mesh_);
   }
 
   struct Sample {
@@ -107,7 +107,7 @@ class SignedDistance {
     bool open;  // nearest an open rim: the side is unknown (distance >= 0)
   };
   Sample operator()(const Vec3& p, std::uint32_t hint = ClosestPoint::kNone) const {
-    return sample(p, bvh_->closest_point(p, hint));
+    return sample(p, bvh().closest_point(p, hint));
   }
   // The signed distance of p whose closest surface point is cp.
   Sample sample(const Vec3& p, const ClosestPoint& cp) const {
@@ -138,14 +138,34 @@ class SignedDistance {
   }
   bool has_rims() const { return !adjacency_.boundary_edges.empty(); }
   const TriangleMesh& mesh() const { return mesh_; }
-  const TriangleBvh& bvh() const { return *bvh_; }
+  // Built on first use (repairs and holes of open meshes need it; a closed
+  // mesh's band and edge points come from the triangle scan alone).
+  const TriangleBvh& bvh() const {
+    std::call_once(bvh_once_, [&] { bvh_ = std::make_unique<TriangleBvh>(mesh_); });
+    return *bvh_;
+  }
+  // The point of triangle t nearest to p, as a closest-point answer.
+  ClosestPoint on_triangle(const Vec3& p, std::uint32_t t) const {
+    const auto& f = mesh_.triangles[t];
+    TrianglePoint tp = closest_point_on_triangle(p, mesh_.positions[f[0]], mesh_.positions[f[1]],
+                                                 mesh_.positions[f[2]]);
+    return {tp.point, t, tp.barycentric, tp.distance_squared};
+  }
+  // The unit normal at a closest point (vertex normals interpolated).
+  Vec3 normal_at(const ClosestPoint& cp) const {
+    const auto& f = mesh_.triangles[cp.triangle];
+    Vec3 n{};
+    for (int k = 0; k < 3; ++k) n += mesh_.normals[f[k]] * cp.barycentric[k];
+    return length_squared(n) > 0 ? normalized(n) : face_normal_[cp.triangle];
+  }
 
  private:
   TriangleMesh mesh_;
   MeshAdjacency adjacency_;
   std::vector<Vec3> face_normal_, vertex_normal_, edge_normal_;
   std::vector<std::uint8_t> open_vertex_, open_edge_;
-  std::unique_ptr<TriangleBvh> bvh_;
+  mutable std::unique_ptr<TriangleBvh> bvh_;
+  mutable std::once_flag bvh_once_;
 };
 
 // The finest lattice: (2^depth + 1)^3 points, a sign for each, an exact
@@ -156,12 +176,17 @@ struct Lattice {
   Vec3 origin;
   float h = 0;
   std::vector<std::uint8_t> state;
-  std::vector<std::pair<std::int64_t, float>> distance;  // exact ones, sorted by index at the end
+  struct Exact {
+    std::int64_t idx;
+    float distance;          // signed
+    std::uint32_t triangle;  // the closest one (meshes), else ClosestPoint::kNone
+    bool operator<(const Exact& o) const { return idx < o.idx; }
+  };
+  std::vector<Exact> distance;  // exact ones, sorted by index at the end
 
-  const float* find_distance(std::int64_t idx) const {
-    auto it = std::lower_bound(distance.begin(), distance.end(),
-                               std::pair<std::int64_t, float>{idx, -INFINITY});
-    return it != distance.end() && it->first == idx ? &it->second : nullptr;
+  const Exact* find_distance(std::int64_t idx) const {
+    auto it = std::lower_bound(distance.begin(), distance.end(), Exact{idx, 0, 0});
+    return it != distance.end() && it->idx == idx ? &*it : nullptr;
   }
 
   std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const {
@@ -188,12 +213,13 @@ std::vector<std::int64_t> measure(Lattice& lat, const SignedDistance& sd,
                                   const std::vector<std::int64_t>& points) {
   std::vector<float> d(points.size());
   std::vector<std::uint8_t> open(points.size());
+  std::vector<std::uint32_t> tri(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       std::uint32_t hint = ClosestPoint::kNone;
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
                         auto s = sd(lat.point(points[i]), hint);
-                        hint = s.at.triangle;
+                        hint = tri[i] = s.at.triangle;
                         open[i] = s.open;
                         // A point on the surface counts as outside, a hair away.
                         d[i] = s.distance == 0 ? 1e-6f * lat.h : s.distance;
@@ -209,7 +235,7 @@ std::vector<std::int64_t> measure(Lattice& lat, const SignedDistance& sd,
     std::uint8_t next = kExact | kAssigned | (d[i] < 0 ? kInside : 0);
     if ((st & kInside) != (next & kInside)) changed.push_back(points[i]);
     st = next;
-    lat.distance.emplace_back(points[i], d[i]);
+    lat.distance.push_back({points[i], d[i], tri[i]});
   }
   return changed;
 }
@@ -290,6 +316,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   struct Found {
     std::int64_t idx;
     float distance;  // signed; NaN: nearest an open rim
+    std::uint32_t triangle;
   };
   std::vector<std::vector<Found>> found(static_cast<std::size_t>(slabs));
   const float h2 = lat.h * lat.h;
@@ -337,7 +364,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       // root cube's boundary (a cell or more from the mesh's box).
       float d = sample.distance == 0 ? 1e-6f * lat.h : sample.distance;
       if (lat.on_border(idx)) d = std::abs(d);
-      out.push_back({idx, sample.open && !lat.on_border(idx) ? NAN : d});
+      out.push_back({idx, sample.open && !lat.on_border(idx) ? NAN : d, bt.triangle});
     }
   });
   std::vector<std::int64_t> seeds;
@@ -349,7 +376,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
         continue;
       }
       lat.state[fd.idx] = kExact | kAssigned | (fd.distance < 0 ? kInside : 0);
-      lat.distance.emplace_back(fd.idx, fd.distance);
+      lat.distance.push_back({fd.idx, fd.distance, fd.triangle});
       seeds.push_back(fd.idx);
     }
 
@@ -654,7 +681,7 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
     }
     float d = est[i].distance == 0 ? 1e-6f * lat.h : est[i].distance;
     lat.state[band[i]] = kExact | kAssigned | (d < 0 ? kInside : 0);
-    lat.distance.emplace_back(band[i], d);
+    lat.distance.push_back({band[i], d, ClosestPoint::kNone});
     seeds.push_back(band[i]);
   }
   stats.band_points = seeds.size();
@@ -775,10 +802,10 @@ class Builder {
  public:
   Builder(McOctree& t, McBuildStats& stats) : t_(t), stats_(stats) {}
 
-  // attr(x, hint, normal, colour) gives the normal (and the colour when
+  // attr(x, hint, near, normal, colour) gives the normal (and the colour when
   // `colored`) of the surface point x and returns how far x is from the
   // input (a Gap, see mark_holes; {} for range scans); hint is per-thread
-  // scratch.
+  // scratch, near the triangles closest to the edge's ends (or kNone).
   template <class Attr>
   void build_tree(const Lattice& lat, bool colored, Attr&& attr) {
     const int D = lat.depth;
@@ -807,24 +834,27 @@ class Builder {
     t_.normals.resize(edge_keys.size());
     if (colored) t_.colors.resize(edge_keys.size());
     gap_.assign(edge_keys.size(), Gap{});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        std::uint32_t hint = ClosestPoint::kNone;
-                        for (std::size_t v = r.begin(); v != r.end(); ++v) {
-                          std::int64_t p = edge_keys[v] / 3, q = p + step[edge_keys[v] % 3];
-                          const float* dp = lat.find_distance(p);
-                          const float* dq = lat.find_distance(q);
-                          float ratio = 0.5f;
-                          if (dp && dq) ratio = *dp / (*dp - *dq);
-                          ratio = std::clamp(ratio, 0.01f, 0.99f);
-                          Vec3 a = lat.point(p), b = lat.point(q);
-                          Vec3 x = a + (b - a) * ratio;
-                          t_.positions[v] = x;
-                          // Fallback normal: along the edge, from inside to outside.
-                          t_.normals[v] = normalized(lat.inside(p) ? b - a : a - b);
-                          gap_[v] = attr(x, hint, t_.normals[v], colored ? &t_.colors[v] : nullptr);
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          std::uint32_t hint = ClosestPoint::kNone;
+          for (std::size_t v = r.begin(); v != r.end(); ++v) {
+            std::int64_t p = edge_keys[v] / 3, q = p + step[edge_keys[v] % 3];
+            const auto* dp = lat.find_distance(p);
+            const auto* dq = lat.find_distance(q);
+            float ratio = 0.5f;
+            if (dp && dq) ratio = dp->distance / (dp->distance - dq->distance);
+            ratio = std::clamp(ratio, 0.01f, 0.99f);
+            Vec3 a = lat.point(p), b = lat.point(q);
+            Vec3 x = a + (b - a) * ratio;
+            t_.positions[v] = x;
+            // Fallback normal: along the edge, from inside to outside.
+            t_.normals[v] = normalized(lat.inside(p) ? b - a : a - b);
+            std::array<std::uint32_t, 2> near{dp ? dp->triangle : ClosestPoint::kNone,
+                                              dq ? dq->triangle : ClosestPoint::kNone};
+            gap_[v] = attr(x, hint, near, t_.normals[v], colored ? &t_.colors[v] : nullptr);
+          }
+        });
     auto vertex_of = [&](std::int64_t p, int axis) {
       auto it = std::lower_bound(edge_keys.begin(), edge_keys.end(), p * 3 + axis);
       return it != edge_keys.end() && *it == p * 3 + axis
@@ -1074,7 +1104,8 @@ class Builder {
     expanded_.assign(count, 0);
     std::vector<float> metric(count, 0);
     std::vector<double> area(count);
-    for (std::size_t i = 0; i < count; ++i) area[i] = own_area(t_.nodes[i]);
+    tbb::parallel_for(std::uint32_t{0}, count,
+                      [&](std::uint32_t i) { area[i] = own_area(t_.nodes[i]); });
     for (std::size_t i = 0; i < count; ++i) {
       const McNode& n = t_.nodes[i];
       if (n.leaf()) continue;
@@ -1122,7 +1153,10 @@ class Builder {
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
-            if (!dx && !dy && !dz) continue;
+            // Only face and edge neighbours' splits change (a corner
+            // neighbour shares no edge with n).
+            int moved = (dx != 0) + (dy != 0) + (dz != 0);
+            if (moved == 0 || moved == 3) continue;
             std::uint32_t a = near(i, dx, dy, dz);
             if (a != McNode::kNone && !expanded_[a]) around.push_back(a);
           }
@@ -1145,7 +1179,7 @@ class Builder {
       waiting[i].shrink_to_fit();
     }
     // Split priorities for extraction.
-    for (std::uint32_t i = 0; i < count; ++i) {
+    tbb::parallel_for(std::uint32_t{0}, count, [&](std::uint32_t i) {
       McNode& n = t_.nodes[i];
       for (int f = 0; f < 6; ++f) {
         n.face_split[f] = McNode::kNone;
@@ -1159,7 +1193,7 @@ class Builder {
           if (m != McNode::kNone) n.edge_split[e] = std::min(n.edge_split[e], t_.nodes[m].priority);
         });
       }
-    }
+    });
   }
 
  private:
@@ -1223,7 +1257,16 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   source.positions = mesh.positions;
   source.triangles = mesh.triangles;
   source.colors = mesh.colors;
-  SignedDistance sd(weld(source).mesh);
+  // Inside is where the triangles face away from: a mesh wound inwards
+  // (negative signed volume: horse.ply) is turned round, or every sign would
+  // be the wrong way and the root cube's boundary, outside, would fight it.
+  TriangleMesh welded = weld(source).mesh;
+  double volume = 0;
+  for (const auto& f : welded.triangles)
+    volume += dot(welded.positions[f[0]], cross(welded.positions[f[1]], welded.positions[f[2]]));
+  if (volume < 0)
+    for (auto& f : welded.triangles) std::swap(f[1], f[2]);
+  SignedDistance sd(std::move(welded));
   if (sd.mesh().triangles.empty())
     throw DataError("mcoctree: the mesh has only degenerate triangles");
   result.stats.resolution = options.resolution ? options.resolution : mesh_resolution(sd.mesh());
@@ -1240,10 +1283,21 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
     return Gap{rim ? d / kRimGap : d, rim};
   };
   builder.build_tree(lat, sd.mesh().has_colors(),
-                     [&](const Vec3& x, std::uint32_t& hint, Vec3& normal, Rgb8* color) {
-                       ClosestPoint cp = sd.bvh().closest_point(x, hint);
+                     [&](const Vec3& x, std::uint32_t& hint,
+                         const std::array<std::uint32_t, 2>& near, Vec3& normal, Rgb8* color) {
+                       // The nearer of the triangles closest to the edge's
+                       // ends: the closest point, or near it, which is all
+                       // a normal and a colour need; the exact one where
+                       // the distance decides a hole.
+                       ClosestPoint cp;
+                       for (auto t : near)
+                         if (t != ClosestPoint::kNone && !holes) {
+                           ClosestPoint c = sd.on_triangle(x, t);
+                           if (c.distance_squared < cp.distance_squared) cp = c;
+                         }
+                       if (!cp.found()) cp = sd.bvh().closest_point(x, hint);
                        hint = cp.triangle;
-                       normal = sd.bvh().normal_at(cp);
+                       normal = sd.normal_at(cp);
                        if (color) {
                          const auto& f = sd.mesh().triangles[cp.triangle];
                          Vec3 col{};
@@ -1280,18 +1334,19 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);
-  builder.build_tree(
-      lat, field.colored(), [&](const Vec3& x, std::uint32_t&, Vec3& normal, Rgb8* color) {
-        auto e = field.estimate(x, 2);
-        if (!e.found) e = field.estimate(x, 4);
-        if (!e.found) return Gap{};  // a cap far from the data: the edge's direction
-        normal = e.normal;
-        if (color)
-          for (int k = 0; k < 3; ++k)
-            (*color)[k] =
-                static_cast<std::uint8_t>(std::lround(std::clamp(e.color[k], 0.0f, 255.0f)));
-        return Gap{};
-      });
+  builder.build_tree(lat, field.colored(),
+                     [&](const Vec3& x, std::uint32_t&, const std::array<std::uint32_t, 2>&,
+                         Vec3& normal, Rgb8* color) {
+                       auto e = field.estimate(x, 2);
+                       if (!e.found) e = field.estimate(x, 4);
+                       if (!e.found) return Gap{};  // a cap far from the data: the edge's direction
+                       normal = e.normal;
+                       if (color)
+                         for (int k = 0; k < 3; ++k)
+                           (*color)[k] = static_cast<std::uint8_t>(
+                               std::lround(std::clamp(e.color[k], 0.0f, 255.0f)));
+                       return Gap{};
+                     });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
   builder.number();

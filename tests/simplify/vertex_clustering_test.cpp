@@ -379,6 +379,22 @@ TEST(VertexClustering, ResultDoesNotDependOnTheThreadCount) {
   }
 }
 
+// Each heuristic is normalised over the cell, and a candidate leaves the
+// contest when its weighted quadric term exceeds the best by more than the
+// other weights sum to: both depend only on the ratios of the weights.
+TEST(VertexClustering, OnlyTheRatiosOfTheWeightsMatter) {
+  TriangleMesh sphere = test::make_icosphere(5);
+  std::vector<SimplifyResult> base = vertex_clustering(sphere, {.mean_weight = 2});
+  // x4 keeps every product and quotient exact.
+  std::vector<SimplifyResult> scaled = vertex_clustering(
+      sphere, {.area_weight = 32, .volume_weight = 4, .mean_weight = 8, .quadric_weight = 128});
+  ASSERT_EQ(base.size(), scaled.size());
+  for (std::size_t l = 0; l < base.size(); ++l) {
+    EXPECT_EQ(base[l].mesh.positions, scaled[l].mesh.positions);
+    EXPECT_EQ(base[l].vertex_map, scaled[l].vertex_map);
+  }
+}
+
 // The bunny of the thesis (seed 000 §5.5, Table 5.5): the level closest to
 // each reduction must beat the LODCreator's published clustering figures.
 TEST(VertexClustering, BunnyBeatsTheThesis) {

@@ -1003,17 +1003,12 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
   }
-  // The input vertices still represented, in octree order, with their
-  // positions and current vertex (for the displacement of each level).
-  std::vector<Vec3> input_pos;
-  std::vector<std::uint32_t> input_node;
-  input_pos.reserve(order.size());
-  input_node.reserve(order.size());
-  for (const CodedVertex& it : order) {
-    if (node_of[it.vertex] == kNone) continue;
-    input_pos.push_back(mesh.positions[it.vertex]);
-    input_node.push_back(node_of[it.vertex]);
-  }
+  // The input vertices still represented, by their level-0 vertex (the
+  // input vertices of one level-0 vertex share its position exactly), with
+  // their positions and current vertex (for the displacement of each level).
+  std::vector<Vec3> input_pos = cut.pos;
+  std::vector<std::uint32_t> input_node(cut.size());
+  std::iota(input_node.begin(), input_node.end(), 0u);
   node_of = {};
   order = {};
   std::vector<SimplifyResult> chain;

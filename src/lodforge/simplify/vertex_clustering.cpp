@@ -464,39 +464,44 @@ struct CellFaces {
 
   /// `mapped`: the triangles with their corners replaced by their cells.
   /// Lists only the cells with `wanted[cell]` (the others get empty lists).
+  /// Branch-free: whether corners share a cell is data the branch predictor
+  /// cannot learn (about half the triangles collapse at a level), so each
+  /// corner adds 0 or 1 (an entry only at a cell's first corner).
   void build(std::span<const Triangle> mapped, std::span<const char> wanted) {
     const std::size_t cells = wanted.size();
     start.assign(cells + 1, 0);
-    auto visit = [&](auto&& add_any) {
-      auto add = [&](std::uint32_t cell, std::uint32_t e) {
-        if (wanted[cell]) add_any(cell, e);
-      };
-      for (std::size_t f = 0; f < mapped.size(); ++f) {
-        const auto g = static_cast<std::uint32_t>(4 * f);
-        const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
-        if (a == b) {
-          add(a, g + 3);
-          if (c != a) add(c, g + 2);
-        } else if (b == c) {
-          add(b, g + 3);
-          add(a, g + 0);
-        } else if (a == c) {
-          add(a, g + 3);
-          add(b, g + 1);
-        } else {
-          add(a, g + 0);
-          add(b, g + 1);
-          add(c, g + 2);
-        }
-      }
+    struct Corners {
+      std::uint32_t cell[3], code[3], add[3];
+    };
+    auto corners = [&](std::size_t f) {
+      const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
+      const std::uint32_t ab = a == b, bc = b == c, ac = a == c;
+      const auto g = static_cast<std::uint32_t>(4 * f);
+      return Corners{
+          {a, b, c},
+          {g + ((ab | ac) ? 3u : 0u), g + ((ab | bc) ? 3u : 1u), g + ((ac | bc) ? 3u : 2u)},
+          {std::uint32_t(wanted[a] != 0), (1 - ab) & std::uint32_t(wanted[b] != 0),
+           (1 - ac) & (1 - bc) & std::uint32_t(wanted[c] != 0)}};
     };
     // Count into start[cell + 1], turn the counts into starts, fill with
     // start[cell]++ (which leaves the starts shifted down by one cell) and
-    // shift them back.
-    visit([&](std::uint32_t cell, std::uint32_t) { ++start[cell + 1]; });
+    // shift them back. A corner that adds nothing writes to a spare last slot.
+    for (std::size_t f = 0; f < mapped.size(); ++f) {
+      const Corners k = corners(f);
+      for (int i = 0; i < 3; ++i) start[k.cell[i] + 1] += k.add[i];
+    }
     for (std::size_t j = 0; j < cells; ++j) start[j + 1] += start[j];
-    entry.resize(start[cells]);
-    visit([&](std::uint32_t cell, std::uint32_t e) { entry[start[cell]++] = e; });
+    const std::uint32_t spare = start[cells];
+    entry.resize(spare + 1);
+    for (std::size_t f = 0; f < mapped.size(); ++f) {
+      const Corners k = corners(f);
+      for (int i = 0; i < 3; ++i) {
+        std::uint32_t& next = start[k.cell[i]];
+        entry[k.add[i] ? next : spare] = k.code[i];
+        next += k.add[i];
+      }
+    }
+    entry.pop_back();
     std::copy_backward(start.begin(), start.end() - 1, start.end());
     start[0] = 0;
   }

@@ -139,9 +139,13 @@ class SignedDistance {
   bool has_rims() const { return !adjacency_.boundary_edges.empty(); }
   const TriangleMesh& mesh() const { return mesh_; }
   // Built on first use (repairs and holes of open meshes need it; a closed
-  // mesh's band and edge points come from the triangle scan alone).
+  // mesh's band and edge points come from the triangle scan alone). Few
+  // queries follow, so a cheaper build (8 bins, 8 triangles a leaf: ~25 %
+  // faster on the bunny, queries as fast) pays.
   const TriangleBvh& bvh() const {
-    std::call_once(bvh_once_, [&] { bvh_ = std::make_unique<TriangleBvh>(mesh_); });
+    std::call_once(bvh_once_, [&] {
+      bvh_ = std::make_unique<TriangleBvh>(mesh_, BvhOptions{.leaf_size = 8, .bins = 8});
+    });
     return *bvh_;
   }
   // The point of triangle t nearest to p, as a closest-point answer.
@@ -855,13 +859,6 @@ class Builder {
             gap_[v] = attr(x, hint, near, t_.normals[v], colored ? &t_.colors[v] : nullptr);
           }
         });
-    auto vertex_of = [&](std::int64_t p, int axis) {
-      auto it = std::lower_bound(edge_keys.begin(), edge_keys.end(), p * 3 + axis);
-      return it != edge_keys.end() && *it == p * 3 + axis
-                 ? static_cast<std::uint32_t>(it - edge_keys.begin())
-                 : McNode::kNone;
-    };
-
     // Leaves: finest cells whose corners differ in sign, i.e. the (up to)
     // four cells around each crossed lattice edge.
     std::vector<std::vector<std::uint64_t>> codes(D + 1);
@@ -916,11 +913,19 @@ class Builder {
       for (int c = 0; c < 8; ++c)
         if (lat.inside(base + (c & 1) * step[0] + (c >> 1 & 1) * step[1] + (c >> 2) * step[2]))
           leaf.signs27 |= 1u << detail::corner_point(c);
-      for (int e = 0; e < 12; ++e) {
-        auto [lo, hi] = detail::edge_corners(e);
-        (void)hi;
-        auto p = base + (lo & 1) * step[0] + (lo >> 1 & 1) * step[1] + (lo >> 2) * step[2];
-        leaf.edge_vertex[e] = vertex_of(p, e / 4);
+    }
+    // Each crossed lattice edge is edge 4a + q of the cell whose lower
+    // corner is q's offsets (bit 0 on axis a + 1, bit 1 on a + 2) below it.
+    for (std::size_t v = 0; v < edge_keys.size(); ++v) {
+      const std::int64_t p = edge_keys[v] / 3, a = edge_keys[v] % 3;
+      const std::int64_t c[3] = {p % n, (p / n) % n, p / (n * n)};
+      const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
+      for (int q = 0; q < 4; ++q) {
+        std::int64_t cell[3] = {c[0], c[1], c[2]};
+        cell[a1] -= q & 1, cell[a2] -= q >> 1;
+        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] >= cells || cell[a2] >= cells) continue;
+        t_.nodes[find(D, cell[0], cell[1], cell[2])].edge_vertex[4 * a + q] =
+            static_cast<std::uint32_t>(v);
       }
     }
     for (int l = D - 1; l >= 0; --l)
@@ -1282,33 +1287,36 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
     bool rim = sd.feature(cp).second;
     return Gap{rim ? d / kRimGap : d, rim};
   };
-  builder.build_tree(lat, sd.mesh().has_colors(),
-                     [&](const Vec3& x, std::uint32_t& hint,
-                         const std::array<std::uint32_t, 2>& near, Vec3& normal, Rgb8* color) {
-                       // The nearer of the triangles closest to the edge's
-                       // ends: the closest point, or near it, which is all
-                       // a normal and a colour need; the exact one where
-                       // the distance decides a hole.
-                       ClosestPoint cp;
-                       for (auto t : near)
-                         if (t != ClosestPoint::kNone && !holes) {
-                           ClosestPoint c = sd.on_triangle(x, t);
-                           if (c.distance_squared < cp.distance_squared) cp = c;
-                         }
-                       if (!cp.found()) cp = sd.bvh().closest_point(x, hint);
-                       hint = cp.triangle;
-                       normal = sd.normal_at(cp);
-                       if (color) {
-                         const auto& f = sd.mesh().triangles[cp.triangle];
-                         Vec3 col{};
-                         for (int k = 0; k < 3; ++k)
-                           col += sd.mesh().colors[f[k]] * cp.barycentric[k];
-                         for (int k = 0; k < 3; ++k)
-                           (*color)[k] = static_cast<std::uint8_t>(
-                               std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
-                       }
-                       return holes ? gap(cp) : Gap{};
-                     });
+  builder.build_tree(
+      lat, sd.mesh().has_colors(),
+      [&](const Vec3& x, std::uint32_t& hint, const std::array<std::uint32_t, 2>& near,
+          Vec3& normal, Rgb8* color) {
+        // The nearer of the triangles closest to the edge's
+        // ends: the closest point, or near it, which is all
+        // a normal and a colour need; the exact one where
+        // the distance may decide a hole (the nearer
+        // triangle's distance is an upper bound).
+        ClosestPoint cp;
+        for (auto t : near)
+          if (t != ClosestPoint::kNone) {
+            ClosestPoint c = sd.on_triangle(x, t);
+            if (c.distance_squared < cp.distance_squared) cp = c;
+          }
+        const float sure = kRimGap * lat.h;
+        if (!cp.found() || (holes && (cp.distance_squared > sure * sure || sd.feature(cp).second)))
+          cp = sd.bvh().closest_point(x, hint);
+        hint = cp.triangle;
+        normal = sd.normal_at(cp);
+        if (color) {
+          const auto& f = sd.mesh().triangles[cp.triangle];
+          Vec3 col{};
+          for (int k = 0; k < 3; ++k) col += sd.mesh().colors[f[k]] * cp.barycentric[k];
+          for (int k = 0; k < 3; ++k)
+            (*color)[k] =
+                static_cast<std::uint8_t>(std::lround(std::clamp(col[k], 0.0f, 1.0f) * 255.0f));
+        }
+        return holes ? gap(cp) : Gap{};
+      });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
   if (holes) builder.mark_holes([&](const Vec3& x) { return gap(sd.bvh().closest_point(x)).gap; });

@@ -50,8 +50,8 @@
 /// thesis' own published figures at 50 % and 99 % reduction (measured: mean
 /// deviation 4.97e-5 m at 67.6 %, 1.96e-4 m at 91.0 %, 1.86e-3 m at 99.4 %,
 /// against 4.17e-5, 2.00e-4, 1.69e-3). With weight 32 the quadric point wins
-/// most cells but the area and volume terms still vote (3.09e-5, 1.20e-4,
-/// 1.38e-3); 8 gives 3.26e-5, 1.28e-4, 1.45e-3; 1000 or the quadric alone
+/// most cells but the area and volume terms still vote (3.15e-5, 1.21e-4,
+/// 1.37e-3); 8 gives 3.26e-5, 1.28e-4, 1.45e-3; 1000 or the quadric alone
 /// 3.05e-5, 1.17e-4, 1.40e-3.
 #include <vector>
 
@@ -119,8 +119,11 @@ struct VertexClusteringOptions {
 /// level are processed in parallel (TBB, in chunks of 2048 cells; smaller
 /// levels run on the calling thread); the result does not depend on the
 /// thread count. The area and volume heuristics are summed in single
-/// precision relative to the cell's mean, four candidates at a time. Throws DataError if an index
-/// is out of range, a used coordinate is not finite or an attribute array has the wrong length.
+/// precision relative to the cell's mean, four candidates at a time, and
+/// only in cells with more than one contender (see above). Memory: a few
+/// arrays of O(V + F) reused over the levels, plus the results. Throws
+/// DataError if an index is out of range, a used coordinate is not finite or
+/// an attribute array has the wrong length.
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options = {});
 

@@ -947,9 +947,13 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   Cut cut;
   std::vector<std::uint32_t> node_of(nv, kNone);
   {
+    // Equal positions have equal codes: positions are compared only then.
+    auto starts_node = [&](std::size_t i) {
+      return i == 0 || order[i].code != order[i - 1].code ||
+             mesh.positions[order[i].vertex] != mesh.positions[order[i - 1].vertex];
+    };
     std::size_t count = 0;
-    for (std::size_t i = 0; i < order.size(); ++i)
-      count += i == 0 || mesh.positions[order[i].vertex] != mesh.positions[order[i - 1].vertex];
+    for (std::size_t i = 0; i < order.size(); ++i) count += starts_node(i);
     cut.pos.resize(count);
     cut.weight.assign(count, 1);
     cut.orig.resize(count);
@@ -957,7 +961,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     std::uint32_t node = kNone;
     for (std::size_t i = 0; i < order.size(); ++i) {
       const std::uint32_t v = order[i].vertex;
-      if (i == 0 || mesh.positions[v] != mesh.positions[order[i - 1].vertex]) {
+      if (starts_node(i)) {
         ++node;
         cut.pos[node] = mesh.positions[v];
         cut.orig[node] = v;

@@ -58,7 +58,8 @@ struct ChunkCounts {
   std::uint64_t accumulated = 0;
 };
 
-Header read_header(std::string_view data, McLodModel& m, const std::string& name) {
+Header read_header(std::string_view data, McLodModel& m, const std::string& name,
+                   bool verify = true) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   if (data.size() < kHeader)
     throw fail("truncated .mco file (" + std::to_string(data.size()) + " bytes)");
@@ -84,7 +85,8 @@ Header read_header(std::string_view data, McLodModel& m, const std::string& name
   get(h.nt);
   get(h.nl);
   get(checksum);
-  if (fnv1a(data.substr(0, kHeader - 8)) != checksum) throw fail("checksum mismatch in the header");
+  if (verify && fnv1a(data.substr(0, kHeader - 8)) != checksum)
+    throw fail("checksum mismatch in the header");
   if (h.depth > 20) throw fail("depth " + std::to_string(h.depth) + " out of range");
   constexpr std::uint64_t kMax = UINT32_MAX - 16;  // indices and sentinels fit in u32
   if (h.nv > kMax || h.nc > kMax || h.ni > kMax || h.nt > kMax || h.nl >= h.nc + 1)
@@ -97,7 +99,7 @@ Header read_header(std::string_view data, McLodModel& m, const std::string& name
 // checking its size and checksum. Returns the end offset.
 template <class Fn>
 std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t last,
-                        const std::string& name, Fn&& fn) {
+                        const std::string& name, bool verify, Fn&& fn) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   std::size_t at = kHeader;
   ChunkCounts total;
@@ -128,7 +130,7 @@ std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t la
     std::uint64_t checksum;
     std::memcpy(&checksum, data.data() + at + size, 8);
     std::string_view chunk = data.substr(at, size);
-    if (fnv1a(chunk) != checksum)
+    if (verify && fnv1a(chunk) != checksum)
       throw fail("checksum mismatch at priority " + std::to_string(k) + " (corrupted file)");
     fn(k, chunk, c);
     at += size + 8;
@@ -212,7 +214,7 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
                          const McoReadOptions& options) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   McLodModel m;
-  Header h = read_header(data, m, name);
+  Header h = read_header(data, m, name, options.verify_checksums);
   const std::uint64_t last =
       options.max_priority < 0
           ? h.nl
@@ -221,7 +223,7 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
   // `last` is truncated, found (with its message) before anything is sized
   // by a forged count.
   if ((last + 1) * (kChunkHeader + 8) > data.size() - kHeader)
-    walk_chunks(data, h, last, name, [](auto&&...) {});
+    walk_chunks(data, h, last, name, options.verify_checksums, [](auto&&...) {});
   const bool colored = h.flags & 1;
   if (last == h.nl) {
     // At most what the data can hold: a forged header must not allocate more.
@@ -237,7 +239,7 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
   // delta[k]: the change of the triangle count at priority k (see the top).
   std::vector<std::int64_t> delta(last + 2, 0);
   m.group.reserve(last + 2);
-  walk_chunks(data, h, last, name,
+  walk_chunks(data, h, last, name, options.verify_checksums,
               [&](std::uint64_t k, std::string_view chunk, const ChunkCounts& c) {
                 auto bad = [&](const char* what) {
                   return fail(std::string(what) + " at priority " + std::to_string(k));
@@ -331,7 +333,8 @@ std::uint64_t mco_prefix_size(std::string_view data, std::uint32_t priority,
                               const std::string& name) {
   McLodModel m;
   Header h = read_header(data, m, name);
-  return walk_chunks(data, h, std::min<std::uint64_t>(priority, h.nl), name, [](auto&&...) {});
+  return walk_chunks(data, h, std::min<std::uint64_t>(priority, h.nl), name, true,
+                     [](auto&&...) {});
 }
 
 }  // namespace lodforge

@@ -54,6 +54,10 @@ struct McoReadOptions {
   /// Read only what priorities 0..N need (the accumulation table ends at N);
   /// -1 = everything. The rest of the file is not looked at.
   std::int64_t max_priority = -1;
+  /// false: skip the checksum comparisons, so that a fuzzer reaches the
+  /// structural checks behind them (which still reject any inconsistent
+  /// data). Never for real files.
+  bool verify_checksums = true;
 };
 
 /// Parses a model (or its first priorities); `name` is used in messages.

@@ -4,12 +4,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/cell_polygonize.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mesh/adjacency.h"
+#include "lodforge/mesh/mesh_io.h"
+#include "lodforge/metrics/compare_meshes.h"
 #include "lodforge/metrics/triangle_bvh.h"
+#include "lodforge/simplify/quadric_collapse.h"
 #include "mcoctree/crack_check.h"
 #include "mesh/test_meshes.h"
 
@@ -135,6 +139,69 @@ TEST(BuildMcOctree, DefaultResolutionMatchesTheInputCount) {
     std::printf("default resolution %d: %llu triangles for %zu input triangles\n",
                 r.stats.resolution, static_cast<unsigned long long>(r.tree.full_triangles()),
                 mesh.triangle_count());
+  }
+}
+
+// The Stanford bunny (open: holes in its bottom) with McHoles::kOpen at the
+// default resolution: borders only along the input's rims, crack-free
+// otherwise at 20 budgets, no cap at full resolution; and the quality table
+// at 80 ... 5 % beside quadric collapse of the input and of the model's own
+// full-resolution mesh to the same counts (printed; the 1.5x target is not
+// asserted: it does not hold).
+TEST(BuildMcOctree, BunnyHolesStayOpen) {
+  const std::string path = std::string(LODFORGE_SHARED_DATA) + "/meshes/bun_zipper.ply";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
+  auto bunny = read_mesh(path);
+  auto built = build_mc_octree(bunny, {.holes = McHoles::kOpen});
+  const McOctree& t = built.tree;
+  const float h = t.cell_size;
+  std::printf("bunny, default resolution %d: %llu triangles (input %zu), %zu hole nodes\n",
+              built.stats.resolution, static_cast<unsigned long long>(t.full_triangles()),
+              bunny.triangle_count(), built.stats.hole_nodes);
+  // The input's rims as segments (degenerate triangles) for distances.
+  TriangleMesh rims;
+  rims.positions = bunny.positions;
+  auto input_adj = build_adjacency(bunny);
+  for (auto e : input_adj.boundary_edges)
+    rims.triangles.push_back({input_adj.edges[e][0], input_adj.edges[e][1], input_adj.edges[e][1]});
+  ASSERT_FALSE(rims.triangles.empty());
+  TriangleBvh rim_bvh(rims);
+  for (int step = 1; step <= 20; ++step) {
+    auto r = extract_mc_mesh(t, {.percent = 5.0 * step});
+    auto report = test::crack_report(r.mesh);
+    ASSERT_EQ(report.t_junctions, 0u) << 5 * step << " %";
+    ASSERT_EQ(report.topology.non_manifold_edges, 0u) << 5 * step << " %";
+    ASSERT_EQ(report.topology.inconsistent_edges, 0u) << 5 * step << " %";
+  }
+  auto full = extract_mc_mesh(t).mesh;
+  auto adj = build_adjacency(full);
+  ASSERT_GT(adj.boundary_edges.size(), 0u);
+  float worst = 0;
+  for (auto e : adj.boundary_edges)
+    for (auto v : adj.edges[e])
+      worst = std::max(worst, std::sqrt(rim_bvh.closest_point(full.positions[v]).distance_squared));
+  std::printf("full resolution: %zu border edges, farthest border point %.2f cells from a rim\n",
+              adj.boundary_edges.size(), worst / h);
+  EXPECT_LE(worst, 3 * h);
+
+  std::printf(
+      "  %%   | triangles | mco H %% / mean %% | qem(input) H / mean | ratio | qem(mco 100 %%) H "
+      "/ mean | ratio\n");
+  CompareOptions co{.samples = 50000, .per_vertex = false};
+  auto mean = [](const CompareResult& c) { return (c.a_to_b.mean_pct + c.b_to_a.mean_pct) / 2; };
+  for (double pct : {100.0, 80.0, 60.0, 40.0, 20.0, 5.0}) {
+    auto m = extract_mc_mesh(t, {.percent = pct}).mesh;
+    auto n = m.triangle_count();
+    auto cm = compare_meshes(bunny, m, co);
+    auto cq = compare_meshes(bunny, quadric_collapse(bunny, {.target = {.triangles = n}}).mesh, co);
+    auto cf = compare_meshes(bunny, quadric_collapse(full, {.target = {.triangles = n}}).mesh, co);
+    std::printf(
+        "  %4.0f | %9zu | %7.3f / %7.4f | %7.3f / %7.4f | %5.1f / %5.1f | %7.3f / %7.4f | "
+        "%4.2f / %4.2f\n",
+        pct, n, cm.hausdorff_pct, mean(cm), cq.hausdorff_pct, mean(cq),
+        cm.hausdorff_pct / cq.hausdorff_pct, mean(cm) / mean(cq), cf.hausdorff_pct, mean(cf),
+        cm.hausdorff_pct / cf.hausdorff_pct, mean(cm) / mean(cf));
+    if (pct == 100.0) EXPECT_LE(cm.hausdorff_pct, 1.0);  // caps made it 3.35 %
   }
 }
 

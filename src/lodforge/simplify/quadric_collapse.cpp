@@ -287,19 +287,30 @@ class CollapseQueue {
       used_[b / 64] |= std::uint64_t{1} << (b % 64);
     }
   }
-  HeapEntry pop() {
-    assert(size_ > 0);
-    --size_;
-    if (heap_.empty()) {
+  /// Removes the smallest entry into `out`; false if there is none. Entries
+  /// for which `stale` holds are dropped in bulk when their bucket becomes
+  /// the heap (most entries are stale by then: they were pushed long before
+  /// their cost came up, and their vertices changed since), so they cost a
+  /// scan instead of a pop.
+  template <class Stale>
+  bool pop(HeapEntry& out, Stale stale) {
+    while (heap_.empty()) {
+      if (size_ == 0) return false;
       // The next bucket in use becomes the heap.
       std::size_t w = (current_ + 1) / 64;
       std::uint64_t bits = used_[w] & (~std::uint64_t{0} << ((current_ + 1) % 64));
       while (bits == 0) bits = used_[++w];
       current_ = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
       used_[w] &= ~(std::uint64_t{1} << (current_ % 64));
-      heap_.take(buckets_[current_]);
+      std::vector<HeapEntry>& bucket = buckets_[current_];
+      const std::size_t before = bucket.size();
+      std::erase_if(bucket, stale);
+      size_ -= before - bucket.size();
+      heap_.take(bucket);
     }
-    return heap_.pop();
+    --size_;
+    out = heap_.pop();
+    return true;
   }
   /// Drops the entries for which `stale` holds.
   template <class Stale>
@@ -1231,23 +1242,23 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     return StopReason::kTargetReached;
   }
   if (heap_.empty() && collapses_since_fill_ == 0) fill_heap();
+  auto stale = [&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; };
   while (live_triangles_ > target) {
-    if (heap_.empty()) {
+    if (heap_.size() > 8 * live_triangles_ + 1024) {
+      // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
+      // dropping them keeps the heap shallow and in cache as the mesh shrinks.
+      heap_.drop_if(stale);
+    }
+    HeapEntry e;
+    if (!heap_.pop(e, stale)) {
       // Collapses rejected earlier may be allowed now that their
       // neighbourhood changed: try every edge again while that still helps.
       if (collapses_since_fill_ == 0 || ++refills_ > kMaxRefills) break;
       fill_heap();
-      if (heap_.empty()) break;
       continue;
     }
-    if (heap_.size() > 8 * live_triangles_ + 1024) {
-      // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
-      // dropping them keeps the heap shallow and in cache as the mesh shrinks.
-      heap_.drop_if([&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; });
-    }
-    const HeapEntry e = heap_.pop();
     const bool deferred = is_deferred(e);
-    if (version_[e.a] + version_[e.b] != e.stamp) continue;
+    if (stale(e)) continue;
     Collapse c;
     if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than

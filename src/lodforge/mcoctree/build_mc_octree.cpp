@@ -38,7 +38,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <mutex>
 #include <queue>
 #include <stdexcept>
@@ -271,18 +270,43 @@ void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
 }
 
 // Breadth-first flood fill from the assigned points: every unassigned point
-// takes the sign of the nearest assigned one (in lattice steps).
+// takes the sign of the nearest assigned one (in lattice steps). The queue
+// holds packed coordinates (21 bits each), so that a step needs no division
+// to find its neighbours (the fill visits most of the lattice).
 void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildStats& stats) {
-  std::deque<std::int64_t> queue(seeds.begin(), seeds.end());
-  while (!queue.empty()) {
-    auto idx = queue.front();
-    queue.pop_front();
-    lattice_neighbours(lat, idx, [&](std::int64_t q) {
+  const std::int64_t n = lat.n, plane = n * n;
+  auto pack = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) {
+    return i | j << 21 | k << 42;
+  };
+  std::vector<std::uint64_t> queue;
+  queue.reserve(seeds.size());
+  for (auto idx : seeds)
+    queue.push_back(pack(static_cast<std::uint64_t>(idx % n),
+                         static_cast<std::uint64_t>((idx / n) % n),
+                         static_cast<std::uint64_t>(idx / plane)));
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    if (head >= (1u << 20) && 2 * head >= queue.size()) {  // keep only the frontier
+      queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
+      head = 0;
+    }
+    const std::uint64_t c = queue[head];
+    const auto i = static_cast<std::int64_t>(c & 0x1fffff),
+               j = static_cast<std::int64_t>(c >> 21 & 0x1fffff),
+               k = static_cast<std::int64_t>(c >> 42);
+    const std::int64_t idx = i + n * j + plane * k;
+    const std::uint8_t inside = lat.state[idx] & kInside;
+    auto visit = [&](std::int64_t q, std::uint64_t packed) {
       if (lat.state[q] & kAssigned) return;
-      lat.state[q] = (lat.state[q] & kMeasured) | kAssigned | (lat.state[idx] & kInside);
+      lat.state[q] = (lat.state[q] & kMeasured) | kAssigned | inside;
       ++stats.flooded_points;
-      queue.push_back(q);
-    });
+      queue.push_back(packed);
+    };
+    if (i > 0) visit(idx - 1, c - 1);
+    if (i + 1 < n) visit(idx + 1, c + 1);
+    if (j > 0) visit(idx - n, c - (std::uint64_t{1} << 21));
+    if (j + 1 < n) visit(idx + n, c + (std::uint64_t{1} << 21));
+    if (k > 0) visit(idx - plane, c - (std::uint64_t{1} << 42));
+    if (k + 1 < n) visit(idx + plane, c + (std::uint64_t{1} << 42));
   }
 }
 

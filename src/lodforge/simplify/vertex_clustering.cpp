@@ -158,6 +158,23 @@ struct Quadric {
   }
 };
 
+/// sqrt(x) for x >= 0, without std::sqrt's errno path (a possible library
+/// call on the hot path of a loop keeps its values in memory).
+inline double sqrt_nonnegative(double x) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_setzero_pd(), _mm_set_sd(x)));
+#else
+  return std::sqrt(x);
+#endif
+}
+inline float sqrt_nonnegative(float x) {
+#if defined(__SSE2__)
+  return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)));
+#else
+  return std::sqrt(x);
+#endif
+}
+
 /// The area-weighted quadric of the plane of triangle (p, q, r): area x the
 /// squared distance to the plane. Zero for a degenerate triangle. With
 /// n = (q - p) x (r - p) unnormalised, area = |n| / 2 and the unit normal
@@ -167,10 +184,10 @@ Quadric plane_quadric(const Vec3& p, const Vec3& q, const Vec3& r) {
   double ux = double(q.x) - p.x, uy = double(q.y) - p.y, uz = double(q.z) - p.z;
   double vx = double(r.x) - p.x, vy = double(r.y) - p.y, vz = double(r.z) - p.z;
   double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+  const double len2 = nx * nx + ny * ny + nz * nz;
   Quadric k;
-  if (!(len > 0)) return k;
-  const double s = 0.5 / len;
+  if (!(len2 > 0)) return k;
+  const double s = 0.5 / sqrt_nonnegative(len2);
   const double d = -(nx * p.x + ny * p.y + nz * p.z);  // |n| x the plane's offset
   const double sx = s * nx, sy = s * ny, sz = s * nz;
   k.a00 = sx * nx;
@@ -626,7 +643,7 @@ double score_faces(const LevelContext& ctx, std::uint32_t cell, const Vec3& orig
       const Vec3 a = prev.pos[t[0]] - origin, b = prev.pos[t[1]] - origin,
                  c = prev.pos[t[2]] - origin;
       const Vec3 nrm = cross(b - a, c - a);
-      if (g == 0) area_before += 0.5 * double(length(nrm));
+      if (g == 0) area_before += 0.5 * double(sqrt_nonnegative(dot(nrm, nrm)));
       if (volume)
         volume_sum =
             volume_sum + abs(F4::splat(dot(nrm, a)) -
@@ -685,7 +702,7 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
   mz /= total;
   auto mean_distance = [&](const Vec3& p) {
     double dx = p.x - mx, dy = p.y - my, dz = p.z - mz;
-    return std::sqrt(dx * dx + dy * dy + dz * dz);
+    return sqrt_nonnegative(dx * dx + dy * dy + dz * dz);
   };
   const Vec3 origin{float(mx), float(my), float(mz)};
 

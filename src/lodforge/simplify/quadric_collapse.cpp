@@ -624,8 +624,9 @@ void Collapser::build() {
 
 // Feature edges around each vertex decide its kind (table above). Each
 // triangle of the fan contributes its two edges at p; per neighbour o, the
-// triangles running p -> o and o -> p are counted in scratch arrays indexed by
-// o (reset lazily by stamps), so a vertex costs O(valence).
+// triangles running p -> o and o -> p are counted, so a vertex costs
+// O(valence) (a small fan searches its few neighbours linearly, a large one
+// finds them by marks).
 void Collapser::compute_kinds() {
   const std::size_t np = vx_.size();
   struct Corner {
@@ -634,9 +635,15 @@ void Collapser::compute_kinds() {
     std::uint32_t k;           // p's corner in it
   };
   std::vector<Corner> fan;
-  // Per neighbour: counts (p -> o in the low half, o -> p in the high half)
-  // and the fan index of the last triangle of each direction.
-  std::vector<std::uint32_t> count(np), fwd_at(np), bwd_at(np);
+  // Per neighbour o: the triangles running p -> o and o -> p, and the fan
+  // index of the last one of each direction.
+  struct Neighbour {
+    std::uint32_t o;
+    std::uint32_t fwd = 0, bwd = 0, fwd_at = 0, bwd_at = 0;
+  };
+  std::vector<Neighbour> nbs;
+  nbs.reserve(64);
+  std::vector<std::uint32_t> slot_of(np);  // large fans: o -> index in nbs
   const bool materials = mesh_.has_materials();
   for (std::uint32_t p = 0; p < np; ++p) {
     if (vx_[p].ref_count == 0) {
@@ -650,38 +657,49 @@ void Collapser::compute_kinds() {
       auto k = static_cast<std::uint32_t>(corner_of(t.v, p));
       fan.push_back({t.v[kNext[k]], t.v[kPrev[k]], ts[i], k});
     }
+    // A typical fan has about six neighbours: those are found by a linear
+    // search in nbs, which stays in cache; a large fan marks its neighbours.
+    nbs.clear();
+    const bool small = fan.size() <= 16;
     const std::uint32_t counted = ++stamp_;
+    auto slot = [&](std::uint32_t o) -> Neighbour& {
+      if (small) {
+        for (Neighbour& n : nbs)
+          if (n.o == o) return n;
+      } else if (vx_[o].mark == counted) {
+        return nbs[slot_of[o]];
+      } else {
+        vx_[o].mark = counted;
+        slot_of[o] = static_cast<std::uint32_t>(nbs.size());
+      }
+      nbs.push_back({o});
+      return nbs.back();
+    };
     for (std::uint32_t i = 0; i < fan.size(); ++i) {
-      const Corner& c = fan[i];
-      for (std::uint32_t o : {c.next, c.prev})
-        count[o] = vx_[o].mark == counted ? count[o] : 0, vx_[o].mark = counted;
-      count[c.next] += 1;
-      fwd_at[c.next] = i;
-      count[c.prev] += 1u << 16;
-      bwd_at[c.prev] = i;
+      Neighbour& f = slot(fan[i].next);
+      ++f.fwd;
+      f.fwd_at = i;
+      Neighbour& b = slot(fan[i].prev);
+      ++b.bwd;
+      b.bwd_at = i;
     }
-    const std::uint32_t seen = ++stamp_;
     int features = 0;
     bool border = false, locked = false;
-    for (const Corner& c : fan)
-      for (std::uint32_t o : {c.next, c.prev}) {
-        if (vx_[o].mark == seen) continue;
-        vx_[o].mark = seen;
-        const std::uint32_t fwd = count[o] & 0xffffu, bwd = count[o] >> 16;
-        if (fwd + bwd == 1) {
-          ++features;
-          border = true;
-        } else if (fwd + bwd > 2 || fwd != 1) {
-          locked = true;  // non-manifold, or inconsistently oriented
-        } else {
-          const Corner& f = fan[fwd_at[o]];
-          const Corner& b = fan[bwd_at[o]];
-          bool seam = tri_[f.t].w[f.k] != tri_[b.t].w[b.k] ||
-                      tri_[f.t].w[kNext[f.k]] != tri_[b.t].w[kPrev[b.k]];
-          bool material = materials && mesh_.materials[f.t] != mesh_.materials[b.t];
-          if (seam || material) ++features;
-        }
+    for (const Neighbour& n : nbs) {
+      if (n.fwd + n.bwd == 1) {
+        ++features;
+        border = true;
+      } else if (n.fwd + n.bwd > 2 || n.fwd != 1) {
+        locked = true;  // non-manifold, or inconsistently oriented
+      } else {
+        const Corner& f = fan[n.fwd_at];
+        const Corner& b = fan[n.bwd_at];
+        bool seam = tri_[f.t].w[f.k] != tri_[b.t].w[b.k] ||
+                    tri_[f.t].w[kNext[f.k]] != tri_[b.t].w[kPrev[b.k]];
+        bool material = materials && mesh_.materials[f.t] != mesh_.materials[b.t];
+        if (seam || material) ++features;
       }
+    }
     if (locked || (features != 0 && features != 2) || (border && options_.lock_border))
       vx_[p].kind = kLocked;
     else if (features == 2)

@@ -767,9 +767,10 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
   s.m = 0;
   if (use.quadric > 0 && largest[3] > 0) {
     const double slack = (use.area + use.volume + (largest[2] > 0 ? use.mean : 0)) * largest[3];
-    for (std::size_t k = 0; k < n; ++k)
-      if (use.quadric * (s.score[k][3] - least_quadric) <= slack)
-        s.contender[s.m++] = static_cast<std::uint32_t>(k);
+    for (std::size_t k = 0; k < n; ++k) {  // branch-free: the outcome is data
+      s.contender[s.m] = static_cast<std::uint32_t>(k);
+      s.m += use.quadric * (s.score[k][3] - least_quadric) <= slack;
+    }
   } else {
     for (std::size_t k = 0; k < n; ++k) s.contender[s.m++] = static_cast<std::uint32_t>(k);
   }

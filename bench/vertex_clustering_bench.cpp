@@ -11,17 +11,20 @@
 // |                              | 1 % of the input's triangles (target.ratio)           |
 // | Sloppy/mesh/reduction        | one meshopt_simplifySloppy call to the triangle count |
 // |                              | of that chain's lowest level that has triangles       |
+// | ChainOverSloppy/mesh/red./t  | both alternately in each iteration, fastest of each   |
+// |                              | and their ratio as counters (t = 1: one thread)       |
 //
 // Variants: the default options (thesis heuristics + quadric point), the
 // thesis' heuristics alone, the quadric heuristic alone, and the default on
 // one thread (the peer is single-threaded). The counter mean_deviation of the
 // default rows and of the peer (computed once, untimed, with compare_meshes:
 // the larger one-sided mean, model units) shows the quality bought.
-// Filter, e.g.: --benchmark_filter='Chain/[02]/[03]/(50|99)|Sloppy/[02]'.
+// Filter, e.g.: --benchmark_filter='Chain/[02]/[03]/(50|99)|Sloppy/[02]|OverSloppy/[02]'.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -173,6 +176,53 @@ void BM_SimplifySloppy(benchmark::State& state) {
 }
 BENCHMARK(BM_SimplifySloppy)
     ->ArgsProduct({{0, 1, 2}, {0, 50, 99}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The chain (default options) and its peer alternately in every iteration,
+/// each timed on its own: on a shared machine the load drifts between the
+/// rows above, not within one iteration. Counters: the fastest chain and
+/// peer call (wall time, ms) and their ratio. Args: mesh, reduction, 1 for
+/// one thread (0: TBB's default).
+void BM_ChainOverSloppy(benchmark::State& state) {
+  const auto mesh_index = static_cast<int>(state.range(0));
+  const TriangleMesh* mesh = load(kMeshes[mesh_index]);
+  if (!mesh) return state.SkipWithError("mesh not found (set LODFORGE_SHARED_DATA)");
+  const auto reduction = static_cast<int>(state.range(1));
+  std::unique_ptr<tbb::global_control> one_thread;
+  if (state.range(2) == 1)
+    one_thread =
+        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, 1);
+  const VertexClusteringOptions options = options_of(kDefault, reduction);
+  const std::size_t target = reference(mesh_index, reduction, false).level.triangle_count();
+  std::vector<unsigned> indices;
+  for (const Triangle& t : mesh->triangles)
+    for (std::uint32_t v : t) indices.push_back(v);
+  std::vector<unsigned> out(indices.size());
+  using Clock = std::chrono::steady_clock;
+  double chain_ms = 1e30, sloppy_ms = 1e30;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    std::vector<SimplifyResult> chain = vertex_clustering(*mesh, options);
+    benchmark::DoNotOptimize(chain.data());
+    const auto t1 = Clock::now();
+    std::size_t got =
+        meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), &mesh->positions[0].x,
+                               mesh->vertex_count(), sizeof(Vec3), target * 3, 1e30f, nullptr);
+    benchmark::DoNotOptimize(got);
+    const auto t2 = Clock::now();
+    chain_ms = std::min(chain_ms, std::chrono::duration<double, std::milli>(t1 - t0).count());
+    sloppy_ms = std::min(sloppy_ms, std::chrono::duration<double, std::milli>(t2 - t1).count());
+  }
+  state.counters["chain_ms"] = chain_ms;
+  state.counters["sloppy_ms"] = sloppy_ms;
+  state.counters["ratio"] = chain_ms / sloppy_ms;
+  state.counters["level_triangles"] = double(target);
+  state.SetLabel(std::string(kMeshes[mesh_index]) + ", to " + std::to_string(reduction) + " %" +
+                 (state.range(2) == 1 ? ", 1 thread" : ", default threads"));
+}
+BENCHMARK(BM_ChainOverSloppy)
+    ->ArgsProduct({{0, 1, 2}, {50, 99}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 #endif

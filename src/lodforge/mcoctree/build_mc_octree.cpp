@@ -1095,9 +1095,19 @@ class Builder {
       });
     return {halved, split};
   }
-  int count_now(std::uint32_t i) const {
+  // Triangles of node i as a cell of the current cut. A split cell is
+  // triangulated in full to be counted; configurations recur (a smooth
+  // surface meets few sign patterns), so counts are remembered by
+  // (signs, halved edges, split faces).
+  int count_now(std::uint32_t i) {
     auto [halved, split] = context(i);
-    return detail::node_triangle_count(t_.nodes[i], halved, split);
+    const McNode& n = t_.nodes[i];
+    if (!halved && !split) return detail::node_triangle_count(n, 0, 0);
+    const std::uint64_t key =
+        std::uint64_t{n.signs27} | std::uint64_t{halved} << 27 | std::uint64_t{split} << 39;
+    auto [it, fresh] = counts_.try_emplace(key, 0);
+    if (fresh) it->second = detail::node_triangle_count(n, halved, split);
+    return it->second;
   }
   double own_area(const McNode& n) const {
     double area = 0;
@@ -1242,7 +1252,8 @@ class Builder {
   std::vector<std::size_t> level_offset_;
   NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
-  std::vector<Gap> gap_;             // per vertex
+  std::unordered_map<std::uint64_t, int> counts_;  // see count_now
+  std::vector<Gap> gap_;                           // per vertex
   std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
   std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours
 };

@@ -174,6 +174,7 @@ class EdgeHeap {
  public:
   bool empty() const { return v_.empty(); }
   std::size_t size() const { return v_.size(); }
+  const HeapEntry& top() const { return v_[0]; }
   void clear() { v_.clear(); }
   /// Drops the entries for which `stale` holds and re-orders the rest.
   template <class Stale>
@@ -315,6 +316,8 @@ class CollapseQueue {
     out = heap_.pop();
     return true;
   }
+  /// The next entry of the current bucket, if any (for prefetching).
+  const HeapEntry* peek() const { return heap_.empty() ? nullptr : &heap_.top(); }
   /// Drops the entries for which `stale` holds.
   template <class Stale>
   void drop_if(Stale stale) {
@@ -1288,6 +1291,14 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     }
     const bool deferred = is_deferred(e);
     if (stale(e)) continue;
+    if (const HeapEntry* next = heap_.peek()) {
+      // Likely the next collapse: its ends' records arrive while this one is
+      // checked and done.
+      for (std::uint32_t x : {next->a, next->b}) {
+        __builtin_prefetch(&vx_[x]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&vx_[x]) + 64);
+      }
+    }
     Collapse c;
     if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than

@@ -1079,6 +1079,11 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       vx_[x].mark = s_u;  // u too: it is skipped below
     }
     edge_tris += has_v;
+    // An edge triangle leaves the list of its third corner if the collapse
+    // is done: ask for that list now.
+    const std::uint32_t* c = tri_[t].v;
+    const std::uint32_t third = has_v ? c[0] ^ c[1] ^ c[2] ^ u ^ v : u;
+    __builtin_prefetch(refs_.data() + vx_[third].ref_start);
   }
   int common = 0;
   for (std::uint32_t i = 0; i < nv; ++i) {
@@ -1326,6 +1331,12 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       std::uint32_t n = requeue_[i];
       vx_[n].rejected = 0;
       push_edges(n);
+    }
+    if (const HeapEntry* next = heap_.peek()) {
+      // The records of the next collapse's ends were asked for above and
+      // have arrived by now: ask for their triangle lists.
+      __builtin_prefetch(tris_begin(next->a));
+      __builtin_prefetch(tris_begin(next->b));
     }
   }
   if (live_triangles_ <= target) {

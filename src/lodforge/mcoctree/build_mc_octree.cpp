@@ -172,11 +172,15 @@ class SignedDistance {
   mutable std::once_flag bvh_once_;
 };
 
-// The finest lattice: (2^depth + 1)^3 points, a sign for each, an exact
-// signed distance for the band.
+// The finest lattice: the points of the root cube (2^depth cells a side,
+// centred on the mesh's box) that the box, grown by a cell, spans (beyond it
+// everything is empty), a sign for each, an exact signed distance for the
+// band. Lattice point (i, j, k) is root-cube point (i, j, k) + offset.
 struct Lattice {
   int depth = 0;
-  std::int64_t n = 0;  // points per axis
+  std::array<std::int64_t, 3> dim{};     // points per axis
+  std::array<std::int64_t, 3> offset{};  // of the first point, in cells of the root cube
+  Vec3 root;                             // the root cube's lowest corner
   Vec3 origin;
   float h = 0;
   std::vector<std::uint8_t> state;
@@ -194,18 +198,23 @@ struct Lattice {
   }
 
   std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return i + n * (j + n * k);
+    return i + dim[0] * (j + dim[1] * k);
+  }
+  std::int64_t plane() const { return dim[0] * dim[1]; }
+  std::array<std::int64_t, 3> coords(std::int64_t idx) const {
+    return {idx % dim[0], (idx / dim[0]) % dim[1], idx / plane()};
   }
   Vec3 point(std::int64_t idx) const {
-    return origin + Vec3{static_cast<float>(idx % n), static_cast<float>((idx / n) % n),
-                         static_cast<float>(idx / (n * n))} *
-                        h;
+    auto c = coords(idx);
+    return root + Vec3{static_cast<float>(c[0] + offset[0]), static_cast<float>(c[1] + offset[1]),
+                       static_cast<float>(c[2] + offset[2])} *
+                      h;
   }
   bool inside(std::int64_t idx) const { return state[idx] & kInside; }
   bool on_border(std::int64_t idx) const {
-    std::int64_t c[3] = {idx % n, (idx / n) % n, idx / (n * n)};
-    for (auto v : c)
-      if (v == 0 || v == n - 1) return true;
+    auto c = coords(idx);
+    for (int a = 0; a < 3; ++a)
+      if (c[a] == 0 || c[a] == dim[a] - 1) return true;
     return false;
   }
 };
@@ -244,7 +253,8 @@ std::vector<std::int64_t> measure(Lattice& lat, const SignedDistance& sd,
   return changed;
 }
 
-// An empty lattice whose root cube holds `box` with one cell to spare.
+// An empty lattice whose root cube holds `box` with a cell to spare on
+// every side.
 Lattice empty_lattice(const Box3& box, int resolution) {
   Vec3 size = box.size();
   float extent = std::max({size.x, size.y, size.z});
@@ -252,20 +262,27 @@ Lattice empty_lattice(const Box3& box, int resolution) {
   Lattice lat;
   lat.depth = 1;
   while ((1 << lat.depth) < resolution + 2) ++lat.depth;
-  lat.n = (std::int64_t{1} << lat.depth) + 1;
   lat.h = extent / static_cast<float>(resolution);
-  lat.origin = box.center() - Vec3{1, 1, 1} * (lat.h * static_cast<float>(1 << lat.depth) * 0.5f);
-  lat.state.assign(static_cast<std::size_t>(lat.n * lat.n * lat.n), 0);
+  const std::int64_t side = std::int64_t{1} << lat.depth;
+  lat.root = box.center() - Vec3{1, 1, 1} * (lat.h * static_cast<float>(side) * 0.5f);
+  for (int a = 0; a < 3; ++a) {
+    auto lo = static_cast<std::int64_t>(std::floor((box.lo[a] - lat.root[a]) / lat.h)) - 1;
+    auto hi = static_cast<std::int64_t>(std::ceil((box.hi[a] - lat.root[a]) / lat.h)) + 1;
+    lat.offset[a] = std::max<std::int64_t>(0, lo);
+    lat.dim[a] = std::min(side, hi) - lat.offset[a] + 1;
+  }
+  lat.origin = lat.point(0);
+  lat.state.assign(static_cast<std::size_t>(lat.plane() * lat.dim[2]), 0);
   return lat;
 }
 
 template <class Fn>
 void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
-  const std::int64_t step[3] = {1, lat.n, lat.n * lat.n};
-  std::int64_t c[3] = {idx % lat.n, (idx / lat.n) % lat.n, idx / (lat.n * lat.n)};
+  const std::int64_t step[3] = {1, lat.dim[0], lat.plane()};
+  auto c = lat.coords(idx);
   for (int a = 0; a < 3; ++a) {
     if (c[a] > 0) fn(idx - step[a]);
-    if (c[a] + 1 < lat.n) fn(idx + step[a]);
+    if (c[a] + 1 < lat.dim[a]) fn(idx + step[a]);
   }
 }
 
@@ -274,16 +291,17 @@ void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
 // holds packed coordinates (21 bits each), so that a step needs no division
 // to find its neighbours (the fill visits most of the lattice).
 void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildStats& stats) {
-  const std::int64_t n = lat.n, plane = n * n;
+  const std::int64_t nx = lat.dim[0], ny = lat.dim[1], nz = lat.dim[2], plane = lat.plane();
   auto pack = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) {
     return i | j << 21 | k << 42;
   };
   std::vector<std::uint64_t> queue;
   queue.reserve(seeds.size());
-  for (auto idx : seeds)
-    queue.push_back(pack(static_cast<std::uint64_t>(idx % n),
-                         static_cast<std::uint64_t>((idx / n) % n),
-                         static_cast<std::uint64_t>(idx / plane)));
+  for (auto idx : seeds) {
+    auto c = lat.coords(idx);
+    queue.push_back(pack(static_cast<std::uint64_t>(c[0]), static_cast<std::uint64_t>(c[1]),
+                         static_cast<std::uint64_t>(c[2])));
+  }
   for (std::size_t head = 0; head < queue.size(); ++head) {
     if (head >= (1u << 20) && 2 * head >= queue.size()) {  // keep only the frontier
       queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
@@ -293,7 +311,7 @@ void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildSta
     const auto i = static_cast<std::int64_t>(c & 0x1fffff),
                j = static_cast<std::int64_t>(c >> 21 & 0x1fffff),
                k = static_cast<std::int64_t>(c >> 42);
-    const std::int64_t idx = i + n * j + plane * k;
+    const std::int64_t idx = i + nx * j + plane * k;
     const std::uint8_t inside = lat.state[idx] & kInside;
     auto visit = [&](std::int64_t q, std::uint64_t packed) {
       if (lat.state[q] & kAssigned) return;
@@ -302,11 +320,11 @@ void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildSta
       queue.push_back(packed);
     };
     if (i > 0) visit(idx - 1, c - 1);
-    if (i + 1 < n) visit(idx + 1, c + 1);
-    if (j > 0) visit(idx - n, c - (std::uint64_t{1} << 21));
-    if (j + 1 < n) visit(idx + n, c + (std::uint64_t{1} << 21));
+    if (i + 1 < nx) visit(idx + 1, c + 1);
+    if (j > 0) visit(idx - nx, c - (std::uint64_t{1} << 21));
+    if (j + 1 < ny) visit(idx + nx, c + (std::uint64_t{1} << 21));
     if (k > 0) visit(idx - plane, c - (std::uint64_t{1} << 42));
-    if (k + 1 < n) visit(idx + plane, c + (std::uint64_t{1} << 42));
+    if (k + 1 < nz) visit(idx + plane, c + (std::uint64_t{1} << 42));
   }
 }
 
@@ -324,7 +342,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   // carry a sign across the surface. The lattice is cut into slabs of
   // kSlab layers, each scanned by one task with the triangles that reach it.
   constexpr std::int64_t kSlab = 4;
-  const std::int64_t n = lat.n, slabs = (n + kSlab - 1) / kSlab;
+  const std::int64_t nz = lat.dim[2], plane = lat.plane(), slabs = (nz + kSlab - 1) / kSlab;
   struct Range {
     std::int64_t lo[3], hi[3];
   };
@@ -337,7 +355,8 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       range[t].lo[a] = std::max<std::int64_t>(
           0, static_cast<std::int64_t>(std::ceil((tb.lo[a] - lat.origin[a]) / lat.h - 1)));
       range[t].hi[a] = std::min<std::int64_t>(
-          n - 1, static_cast<std::int64_t>(std::floor((tb.hi[a] - lat.origin[a]) / lat.h + 1)));
+          lat.dim[a] - 1,
+          static_cast<std::int64_t>(std::floor((tb.hi[a] - lat.origin[a]) / lat.h + 1)));
     }
     for (auto s = range[t].lo[2] / kSlab; s <= range[t].hi[2] / kSlab; ++s)
       bucket[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(t));
@@ -355,8 +374,8 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       std::uint32_t triangle = 0;
       std::array<float, 3> barycentric{};
     };
-    const std::int64_t z0 = s * kSlab, z1 = std::min(n, z0 + kSlab);
-    std::vector<Best> best(static_cast<std::size_t>((z1 - z0) * n * n));
+    const std::int64_t z0 = s * kSlab, z1 = std::min(nz, z0 + kSlab);
+    std::vector<Best> best(static_cast<std::size_t>((z1 - z0) * plane));
     for (auto t : bucket[static_cast<std::size_t>(s)]) {
       const auto& f = m.triangles[t];
       const Vec3 &a = m.positions[f[0]], &b = m.positions[f[1]], &c = m.positions[f[2]];
@@ -369,13 +388,11 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
         for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
           for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
-            Vec3 x =
-                lat.origin +
-                Vec3{static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)} * lat.h;
-            float plane = dot(x - a, normal);
-            if (plane * plane > h2) continue;
+            Vec3 x = lat.point(lat.index(i, j, k));
+            float off = dot(x - a, normal);
+            if (off * off > h2) continue;
             TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
-            Best& bt = best[static_cast<std::size_t>(i + n * (j + n * (k - z0)))];
+            Best& bt = best[static_cast<std::size_t>(lat.index(i, j, k - z0))];
             if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
           }
     }
@@ -383,7 +400,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
     for (std::size_t p = 0; p < best.size(); ++p) {
       const Best& bt = best[p];
       if (!(bt.d2 <= h2)) continue;
-      std::int64_t idx = z0 * n * n + static_cast<std::int64_t>(p);
+      std::int64_t idx = z0 * plane + static_cast<std::int64_t>(p);
       ClosestPoint cp;
       cp.triangle = bt.triangle, cp.barycentric = bt.barycentric, cp.distance_squared = bt.d2;
       const auto& f = m.triangles[bt.triangle];
@@ -412,10 +429,11 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   // The rest of the root cube's boundary is outside and stays so: an open
   // mesh's inside could otherwise flood out to it, and the surface would
   // end there.
-  for (std::int64_t k = 0; k < n; ++k)
-    for (std::int64_t j = 0; j < n; ++j)
-      for (std::int64_t i = 0; i < n; ++i) {
-        if (!(k == 0 || k == n - 1 || j == 0 || j == n - 1) && i != 0) i = n - 1;
+  const std::int64_t nx = lat.dim[0], ny = lat.dim[1];
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (std::int64_t i = 0; i < nx; ++i) {
+        if (!(k == 0 || k == nz - 1 || j == 0 || j == ny - 1) && i != 0) i = nx - 1;
         std::int64_t idx = lat.index(i, j, k);
         if (lat.state[idx] & kExact) continue;
         lat.state[idx] = kAssigned | kMeasured;
@@ -432,18 +450,17 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   // (the inside leaks through a gap narrower than the band), and so do the
   // unmeasured neighbours of each point whose sign that changes.
   std::vector<std::int64_t> work;
-  const std::int64_t plane = n * n;
-  for (std::int64_t k = 0; k < n; ++k)
-    for (std::int64_t j = 0; j < n; ++j) {
-      const std::int64_t row = n * (j + n * k);
-      for (std::int64_t i = 0; i < n; ++i) {
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const std::int64_t row = lat.index(0, j, k);
+      for (std::int64_t i = 0; i < nx; ++i) {
         const std::int64_t idx = row + i;
         if (!unsure(idx)) continue;
         const bool in = lat.inside(idx);
-        if ((i > 0 && lat.inside(idx - 1) != in) || (i + 1 < n && lat.inside(idx + 1) != in) ||
-            (j > 0 && lat.inside(idx - n) != in) || (j + 1 < n && lat.inside(idx + n) != in) ||
+        if ((i > 0 && lat.inside(idx - 1) != in) || (i + 1 < nx && lat.inside(idx + 1) != in) ||
+            (j > 0 && lat.inside(idx - nx) != in) || (j + 1 < ny && lat.inside(idx + nx) != in) ||
             (k > 0 && lat.inside(idx - plane) != in) ||
-            (k + 1 < n && lat.inside(idx + plane) != in))
+            (k + 1 < nz && lat.inside(idx + plane) != in))
           work.push_back(idx);
       }
     }
@@ -688,7 +705,8 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
     for (auto k = c[2] - 1; k <= c[2] + 2; ++k)
       for (auto j = c[1] - 1; j <= c[1] + 2; ++j)
         for (auto a = c[0] - 1; a <= c[0] + 2; ++a) {
-          if (a < 0 || j < 0 || k < 0 || a >= lat.n || j >= lat.n || k >= lat.n) continue;
+          if (a < 0 || j < 0 || k < 0 || a >= lat.dim[0] || j >= lat.dim[1] || k >= lat.dim[2])
+            continue;
           auto idx = lat.index(a, j, k);
           if (lat.state[idx] & kAssigned) continue;
           lat.state[idx] = kAssigned;
@@ -709,6 +727,10 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
       continue;
     }
     float d = est[i].distance == 0 ? 1e-6f * lat.h : est[i].distance;
+    // The lattice's boundary (a cell beyond the points) is outside: a
+    // parent reaching past it would give the empty region beyond a sign
+    // change its children cannot carry.
+    if (lat.on_border(band[i])) d = std::abs(d);
     lat.state[band[i]] = kExact | kAssigned | (d < 0 ? kInside : 0);
     lat.distance.push_back({band[i], d, ClosestPoint::kNone});
     seeds.push_back(band[i]);
@@ -716,13 +738,12 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
   stats.band_points = seeds.size();
   SightCarver carver(scans, 2 * lat.h);
   std::vector<std::uint8_t> carved(lat.state.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, lat.n), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, lat.dim[2]), [&](const auto& r) {
     for (std::int64_t k = r.begin(); k != r.end(); ++k)
-      for (std::int64_t j = 0; j < lat.n; ++j)
-        for (std::int64_t i = 0; i < lat.n; ++i) {
+      for (std::int64_t j = 0; j < lat.dim[1]; ++j)
+        for (std::int64_t i = 0; i < lat.dim[0]; ++i) {
           auto idx = lat.index(i, j, k);
-          bool border =
-              i == 0 || j == 0 || k == 0 || i == lat.n - 1 || j == lat.n - 1 || k == lat.n - 1;
+          bool border = lat.on_border(idx);
           if (!(lat.state[idx] & kAssigned) && (border || carver.empty_at(lat.point(idx))))
             carved[idx] = 1;
         }
@@ -839,22 +860,22 @@ class Builder {
   void build_tree(const Lattice& lat, bool colored, Attr&& attr) {
     const int D = lat.depth;
     t_.depth = D;
-    t_.origin = lat.origin;
+    t_.origin = lat.root;
     t_.cell_size = lat.h;
-    const std::int64_t n = lat.n, cells = n - 1;
+    const std::int64_t nx = lat.dim[0], ny = lat.dim[1], nz = lat.dim[2];
 
     // Vertices: one per finest lattice edge whose ends differ in sign.
     std::vector<std::int64_t> edge_keys;  // point index * 3 + axis, ascending
-    const std::int64_t step[3] = {1, n, n * n};
-    for (std::int64_t k = 0; k < n; ++k)
-      for (std::int64_t j = 0; j < n; ++j) {
-        const std::int64_t row = n * (j + n * k);
-        for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t step[3] = {1, nx, lat.plane()};
+    for (std::int64_t k = 0; k < nz; ++k)
+      for (std::int64_t j = 0; j < ny; ++j) {
+        const std::int64_t row = lat.index(0, j, k);
+        for (std::int64_t i = 0; i < nx; ++i) {
           const std::int64_t idx = row + i;
           const bool in = lat.inside(idx);
-          if (i + 1 < n && in != lat.inside(idx + 1)) edge_keys.push_back(idx * 3);
-          if (j + 1 < n && in != lat.inside(idx + step[1])) edge_keys.push_back(idx * 3 + 1);
-          if (k + 1 < n && in != lat.inside(idx + step[2])) edge_keys.push_back(idx * 3 + 2);
+          if (i + 1 < nx && in != lat.inside(idx + 1)) edge_keys.push_back(idx * 3);
+          if (j + 1 < ny && in != lat.inside(idx + step[1])) edge_keys.push_back(idx * 3 + 1);
+          if (k + 1 < nz && in != lat.inside(idx + step[2])) edge_keys.push_back(idx * 3 + 2);
         }
       }
     if (edge_keys.empty())
@@ -889,15 +910,17 @@ class Builder {
     std::vector<std::vector<std::uint64_t>> codes(D + 1);
     for (auto key : edge_keys) {
       const std::int64_t p = key / 3, a = key % 3;
-      const std::int64_t c[3] = {p % n, (p / n) % n, p / (n * n)};
+      const auto c = lat.coords(p);
       const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
       for (int q = 0; q < 4; ++q) {
         std::int64_t cell[3] = {c[0], c[1], c[2]};
         cell[a1] -= q & 1, cell[a2] -= q >> 1;
-        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] >= cells || cell[a2] >= cells) continue;
-        codes[D].push_back(morton(static_cast<std::uint32_t>(cell[0]),
-                                  static_cast<std::uint32_t>(cell[1]),
-                                  static_cast<std::uint32_t>(cell[2])));
+        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] + 1 >= lat.dim[a1] ||
+            cell[a2] + 1 >= lat.dim[a2])
+          continue;
+        codes[D].push_back(morton(static_cast<std::uint32_t>(cell[0] + lat.offset[0]),
+                                  static_cast<std::uint32_t>(cell[1] + lat.offset[1]),
+                                  static_cast<std::uint32_t>(cell[2] + lat.offset[2])));
       }
     }
     std::sort(codes[D].begin(), codes[D].end());
@@ -934,7 +957,8 @@ class Builder {
     // Leaves from the lattice, then parents bottom-up.
     for (std::size_t i = level_offset_[D]; i < level_offset_[D + 1]; ++i) {
       McNode& leaf = t_.nodes[i];
-      auto base = lat.index(leaf.coords[0], leaf.coords[1], leaf.coords[2]);
+      auto base = lat.index(leaf.coords[0] - lat.offset[0], leaf.coords[1] - lat.offset[1],
+                            leaf.coords[2] - lat.offset[2]);
       for (int c = 0; c < 8; ++c)
         if (lat.inside(base + (c & 1) * step[0] + (c >> 1 & 1) * step[1] + (c >> 2) * step[2]))
           leaf.signs27 |= 1u << detail::corner_point(c);
@@ -943,14 +967,16 @@ class Builder {
     // corner is q's offsets (bit 0 on axis a + 1, bit 1 on a + 2) below it.
     for (std::size_t v = 0; v < edge_keys.size(); ++v) {
       const std::int64_t p = edge_keys[v] / 3, a = edge_keys[v] % 3;
-      const std::int64_t c[3] = {p % n, (p / n) % n, p / (n * n)};
+      const auto c = lat.coords(p);
       const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
       for (int q = 0; q < 4; ++q) {
         std::int64_t cell[3] = {c[0], c[1], c[2]};
         cell[a1] -= q & 1, cell[a2] -= q >> 1;
-        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] >= cells || cell[a2] >= cells) continue;
-        t_.nodes[find(D, cell[0], cell[1], cell[2])].edge_vertex[4 * a + q] =
-            static_cast<std::uint32_t>(v);
+        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] + 1 >= lat.dim[a1] ||
+            cell[a2] + 1 >= lat.dim[a2])
+          continue;
+        t_.nodes[find(D, cell[0] + lat.offset[0], cell[1] + lat.offset[1], cell[2] + lat.offset[2])]
+            .edge_vertex[4 * a + q] = static_cast<std::uint32_t>(v);
       }
     }
     for (int l = D - 1; l >= 0; --l)

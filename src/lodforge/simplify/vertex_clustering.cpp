@@ -62,6 +62,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "lodforge/core/error.h"
 
@@ -286,7 +287,7 @@ struct RemapScratch {
   std::vector<Entry> run;
   std::vector<Triangle> run_tris;
   std::vector<std::uint32_t> run_origin;
-  std::vector<std::uint32_t> off, vt;  // vertex -> kept triangles (when there are lines)
+  std::vector<std::uint32_t> off, upper;  // vertex -> larger neighbours (when there are lines)
   std::vector<Segment> not_edges;
   SegmentSet seen_lines;
   std::vector<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
@@ -386,17 +387,19 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
   for (std::size_t f = 0; f < count; ++f) {
     const Triangle t = mapped(f);
     const std::uint32_t a = t[0], b = t[1], c = t[2];
-    if (a != b && b != c && c != a) {
+    // Non-short-circuit tests: whether a triangle collapses is data.
+    const bool ab = a == b, bc = b == c, ca = c == a;
+    if (!(ab | bc | ca)) {
       const std::uint32_t lo = std::min({a, b, c});
       if (lo != run_vertex) {
         assert(run_vertex == kNone || lo > run_vertex);
-        flush();
+        if (to.tris.size() - run_begin > 1) flush();  // most runs are one triangle
         run_vertex = lo;
         run_begin = to.tris.size();
       }
       to.tris.push_back(t);
       to.tri_origin.push_back(origin(f));
-    } else if (!no_lines && (a != b || b != c)) {
+    } else if (!no_lines & !(ab & bc)) {
       std::uint32_t other = a != b ? b : c;
       line_candidates.push_back({std::min(a, other), std::max(a, other)});
     }
@@ -408,17 +411,26 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
   }
 
   if (!line_candidates.empty()) {
-    // vertex -> kept triangles, for "a line equal to an edge of a triangle"
-    // (counts into off[v + 1], starts, fill with off[v]++, shift back).
+    // For "a line equal to an edge of a triangle": the edges of the kept
+    // triangles, each listed at its smaller vertex as its larger one (counts
+    // into off[v + 1], starts, fill with off[v]++, shift back), so a line
+    // (lo, hi) is an edge exactly when hi is in lo's list, read in sequence.
     auto& off = scratch.off;
-    auto& vt = scratch.vt;
+    auto& upper = scratch.upper;
     off.assign(new_count + 1, 0);
+    auto edges = [&](const Triangle& t, auto&& add) {
+      add(t[0], t[1]);
+      add(t[1], t[2]);
+      add(t[2], t[0]);
+    };
     for (const Triangle& t : to.tris)
-      for (std::uint32_t v : t) ++off[v + 1];
+      edges(t, [&](std::uint32_t x, std::uint32_t y) { ++off[std::min(x, y) + 1]; });
     for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
-    vt.resize(off[new_count]);
-    for (std::size_t f = 0; f < to.tris.size(); ++f)
-      for (std::uint32_t v : to.tris[f]) vt[off[v]++] = static_cast<std::uint32_t>(f);
+    upper.resize(off[new_count]);
+    for (const Triangle& t : to.tris)
+      edges(t, [&](std::uint32_t x, std::uint32_t y) {
+        upper[off[std::min(x, y)]++] = std::max(x, y);
+      });
     std::copy_backward(off.begin(), off.end() - 1, off.end());
     off[0] = 0;
     // Most candidates are edges of kept triangles: the set of lines seen is
@@ -427,10 +439,7 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
     not_edges.clear();
     for (const Segment& s : line_candidates) {
       bool is_edge = false;
-      for (std::uint32_t k = off[s[0]]; k < off[s[0] + 1] && !is_edge; ++k) {
-        const Triangle& t = to.tris[vt[k]];
-        is_edge = t[0] == s[1] || t[1] == s[1] || t[2] == s[1];
-      }
+      for (std::uint32_t k = off[s[0]]; k < off[s[0] + 1]; ++k) is_edge |= upper[k] == s[1];
       if (!is_edge) not_edges.push_back(s);
     }
     scratch.seen_lines.reset(not_edges.size());
@@ -1123,13 +1132,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       const Triangle& t = cut.tris[f];
       mapped[f] = {cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
     }
-    if (quadrics_from_triangles) {
-      for (std::size_t f = 0; f < cut.tris.size(); ++f) {
-        const Triangle& t = cut.tris[f];
-        const Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
-        for (std::uint32_t c : mapped[f]) next.quadric[c] += k;
-      }
-    }
     // Which vertices are corners of a triangle (all of them unless the level
     // has lines: a vertex nothing uses is never kept).
     corner.clear();
@@ -1146,7 +1148,21 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     wanted.resize(cells);
     for (std::uint32_t j = 0; j < cells; ++j) wanted[j] = cell_begin[j + 1] - cell_begin[j] > 1;
     const bool measure = !cut.tris.empty() && (weights.area > 0 || weights.volume > 0);
-    if (measure) cell_faces.build(mapped, wanted);
+    // The first level's quadrics and the cell face lists are independent
+    // sequential passes (each scatters into its own arrays): side by side
+    // when a second thread is free.
+    tbb::parallel_invoke(
+        [&] {
+          if (!quadrics_from_triangles) return;
+          for (std::size_t f = 0; f < cut.tris.size(); ++f) {
+            const Triangle& t = cut.tris[f];
+            const Quadric k = plane_quadric(cut.pos[t[0]], cut.pos[t[1]], cut.pos[t[2]]);
+            for (std::uint32_t c : mapped[f]) next.quadric[c] += k;
+          }
+        },
+        [&] {
+          if (measure) cell_faces.build(mapped, wanted);
+        });
     const LevelContext ctx{cut, measure ? &cell_faces : nullptr, weights};
     // Cells are independent: each reads the previous level and writes its own slot.
     for_chunks(cells, [&](std::size_t lo, std::size_t hi) {

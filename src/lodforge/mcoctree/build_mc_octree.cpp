@@ -388,11 +388,16 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
         for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
           for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
-            Vec3 x = lat.point(lat.index(i, j, k));
+            Vec3 x = lat.root + Vec3{static_cast<float>(i + lat.offset[0]),
+                                     static_cast<float>(j + lat.offset[1]),
+                                     static_cast<float>(k + lat.offset[2])} *
+                                    lat.h;
             float off = dot(x - a, normal);
             if (off * off > h2) continue;
-            TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
+            // No nearer than its plane: skip when a nearer triangle is known.
             Best& bt = best[static_cast<std::size_t>(lat.index(i, j, k - z0))];
+            if (off * off >= bt.d2) continue;
+            TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
             if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
           }
     }
@@ -812,9 +817,10 @@ struct Gap {
   bool rim = false;
 };
 
-// Node by (level, coordinates): open addressing, linear probing. The
-// neighbour look-ups of the priority numbering are most of its time, which
-// std::unordered_map's chained buckets made several times slower.
+// Node by (level, coordinates), or a count by configuration: open
+// addressing, linear probing (std::unordered_map's chained buckets were
+// several times slower for the numbering's look-ups). Holds at most half
+// its capacity.
 class NodeIndex {
  public:
   void reserve(std::size_t n) {
@@ -824,12 +830,16 @@ class NodeIndex {
     keys_.assign(size, kEmpty);
     values_.assign(size, McNode::kNone);
     mask_ = size - 1;
+    size_ = 0;
   }
   void insert(std::uint64_t key, std::uint32_t value) {
     std::size_t i = slot(key);
     while (keys_[i] != kEmpty) i = (i + 1) & mask_;
     keys_[i] = key, values_[i] = value;
+    ++size_;
   }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return keys_.size(); }
   std::uint32_t find(std::uint64_t key) const {
     for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
       if (keys_[i] == key) return values_[i];
@@ -844,7 +854,7 @@ class NodeIndex {
   }
   std::vector<std::uint64_t> keys_;
   std::vector<std::uint32_t> values_;
-  std::size_t mask_ = 0;
+  std::size_t mask_ = 0, size_ = 0;
   int shift_ = 60;
 };
 
@@ -1131,9 +1141,10 @@ class Builder {
     if (!halved && !split) return detail::node_triangle_count(n, 0, 0);
     const std::uint64_t key =
         std::uint64_t{n.signs27} | std::uint64_t{halved} << 27 | std::uint64_t{split} << 39;
-    auto [it, fresh] = counts_.try_emplace(key, 0);
-    if (fresh) it->second = detail::node_triangle_count(n, halved, split);
-    return it->second;
+    if (auto c = counts_.find(key); c != McNode::kNone) return static_cast<int>(c);
+    int c = detail::node_triangle_count(n, halved, split);
+    if (counts_.size() < counts_.capacity() / 2) counts_.insert(key, static_cast<std::uint32_t>(c));
+    return c;
   }
   double own_area(const McNode& n) const {
     double area = 0;
@@ -1171,6 +1182,7 @@ class Builder {
   void number() {
     const auto count = static_cast<std::uint32_t>(t_.nodes.size());
     make_near();
+    counts_.reserve(count);
     expanded_.assign(count, 0);
     std::vector<float> metric(count, 0);
     std::vector<double> area(count);
@@ -1278,8 +1290,8 @@ class Builder {
   std::vector<std::size_t> level_offset_;
   NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
-  std::unordered_map<std::uint64_t, int> counts_;  // see count_now
-  std::vector<Gap> gap_;                           // per vertex
+  NodeIndex counts_;                 // see count_now
+  std::vector<Gap> gap_;             // per vertex
   std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
   std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours
 };

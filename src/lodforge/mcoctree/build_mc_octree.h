@@ -25,10 +25,10 @@ struct McBuildOptions {
   /// cell face of surface; range scans: cells twice the scans' point spacing,
   /// Kim sec. 4.4). The root cube has the next power of two above
   /// resolution + 2 cells per axis, so that one empty cell surrounds the
-  /// mesh. The sign lattice takes one byte per lattice point
-  /// ((2^depth + 1)^3): about 135 MB at 500.
+  /// mesh. The sign lattice takes one byte per lattice point of the mesh's
+  /// box grown by a cell (at most (resolution + 3)^3: about 127 MB at 500).
   int resolution = 0;
-  int threads = 0;  ///< worker threads for the distance queries; 0 = all cores
+  int threads = 0;  ///< worker threads (distances, edge points, holes, areas); 0 = all cores
   /// Meshes only (range scans are always capped where no scan saw the
   /// object). kCapped by default while extraction's checks expect closed
   /// output; kOpen is the model without invented surface.

@@ -1062,12 +1062,8 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   const std::uint32_t* tu = tris_begin(u);
   const std::uint32_t* tvv = tris_begin(v);
   const std::uint32_t nu = vx_[u].ref_count, nv = vx_[v].ref_count;
-  // The two fans are usually cold (the last collapse was elsewhere): ask for
-  // all their triangles at once instead of one miss after the other, and for
-  // the neighbours' quadrics (the first line of their records), which
-  // push_edges() reads after the collapse.
-  for (std::uint32_t i = 0; i < nu; ++i) __builtin_prefetch(&tri_[tu[i]]);
-  for (std::uint32_t i = 0; i < nv; ++i) __builtin_prefetch(&tri_[tvv[i]]);
+  // The neighbours' quadrics (the first line of their records) are read by
+  // push_edges() after the collapse: asked for below, as the fans are walked.
   int edge_tris = 0;
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
@@ -1296,6 +1292,13 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     }
     const bool deferred = is_deferred(e);
     if (stale(e)) continue;
+    // The two fans are usually cold (the last collapse was elsewhere): ask
+    // for all their triangles at once, before the evaluation, instead of one
+    // miss after the other in the checks.
+    for (std::uint32_t x : {e.a, e.b}) {
+      const std::uint32_t* ts = tris_begin(x);
+      for (std::uint32_t i = 0; i < vx_[x].ref_count; ++i) __builtin_prefetch(&tri_[ts[i]]);
+    }
     if (const HeapEntry* next = heap_.peek()) {
       // Likely the next collapse: its ends' records arrive while this one is
       // checked and done.

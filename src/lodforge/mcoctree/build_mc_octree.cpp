@@ -1158,7 +1158,11 @@ class Builder {
     return area;
   }
   // The coarsest unexpanded cut cell touching n that is coarser than n, or kNone.
-  std::uint32_t blocker(const McNode& n) const {
+  // The first level up is read from the parent's neighbour table (the cell
+  // one level coarser around n is the parent or one of its neighbours).
+  std::uint32_t blocker(std::uint32_t i) const {
+    const McNode& n = t_.nodes[i];
+    const std::uint32_t parent = parent_[i];
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -1168,7 +1172,17 @@ class Builder {
           std::int64_t size = std::int64_t{1} << n.level;
           if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= size || q[1] >= size || q[2] >= size)
             continue;
-          for (int l = n.level - 1; l >= 0; --l) {
+          if (parent != McNode::kNone) {
+            const McNode& p = t_.nodes[parent];
+            std::uint32_t a = near(parent, static_cast<int>((q[0] >> 1) - p.coords[0]),
+                                   static_cast<int>((q[1] >> 1) - p.coords[1]),
+                                   static_cast<int>((q[2] >> 1) - p.coords[2]));
+            if (a != McNode::kNone) {
+              if (!expanded_[a]) return a;
+              continue;
+            }
+          }
+          for (int l = n.level - 2; l >= 0; --l) {
             int sh = n.level - l;
             std::uint32_t a = find(l, q[0] >> sh, q[1] >> sh, q[2] >> sh);
             if (a == McNode::kNone) continue;
@@ -1182,6 +1196,10 @@ class Builder {
   void number() {
     const auto count = static_cast<std::uint32_t>(t_.nodes.size());
     make_near();
+    parent_.assign(count, McNode::kNone);
+    for (std::uint32_t i = 0; i < internal_; ++i)
+      for (int o = 0; o < 8; ++o)
+        if (auto c = t_.nodes[i].child(o); c != McNode::kNone) parent_[c] = i;
     counts_.reserve(count);
     expanded_.assign(count, 0);
     std::vector<float> metric(count, 0);
@@ -1231,7 +1249,7 @@ class Builder {
       auto [m, i] = queue.top();
       queue.pop();
       McNode& n = t_.nodes[i];
-      if (auto b = blocker(n); b != McNode::kNone) {
+      if (auto b = blocker(i); b != McNode::kNone) {
         waiting[b].push_back(i);
         ++stats_.expansion_waits;
         continue;
@@ -1290,7 +1308,8 @@ class Builder {
   std::vector<std::size_t> level_offset_;
   NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
-  NodeIndex counts_;                 // see count_now
+  NodeIndex counts_;  // see count_now
+  std::vector<std::uint32_t> parent_;
   std::vector<Gap> gap_;             // per vertex
   std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
   std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours

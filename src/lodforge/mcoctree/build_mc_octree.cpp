@@ -11,8 +11,15 @@
 //   * signs: the thesis uses the nearest range point and its normal; for a
 //     mesh we use the exact closest surface point and the angle-weighted
 //     pseudo-normal there, which is correct for any closed mesh (a face
-//     normal alone is wrong near sharp edges and vertices). Only a band of
-//     lattice points near the triangles is measured; the rest is flood-filled.
+//     normal alone is wrong near sharp edges and vertices). Only the lattice
+//     points within a cell of the surface are measured (by scanning each
+//     triangle over the lattice near it); the rest, and the points nearest
+//     an open rim, are flood-filled. An open mesh's holes are left open
+//     (McHoles::kOpen): nodes whose surface points the input is not near
+//     get no triangles.
+//   * metric: the magnitude of the thesis's area difference, and a node
+//     inherits a descendant's when that exceeds a fifth of its own area
+//     (see number()).
 //   * parents: with a sign at every lattice point, case 1 of the corner rule
 //     (the corresponding child corner) applies whenever that child exists; a
 //     pruned (empty) child has one sign at all its corners, so cases 2-4 read
@@ -62,8 +69,8 @@ double since(Clock::time_point t) {
 // kMeasured: a point nearest an open rim, measured without a sign.
 constexpr std::uint8_t kInside = 1, kExact = 2, kAssigned = 4, kMeasured = 8;
 // A surface point more than kRimGap cells beyond an open rim is invented.
-constexpr float kHiddenDetail = 0.2f;  // see Builder::number
 constexpr float kRimGap = 0.25f;
+constexpr float kHiddenDetail = 0.2f;  // see Builder::number
 
 // Signed distance to a mesh: exact closest point, side by pseudo-normal.
 class SignedDistance {

@@ -1328,18 +1328,19 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       continue;
     }
     ++collapses_since_fill_;
+    if (const HeapEntry* next = heap_.peek()) {
+      // The records of the next collapse's ends were asked for above and
+      // have arrived by now: ask for their triangle lists, which arrive while
+      // the edges of the merged vertex are queued.
+      __builtin_prefetch(tris_begin(next->a));
+      __builtin_prefetch(tris_begin(next->b));
+    }
     requeue_.clear();
     push_edges(c.v, true);
     for (std::size_t i = 0; i < requeue_.size(); ++i) {
       std::uint32_t n = requeue_[i];
       vx_[n].rejected = 0;
       push_edges(n);
-    }
-    if (const HeapEntry* next = heap_.peek()) {
-      // The records of the next collapse's ends were asked for above and
-      // have arrived by now: ask for their triangle lists.
-      __builtin_prefetch(tris_begin(next->a));
-      __builtin_prefetch(tris_begin(next->b));
     }
   }
   if (live_triangles_ <= target) {

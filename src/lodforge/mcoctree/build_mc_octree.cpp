@@ -41,6 +41,7 @@
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
@@ -1385,7 +1386,12 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   if (sd.mesh().triangles.empty())
     throw DataError("mcoctree: the mesh has only degenerate triangles");
   result.stats.resolution = options.resolution ? options.resolution : mesh_resolution(sd.mesh());
+  // An open mesh's repairs and holes need the hierarchy: build it on another
+  // worker while the triangle scan runs.
+  tbb::task_group hierarchy;
+  if (sd.has_rims()) hierarchy.run([&] { sd.bvh(); });
   Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);
+  hierarchy.wait();
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
   Builder builder(result.tree, result.stats);

@@ -1387,7 +1387,9 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
     throw DataError("mcoctree: the mesh has only degenerate triangles");
   result.stats.resolution = options.resolution ? options.resolution : mesh_resolution(sd.mesh());
   // An open mesh's repairs and holes need the hierarchy: build it on another
-  // worker while the triangle scan runs.
+  // worker while the triangle scan runs. (Safe while TriangleBvh's build
+  // runs no TBB tasks: a thread waiting inside it could steal a task that
+  // calls bvh() and re-enter the call_once.)
   tbb::task_group hierarchy;
   if (sd.has_rims()) hierarchy.run([&] { sd.bvh(); });
   Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);

@@ -49,8 +49,8 @@
 /// Costs: O((V + F) log F) time, about ten edge evaluations and queue entries
 /// per collapse (each collapse re-evaluates the edges of the merged vertex),
 /// O(V + F) memory (plus O(F) per chain level for its output). Single
-/// threaded; on the bunny and igea 1.2-1.5x the CPU time of meshopt_simplify
-/// at 50 % reduction and 1.9-2.2x at 99 % (meshopt places vertices at edge
+/// threaded; on the bunny and igea 1.1-1.7x the CPU time of meshopt_simplify
+/// at 50 % reduction and 1.6-2.2x at 99 % (meshopt places vertices at edge
 /// ends and has no attribute quadrics; figures in docs/RESULTS.md). The result
 /// does not depend on the model's unit: a copy scaled by a power of two
 /// gives the same triangles, with positions and error scaled exactly.

@@ -28,12 +28,15 @@ TriangleMesh index_mesh(const McLodModel& m, std::uint32_t n) {
 }
 
 // Budgets: the extracted count is the reachable count nearest the request,
-// and within 0.5 % of it when the request is at least 1 000 triangles (one
-// expansion changes the count by a few triangles). Crack checks on both the
-// compacted mesh and the index buffer.
+// and within 0.5 % of it when the request is at least 1 000 triangles and a
+// reachable count lies within 0.5 % (one expansion changes the count by a
+// few triangles, but near the coarse end a single expansion can add more
+// than 0.5 %: those requests get the nearest reachable count, counted and
+// printed, and must stay rare). Crack checks on both the compacted mesh and
+// the index buffer.
 void check_budgets(const McLodModel& t, int steps, bool crack_check) {
   const auto full = t.full_triangles();
-  std::size_t worst_miss = 0;
+  std::size_t worst_miss = 0, unreachable = 0;
   double worst_pct = 0;
   for (int s = 1; s <= steps; ++s) {
     auto want = static_cast<std::int64_t>(full * s / steps);
@@ -44,8 +47,11 @@ void check_budgets(const McLodModel& t, int steps, bool crack_check) {
       ASSERT_GE(std::llabs(static_cast<long long>(a) - want), std::llabs(got - want));
     if (want >= 1000) {
       double pct = 100.0 * std::llabs(got - want) / static_cast<double>(want);
-      worst_pct = std::max(worst_pct, pct);
-      EXPECT_LE(pct, 0.5) << "want " << want << " got " << got;
+      if (pct > 0.5) {
+        ++unreachable;  // nothing reachable within 0.5 % (asserted just above)
+      } else {
+        worst_pct = std::max(worst_pct, pct);
+      }
     }
     worst_miss =
         std::max<std::size_t>(worst_miss, static_cast<std::size_t>(std::llabs(got - want)));
@@ -58,9 +64,12 @@ void check_budgets(const McLodModel& t, int steps, bool crack_check) {
       ASSERT_TRUE(report.ok()) << "index buffer, budget " << want << ": " << report.describe();
     }
   }
+  EXPECT_LE(unreachable, static_cast<std::size_t>(steps / 100))
+      << "requests with no reachable count within 0.5 %";
   std::printf(
-      "budgets: %d over 0..%llu, worst miss %zu triangles, worst %.3f %% (requests >= 1000)\n",
-      steps, static_cast<unsigned long long>(full), worst_miss, worst_pct);
+      "budgets: %d over 0..%llu, worst miss %zu triangles, worst %.3f %% (requests >= 1000), "
+      "%zu requests >= 1000 with no reachable count within 0.5 %%\n",
+      steps, static_cast<unsigned long long>(full), worst_miss, worst_pct, unreachable);
 }
 
 TEST(ExtractMcMesh, TargetsAndClamping) {
@@ -108,13 +117,15 @@ TEST(ExtractMcMesh, ColoursAreCarried) {
   }
 }
 
-// The heavy run: the Stanford bunny, crack checks at 200 budgets over the
-// whole range, and the quality table against quadric collapse.
+// The heavy run: the Stanford bunny, closed (McHoles::kCapped: its bottom
+// holes capped, so the model is a closed surface), crack checks at 1 000
+// budgets over the whole range, and the quality table against quadric
+// collapse. The open model's borders: BuildMcOctree.BunnyHolesStayOpen.
 TEST(ExtractMcMesh, BunnyCrackFreeBudgetsAndQuality) {
   if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << kBunny << " missing";
   auto bunny = read_mesh(kBunny);
   auto t0 = std::chrono::steady_clock::now();
-  auto built = build_mc_octree(bunny, {.resolution = 96});
+  auto built = build_mc_octree(bunny, {.resolution = 96, .holes = McHoles::kCapped});
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const McOctree& tree = built.tree;
   auto t1 = std::chrono::steady_clock::now();
@@ -135,7 +146,7 @@ TEST(ExtractMcMesh, BunnyCrackFreeBudgetsAndQuality) {
       t.stored_triangles(), bytes_per_triangle,
       static_cast<double>(tree.memory_bytes()) / static_cast<double>(tree.full_triangles()));
   EXPECT_LE(bytes_per_triangle, 64.0);  // issue 6's target
-  check_budgets(t, 200, true);
+  check_budgets(t, 1000, true);
 
   // Quality: the extracted mesh and quadric collapse of the input at the same
   // triangle count, both against the input.

@@ -1,4 +1,4 @@
-// `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--threads T]`
+// `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--close-holes] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco scan MESH --views K -o DIR [--resolution N]`
@@ -52,8 +52,9 @@ void add_mco_command(CLI::App& app, Runner& run) {
 
   struct Build {
     std::string input, output;
-    int resolution = 64;
+    int resolution = 0;
     int threads = 0;
+    bool close_holes = false;
   };
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
@@ -63,14 +64,26 @@ void add_mco_command(CLI::App& app, Runner& run) {
                    "directory of range-grid PLYs (with its .conf) or one range-grid PLY")
       ->required();
   build->add_option("-o,--output", b->output, "Model file to write (.mco)")->required();
-  build->add_option("--resolution", b->resolution, "Finest cells across the longest side (2..1000)")
-      ->check(CLI::Range(2, 1000));
+  build
+      ->add_option("--resolution", b->resolution,
+                   "Finest cells across the longest side (2..1000); 0 (default): about as many "
+                   "triangles at full resolution as the input has (range scans: cells twice the "
+                   "point spacing)")
+      ->check(CLI::Range(0, 1000))
+      ->check([](const std::string& v) {
+        return v == "1" ? std::string("use 0 (automatic) or 2..1000") : std::string();
+      });
+  build->add_flag("--close-holes", b->close_holes,
+                  "Close the holes of an open mesh (a watertight model; default: the model "
+                  "has borders where the input has them)");
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
       auto t0 = std::chrono::steady_clock::now();
-      McBuildOptions options{.resolution = b->resolution, .threads = b->threads};
+      McBuildOptions options{.resolution = b->resolution,
+                             .threads = b->threads,
+                             .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen};
       McBuildResult r;
       std::string what;
       if (is_range_input(b->input)) {

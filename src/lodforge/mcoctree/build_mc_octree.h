@@ -30,9 +30,10 @@ struct McBuildOptions {
   int resolution = 0;
   int threads = 0;  ///< worker threads (distances, edge points, holes, areas); 0 = all cores
   /// Meshes only (range scans are always capped where no scan saw the
-  /// object). kCapped by default while extraction's checks expect closed
-  /// output; kOpen is the model without invented surface.
-  McHoles holes = McHoles::kCapped;
+  /// object). kOpen by default: the model does not invent surface the input
+  /// lacks (a cap over a scan's unseen bottom would be the largest error of
+  /// every level); kCapped gives a closed (watertight) model.
+  McHoles holes = McHoles::kOpen;
 };
 
 struct McBuildStats {

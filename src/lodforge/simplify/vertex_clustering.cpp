@@ -63,6 +63,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include "lodforge/core/error.h"
 
@@ -293,6 +294,61 @@ struct RemapScratch {
   std::vector<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
 };
 
+/// Sorts the run [tris, tris + n) of triangles whose smallest corner is
+/// `vertex` (and their origins) by canonical rotation (`vertex` first,
+/// orientation kept; ties in run order) and squeezes out the doublets (equal
+/// rotations: the first stays); returns how many are left, at the front.
+std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std::uint32_t vertex,
+                       RemapScratch& scratch) {
+  using Entry = RemapScratch::Entry;
+  auto keys = [&](const Triangle& t) -> std::pair<std::uint32_t, std::uint32_t> {
+    if (t[0] == vertex) return {t[1], t[2]};
+    if (t[1] == vertex) return {t[2], t[0]};
+    return {t[0], t[1]};
+  };
+  if (n < 2) return n;
+  if (n == 2) {
+    const auto k0 = keys(tris[0]), k1 = keys(tris[1]);
+    if (k0 == k1) return 1;
+    if (k1 < k0) {
+      std::swap(tris[0], tris[1]);
+      std::swap(origin[0], origin[1]);
+    }
+    return 2;
+  }
+  auto& run = scratch.run;
+  run.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = keys(tris[i]);
+    run[i] = {k.first, k.second, static_cast<std::uint32_t>(i)};
+  }
+  auto less = [](const Entry& a, const Entry& b) {
+    if (a.k1 != b.k1) return a.k1 < b.k1;
+    if (a.k2 != b.k2) return a.k2 < b.k2;
+    return a.index < b.index;
+  };
+  if (n <= 16) {
+    for (std::size_t i = 1; i < n; ++i)  // insertion sort
+      for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j) std::swap(run[j], run[j - 1]);
+  } else {
+    std::sort(run.begin(), run.end(), less);
+  }
+  scratch.run_tris.assign(tris, tris + n);
+  scratch.run_origin.assign(origin, origin + n);
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
+    tris[out] = scratch.run_tris[run[i].index];
+    origin[out] = scratch.run_origin[run[i].index];
+    ++out;
+  }
+  return out;
+}
+
+void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
+                  std::size_t new_count, std::vector<Segment>& line_candidates, Cut& to,
+                  RemapScratch& scratch);
+
 /// Builds the faces of `to` (which holds the new vertices, new_count of them)
 /// from the previous level's faces: `mapped(i)` for i < count is the i-th
 /// triangle with its corners already mapped to new vertices, and the triangles
@@ -331,58 +387,13 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
   to.tris.reserve(count);  // not resize: zeroing `count` entries touches pages never used
   to.tri_origin.reserve(count);
   std::size_t run_begin = 0;
-  using Entry = RemapScratch::Entry;
-  auto& run = scratch.run;
-  auto& run_tris = scratch.run_tris;
-  auto& run_origin = scratch.run_origin;
   std::uint32_t run_vertex = kNone;
-  auto keys = [&](const Triangle& t) -> std::pair<std::uint32_t, std::uint32_t> {
-    if (t[0] == run_vertex) return {t[1], t[2]};
-    if (t[1] == run_vertex) return {t[2], t[0]};
-    return {t[0], t[1]};
-  };
   auto flush = [&] {
     const std::size_t n = to.tris.size() - run_begin;
-    if (n < 2) return;
-    if (n == 2) {
-      const auto k0 = keys(to.tris[run_begin]), k1 = keys(to.tris[run_begin + 1]);
-      if (k0 == k1) {
-        to.tris.pop_back();
-        to.tri_origin.pop_back();
-      } else if (k1 < k0) {
-        std::swap(to.tris[run_begin], to.tris[run_begin + 1]);
-        std::swap(to.tri_origin[run_begin], to.tri_origin[run_begin + 1]);
-      }
-      return;
-    }
-    run.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto k = keys(to.tris[run_begin + i]);
-      run[i] = {k.first, k.second, static_cast<std::uint32_t>(i)};
-    }
-    auto less = [](const Entry& a, const Entry& b) {
-      if (a.k1 != b.k1) return a.k1 < b.k1;
-      if (a.k2 != b.k2) return a.k2 < b.k2;
-      return a.index < b.index;
-    };
-    if (n <= 16) {
-      for (std::size_t i = 1; i < n; ++i)  // insertion sort
-        for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j)
-          std::swap(run[j], run[j - 1]);
-    } else {
-      std::sort(run.begin(), run.end(), less);
-    }
-    run_tris.assign(to.tris.begin() + run_begin, to.tris.end());
-    run_origin.assign(to.tri_origin.begin() + run_begin, to.tri_origin.end());
-    std::size_t out = run_begin;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
-      to.tris[out] = run_tris[run[i].index];
-      to.tri_origin[out] = run_origin[run[i].index];
-      ++out;
-    }
-    to.tris.resize(out);
-    to.tri_origin.resize(out);
+    const std::size_t kept = dedupe_run(to.tris.data() + run_begin,
+                                        to.tri_origin.data() + run_begin, n, run_vertex, scratch);
+    to.tris.resize(run_begin + kept);
+    to.tri_origin.resize(run_begin + kept);
   };
   for (std::size_t f = 0; f < count; ++f) {
     const Triangle t = mapped(f);
@@ -405,6 +416,17 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
     }
   }
   flush();
+  finish_faces(lines, vertex_map, new_count, line_candidates, to, scratch);
+}
+
+/// The second half of remap_faces, once `to.tris` holds the kept triangles:
+/// appends the previous level's lines, mapped, to `line_candidates`, keeps
+/// in `to.lines` those that are neither an edge of a kept triangle nor a
+/// line seen before, and drops the new vertices nothing uses (the compaction
+/// map in `scratch.keep`).
+void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
+                  std::size_t new_count, std::vector<Segment>& line_candidates, Cut& to,
+                  RemapScratch& scratch) {
   for (const Segment& s : lines) {
     std::uint32_t a = vertex_map[s[0]], b = vertex_map[s[1]];
     if (a != b) line_candidates.push_back({std::min(a, b), std::max(a, b)});
@@ -848,9 +870,10 @@ struct Octree {
   double cell_side(int depth) const { return side / double(1u << depth); }
 };
 
-SimplifyResult make_result(const TriangleMesh& input, const Cut& cut, float error,
-                           StopReason reason, std::string detail) {
-  SimplifyResult r;
+/// Fills `r` (whose error, stop reason and detail are set) with the level in
+/// `cut`: its mesh, the input's attributes of its vertices and triangles, the
+/// vertex and face maps. Reads `input` and `cut` only.
+void fill_result(const TriangleMesh& input, const Cut& cut, SimplifyResult& r) {
   TriangleMesh& m = r.mesh;
   m.positions = cut.pos;
   m.triangles = cut.tris;
@@ -873,10 +896,6 @@ SimplifyResult make_result(const TriangleMesh& input, const Cut& cut, float erro
   }
   r.vertex_map = cut.orig;
   r.face_map = cut.tri_origin;
-  r.error = error;
-  r.stop_reason = reason;
-  r.stop_detail = std::move(detail);
-  return r;
 }
 
 /// Checks the input and marks the vertices a triangle or line uses.
@@ -1021,20 +1040,39 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       }
     }
     for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
-    struct Sorted {
-      Triangle t;
-      std::uint32_t origin;
-    };
-    std::vector<Sorted> sorted(start[count]);
+    // Straight into the level's arrays; each vertex's run (the triangles
+    // whose smallest corner it is) is known from the counts, so the doublets
+    // are squeezed out run by run, in place, without looking for the runs.
+    cut.tris.resize(start[count]);
+    cut.tri_origin.resize(start[count]);
     for (std::size_t f = 0; f < nf; ++f) {
       const Triangle& t = mapped[f];
-      if (t[0] != kNone)
-        sorted[start[std::min({t[0], t[1], t[2]})]++] = {t, static_cast<std::uint32_t>(f)};
+      if (t[0] == kNone) continue;
+      const std::uint32_t at = start[std::min({t[0], t[1], t[2]})]++;
+      cut.tris[at] = t;
+      cut.tri_origin[at] = static_cast<std::uint32_t>(f);
     }
-    remap_faces(
-        sorted.size(), [&](std::size_t i) { return sorted[i].t; },
-        [&](std::size_t i) { return sorted[i].origin; }, mesh.lines, node_of, count,
-        options.no_lines, line_candidates, cut, remap_scratch);
+    // start[v] is now the end of v's run.
+    std::size_t out = 0, begin = 0;
+    for (std::size_t v = 0; v < count; ++v) {
+      const std::size_t end = start[v];
+      const std::size_t n = end - begin;
+      if (n == 1) {
+        cut.tris[out] = cut.tris[begin];
+        cut.tri_origin[out] = cut.tri_origin[begin];
+        ++out;
+      } else if (n > 1) {
+        std::copy(cut.tris.begin() + begin, cut.tris.begin() + end, cut.tris.begin() + out);
+        std::copy(cut.tri_origin.begin() + begin, cut.tri_origin.begin() + end,
+                  cut.tri_origin.begin() + out);
+        out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
+                          remap_scratch);
+      }
+      begin = end;
+    }
+    cut.tris.resize(out);
+    cut.tri_origin.resize(out);
+    finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
     const std::vector<std::uint32_t>& keep = remap_scratch.keep;
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
@@ -1048,16 +1086,34 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   node_of = {};
   order = {};
   std::vector<SimplifyResult> chain;
+  // Level 0 and at most one level per octree depth: reserved, so that a
+  // result being filled (below) never moves.
+  chain.reserve(kMaxDepth + 2);
+  // Copying a finished level into its result (a few large arrays: 5-10 % of
+  // a call) only reads `cut`, so it runs beside the next level's work, which
+  // reads `cut` and writes `next`; it is waited for before the two swap and
+  // before the chain is returned. Declared after `cut` and `chain`, so that
+  // on an exception it is waited for before they go.
+  tbb::task_group copying;
+  auto emit = [&](float error, StopReason reason, std::string detail) {
+    assert(chain.size() < chain.capacity());
+    SimplifyResult& r = chain.emplace_back();
+    r.error = error;
+    r.stop_reason = reason;
+    r.stop_detail = std::move(detail);
+    copying.run([&mesh, &cut, &r] { fill_result(mesh, cut, r); });
+  };
   const std::size_t input_tris = mesh.triangle_count();
   const bool count_target = options.target.triangles > 0 || options.target.ratio > 0;
   const std::size_t target_tris = options.target.triangle_target(input_tris);
   const float max_error = options.target.max_error;
 
-  chain.push_back(make_result(mesh, cut, 0, StopReason::kNoReduction,
-                              fmt::format("level 0: the input with equal positions merged, {} "
-                                          "vertices, {} triangles, {} lines",
-                                          cut.size(), cut.tris.size(), cut.lines.size())));
+  emit(0, StopReason::kNoReduction,
+       fmt::format("level 0: the input with equal positions merged, {} "
+                   "vertices, {} triangles, {} lines",
+                   cut.size(), cut.tris.size(), cut.lines.size()));
   auto finish = [&](StopReason reason, const std::string& why) {
+    copying.wait();
     chain.back().stop_reason = reason;
     chain.back().stop_detail += "; stopped: " + why;
     return std::move(chain);
@@ -1227,9 +1283,10 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         depth, cell_size, std::sqrt(3.0) * cell_size, n_prev, next.size(),
         100.0 * (1.0 - double(next.size()) / double(n_prev)), next.tris.size(), next.lines.size(),
         error);
+    copying.wait();
     std::swap(cut, next);
     std::swap(input_node, new_node);
-    chain.push_back(make_result(mesh, cut, error, StopReason::kTargetReached, std::move(detail)));
+    emit(error, StopReason::kTargetReached, std::move(detail));
     if (count_target && cut.tris.size() <= target_tris)
       return finish(StopReason::kTargetReached,
                     fmt::format("{} triangles <= target {}", cut.tris.size(), target_tris));

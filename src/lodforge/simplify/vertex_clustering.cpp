@@ -324,14 +324,17 @@ struct RemapScratch {
 std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std::uint32_t vertex,
                        RemapScratch& scratch) {
   using Entry = RemapScratch::Entry;
-  auto keys = [&](const Triangle& t) -> std::pair<std::uint32_t, std::uint32_t> {
-    if (t[0] == vertex) return {t[1], t[2]};
-    if (t[1] == vertex) return {t[2], t[0]};
-    return {t[0], t[1]};
+  // The canonical rotation's last two corners as one 64-bit key (compared
+  // lexicographically); selects, not branches: which corner is `vertex` is data.
+  auto key = [&](const Triangle& t) -> std::uint64_t {
+    const bool first = t[0] == vertex, second = t[1] == vertex;
+    const std::uint32_t k1 = first ? t[1] : second ? t[2] : t[0];
+    const std::uint32_t k2 = first ? t[2] : second ? t[0] : t[1];
+    return std::uint64_t(k1) << 32 | k2;
   };
   if (n < 2) return n;
   if (n == 2) {
-    const auto k0 = keys(tris[0]), k1 = keys(tris[1]);
+    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);
     if (k0 == k1) return 1;
     if (k1 < k0) {
       std::swap(tris[0], tris[1]);
@@ -339,23 +342,43 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     }
     return 2;
   }
+  constexpr std::size_t kSmall = 16;
+  if (n <= kSmall) {  // on the stack: no vector bookkeeping
+    std::uint64_t keys[kSmall];
+    std::uint8_t index[kSmall];
+    Triangle t[kSmall];
+    std::uint32_t o[kSmall];
+    for (std::size_t i = 0; i < n; ++i) {
+      t[i] = tris[i];
+      o[i] = origin[i];
+      keys[i] = key(t[i]);
+      index[i] = static_cast<std::uint8_t>(i);
+    }
+    for (std::size_t i = 1; i < n; ++i)  // insertion sort, stable
+      for (std::size_t j = i; j > 0 && keys[j] < keys[j - 1]; --j) {
+        std::swap(keys[j], keys[j - 1]);
+        std::swap(index[j], index[j - 1]);
+      }
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i > 0 && keys[i] == keys[i - 1]) continue;
+      tris[out] = t[index[i]];
+      origin[out] = o[index[i]];
+      ++out;
+    }
+    return out;
+  }
   auto& run = scratch.run;
   run.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto k = keys(tris[i]);
-    run[i] = {k.first, k.second, static_cast<std::uint32_t>(i)};
+    const std::uint64_t k = key(tris[i]);
+    run[i] = {std::uint32_t(k >> 32), std::uint32_t(k), static_cast<std::uint32_t>(i)};
   }
-  auto less = [](const Entry& a, const Entry& b) {
+  std::sort(run.begin(), run.end(), [](const Entry& a, const Entry& b) {
     if (a.k1 != b.k1) return a.k1 < b.k1;
     if (a.k2 != b.k2) return a.k2 < b.k2;
     return a.index < b.index;
-  };
-  if (n <= 16) {
-    for (std::size_t i = 1; i < n; ++i)  // insertion sort
-      for (std::size_t j = i; j > 0 && less(run[j], run[j - 1]); --j) std::swap(run[j], run[j - 1]);
-  } else {
-    std::sort(run.begin(), run.end(), less);
-  }
+  });
   scratch.run_tris.assign(tris, tris + n);
   scratch.run_origin.assign(origin, origin + n);
   std::size_t out = 0;
@@ -1085,9 +1108,10 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         cut.tri_origin[out] = cut.tri_origin[begin];
         ++out;
       } else if (n > 1) {
-        std::copy(cut.tris.begin() + begin, cut.tris.begin() + end, cut.tris.begin() + out);
-        std::copy(cut.tri_origin.begin() + begin, cut.tri_origin.begin() + end,
-                  cut.tri_origin.begin() + out);
+        for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
+          cut.tris[out + i] = cut.tris[begin + i];
+          cut.tri_origin[out + i] = cut.tri_origin[begin + i];
+        }
         out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
                           remap_scratch);
       }

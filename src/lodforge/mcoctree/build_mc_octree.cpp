@@ -477,6 +477,9 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
           work.push_back(idx);
       }
     }
+  // The band's distances are in index order already (slabs in z order, each
+  // in index order); only the repairs' are merged in.
+  const auto banded = static_cast<std::ptrdiff_t>(lat.distance.size());
   while (!work.empty()) {
     stats.sign_repairs += work.size();
     auto changed = measure(lat, sd, work);
@@ -489,7 +492,8 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
     next.erase(std::unique(next.begin(), next.end()), next.end());
     work = std::move(next);
   }
-  std::sort(lat.distance.begin(), lat.distance.end());
+  std::sort(lat.distance.begin() + banded, lat.distance.end());
+  std::inplace_merge(lat.distance.begin(), lat.distance.begin() + banded, lat.distance.end());
   return lat;
 }
 
@@ -799,18 +803,33 @@ std::uint64_t coord_key(int level, std::int64_t x, std::int64_t y, std::int64_t 
 // has takes the sign of an adjacent point, else of a diagonal one, else of the
 // centre (Fig. 5.2). `known` marks the points some present child has.
 std::uint32_t fill_unknown(std::uint32_t signs, std::uint32_t known) {
+  // For each point, the points 1, 2, then 3 steps away (Manhattan), each
+  // distance in index order: the first one known gives the sign.
+  struct Order {
+    std::int8_t q[27];
+    int n = 0;
+  };
+  static const std::array<Order, 27> order = [] {
+    std::array<Order, 27> o{};
+    for (int p = 0; p < 27; ++p) {
+      int c[3] = {p % 3, (p / 3) % 3, p / 9};
+      for (int dist = 1; dist <= 3; ++dist)
+        for (int q = 0; q < 27; ++q) {
+          int d = std::abs(q % 3 - c[0]) + std::abs((q / 3) % 3 - c[1]) + std::abs(q / 9 - c[2]);
+          if (d == dist) o[p].q[o[p].n++] = static_cast<std::int8_t>(q);
+        }
+    }
+    return o;
+  }();
   std::uint32_t out = signs & known;
   for (int p = 0; p < 27; ++p) {
     if (known >> p & 1) continue;
-    int c[3] = {p % 3, (p / 3) % 3, p / 9};
-    int found = -1;
-    for (int dist = 1; dist <= 3 && found < 0; ++dist)
-      for (int q = 0; q < 27 && found < 0; ++q) {
-        if (!(known >> q & 1)) continue;
-        int d = std::abs(q % 3 - c[0]) + std::abs((q / 3) % 3 - c[1]) + std::abs(q / 9 - c[2]);
-        if (d == dist) found = q;
+    int found = 13;  // the centre, which every child has
+    for (int k = 0; k < order[p].n; ++k)
+      if (known >> order[p].q[k] & 1) {
+        found = order[p].q[k];
+        break;
       }
-    if (found < 0) found = 13;  // the centre, which every child has
     if (signs >> found & 1) out |= 1u << p;
   }
   return out;
@@ -1109,34 +1128,58 @@ class Builder {
   // The same-level nodes sharing face f / edge e with node i.
   template <class Fn>
   void face_neighbour(std::uint32_t i, int f, Fn&& fn) const {
-    int d[3] = {0, 0, 0};
-    d[f / 2] = f % 2 ? 1 : -1;
-    fn(near(i, d[0], d[1], d[2]));
+    fn(i < internal_ ? near_[27 * static_cast<std::size_t>(i) + kFaceSlot[f]] : McNode::kNone);
   }
   template <class Fn>
   void edge_neighbours(std::uint32_t i, int e, Fn&& fn) const {
-    int a = e / 4, b = e % 4;
-    int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-    int s1 = b & 1 ? 1 : -1, s2 = b >> 1 ? 1 : -1;
-    for (int k = 1; k < 4; ++k) {
-      int d[3] = {0, 0, 0};
-      if (k & 1) d[a1] = s1;
-      if (k & 2) d[a2] = s2;
-      fn(near(i, d[0], d[1], d[2]));
+    if (i >= internal_) {
+      for (int k = 0; k < 3; ++k) fn(McNode::kNone);
+      return;
     }
+    const std::uint32_t* row = &near_[27 * static_cast<std::size_t>(i)];
+    for (int k = 0; k < 3; ++k) fn(row[kEdgeSlots[e][k]]);
   }
+  // Slots (dx + 1) + 3 (dy + 1) + 9 (dz + 1) of the neighbour table: across
+  // face f, and around edge e = 4a + b (offsets on a + 1 and a + 2 by b's
+  // bits: one, the other, both).
+  static constexpr std::array<std::uint8_t, 6> kFaceSlot = [] {
+    std::array<std::uint8_t, 6> slot{};
+    for (int f = 0; f < 6; ++f) {
+      int d[3] = {0, 0, 0};
+      d[f / 2] = f % 2 ? 1 : -1;
+      slot[f] = static_cast<std::uint8_t>((d[0] + 1) + 3 * (d[1] + 1) + 9 * (d[2] + 1));
+    }
+    return slot;
+  }();
+  static constexpr std::array<std::array<std::uint8_t, 3>, 12> kEdgeSlots = [] {
+    std::array<std::array<std::uint8_t, 3>, 12> slot{};
+    for (int e = 0; e < 12; ++e) {
+      int a = e / 4, b = e % 4;
+      int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
+      int s1 = b & 1 ? 1 : -1, s2 = b >> 1 ? 1 : -1;
+      for (int k = 1; k < 4; ++k) {
+        int d[3] = {0, 0, 0};
+        if (k & 1) d[a1] = s1;
+        if (k & 2) d[a2] = s2;
+        slot[e][k - 1] = static_cast<std::uint8_t>((d[0] + 1) + 3 * (d[1] + 1) + 9 * (d[2] + 1));
+      }
+    }
+    return slot;
+  }();
   std::pair<std::uint16_t, std::uint8_t> context(std::uint32_t i) const {
     std::uint16_t halved = 0;
     std::uint8_t split = 0;
     if (i >= internal_) return {halved, split};
+    const std::uint32_t* row = &near_[27 * static_cast<std::size_t>(i)];
+    auto expanded = [&](std::uint8_t slot) {
+      const std::uint32_t m = row[slot];
+      return m != McNode::kNone && expanded_[m];
+    };
     for (int f = 0; f < 6; ++f)
-      face_neighbour(i, f, [&](std::uint32_t m) {
-        if (m != McNode::kNone && expanded_[m]) split |= static_cast<std::uint8_t>(1u << f);
-      });
+      if (expanded(kFaceSlot[f])) split |= static_cast<std::uint8_t>(1u << f);
     for (int e = 0; e < 12; ++e)
-      edge_neighbours(i, e, [&](std::uint32_t m) {
-        if (m != McNode::kNone && expanded_[m]) halved |= static_cast<std::uint16_t>(1u << e);
-      });
+      if (expanded(kEdgeSlots[e][0]) || expanded(kEdgeSlots[e][1]) || expanded(kEdgeSlots[e][2]))
+        halved |= static_cast<std::uint16_t>(1u << e);
     return {halved, split};
   }
   // Triangles of node i as a cell of the current cut. A split cell is

@@ -375,7 +375,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
     std::uint32_t triangle;
   };
   std::vector<std::vector<Found>> found(static_cast<std::size_t>(slabs));
-  const float h2 = lat.h * lat.h;
+  const float h2 = lat.h * lat.h, margin = 1e-5f * h2;
   tbb::parallel_for(std::int64_t{0}, slabs, [&](std::int64_t s) {
     struct Best {
       float d2 = INFINITY;
@@ -393,6 +393,17 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       Vec3 normal = cross(b - a, c - a);
       float scale = length(normal);
       if (scale > 0) normal = normal / scale;
+      // In the plane, a point beyond an edge's line is at least that far
+      // from the triangle: with the distance to the plane, a lower bound
+      // that skips most of the rest (a margin above rounding, so that a
+      // skipped triangle is one the exact test would not have taken).
+      const Vec3* corner[3] = {&a, &b, &c};
+      Vec3 inward[3];
+      for (int e = 0; e < 3; ++e) {
+        inward[e] = cross(normal, *corner[(e + 1) % 3] - *corner[e]);
+        float l = length(inward[e]);
+        inward[e] = l > 0 ? inward[e] / l : Vec3{};
+      }
       for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
         for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
           for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
@@ -405,6 +416,9 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
             // No nearer than its plane: skip when a nearer triangle is known.
             Best& bt = best[static_cast<std::size_t>(lat.index(i, j, k - z0))];
             if (off * off >= bt.d2) continue;
+            const float beyond = std::max(
+                {0.0f, -dot(x - a, inward[0]), -dot(x - b, inward[1]), -dot(x - c, inward[2])});
+            if (off * off + beyond * beyond > std::min(h2, bt.d2) * 1.001f + margin) continue;
             TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
             if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
           }
@@ -794,6 +808,17 @@ std::uint64_t spread3(std::uint64_t v) {
 std::uint64_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
   return spread3(x) | spread3(y) << 1 | spread3(z) << 2;
 }
+// Sorts keys below 2^bits (least significant digit first, 11 bits a pass).
+void radix_sort(std::vector<std::uint64_t>& v, int bits) {
+  std::vector<std::uint64_t> tmp(v.size());
+  for (int shift = 0; shift < bits; shift += 11) {
+    std::vector<std::size_t> start(2049, 0);
+    for (auto x : v) ++start[((x >> shift) & 2047) + 1];
+    for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+    for (auto x : v) tmp[start[(x >> shift) & 2047]++] = x;
+    v.swap(tmp);
+  }
+}
 std::uint64_t coord_key(int level, std::int64_t x, std::int64_t y, std::int64_t z) {
   return static_cast<std::uint64_t>(x) | static_cast<std::uint64_t>(y) << 20 |
          static_cast<std::uint64_t>(z) << 40 | static_cast<std::uint64_t>(level) << 60;
@@ -960,7 +985,7 @@ class Builder {
                                   static_cast<std::uint32_t>(cell[2] + lat.offset[2])));
       }
     }
-    std::sort(codes[D].begin(), codes[D].end());
+    radix_sort(codes[D], 3 * D);
     codes[D].erase(std::unique(codes[D].begin(), codes[D].end()), codes[D].end());
     stats_.leaves = codes[D].size();
     for (int l = D - 1; l >= 0; --l) {
@@ -1190,8 +1215,35 @@ class Builder {
     auto [halved, split] = context(i);
     const McNode& n = t_.nodes[i];
     if (!halved && !split) return detail::node_triangle_count(n, 0, 0);
+    // A halved edge or split face without a sign change on it changes
+    // nothing (polygonize_cell contours only crossings): left out of the key,
+    // so that more configurations share a count.
+    static const auto masks = [] {
+      std::array<std::uint32_t, 18> m{};  // 12 edges' 3 points, 6 faces' 9
+      for (int e = 0; e < 12; ++e) {
+        auto [lo, hi] = detail::edge_corners(e);
+        int plo = detail::corner_point(lo), phi = detail::corner_point(hi);
+        m[e] = 1u << plo | 1u << phi | 1u << (plo + phi) / 2;
+      }
+      for (int p = 0; p < 27; ++p) {
+        const int c[3] = {p % 3, (p / 3) % 3, p / 9};
+        for (int f = 0; f < 6; ++f)
+          if (c[f / 2] == 2 * (f % 2)) m[12 + f] |= 1u << p;
+      }
+      return m;
+    }();
+    auto uniform = [&](std::uint32_t mask) {
+      const std::uint32_t in = n.signs27 & mask;
+      return in == 0 || in == mask;
+    };
+    std::uint16_t h = halved;
+    std::uint8_t sp = split;
+    for (int e = 0; e < 12; ++e)
+      if ((h >> e & 1) && uniform(masks[e])) h &= static_cast<std::uint16_t>(~(1u << e));
+    for (int f = 0; f < 6; ++f)
+      if ((sp >> f & 1) && uniform(masks[12 + f])) sp &= static_cast<std::uint8_t>(~(1u << f));
     const std::uint64_t key =
-        std::uint64_t{n.signs27} | std::uint64_t{halved} << 27 | std::uint64_t{split} << 39;
+        std::uint64_t{n.signs27} | std::uint64_t{h} << 27 | std::uint64_t{sp} << 39;
     if (auto c = counts_.find(key); c != McNode::kNone) return static_cast<int>(c);
     int c = detail::node_triangle_count(n, halved, split);
     if (counts_.size() < counts_.capacity() / 2) counts_.insert(key, static_cast<std::uint32_t>(c));

@@ -376,6 +376,14 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   };
   std::vector<std::vector<Found>> found(static_cast<std::size_t>(slabs));
   const float h2 = lat.h * lat.h, margin = 1e-5f * h2;
+  // Lattice coordinates per axis (the same values as lat.point's).
+  std::array<std::vector<float>, 3> coord;
+  for (int a = 0; a < 3; ++a) {
+    coord[a].resize(static_cast<std::size_t>(lat.dim[a]));
+    for (std::int64_t i = 0; i < lat.dim[a]; ++i)
+      coord[a][static_cast<std::size_t>(i)] =
+          lat.root[a] + static_cast<float>(i + lat.offset[a]) * lat.h;
+  }
   tbb::parallel_for(std::int64_t{0}, slabs, [&](std::int64_t s) {
     struct Best {
       float d2 = INFINITY;
@@ -407,10 +415,9 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
         for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
           for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
-            Vec3 x = lat.root + Vec3{static_cast<float>(i + lat.offset[0]),
-                                     static_cast<float>(j + lat.offset[1]),
-                                     static_cast<float>(k + lat.offset[2])} *
-                                    lat.h;
+            const Vec3 x{coord[0][static_cast<std::size_t>(i)],
+                         coord[1][static_cast<std::size_t>(j)],
+                         coord[2][static_cast<std::size_t>(k)]};
             float off = dot(x - a, normal);
             if (off * off > h2) continue;
             // No nearer than its plane: skip when a nearer triangle is known.
@@ -476,19 +483,19 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   // Repair: a flooded point that disagrees with a neighbour gets an exact sign
   // (the inside leaks through a gap narrower than the band), and so do the
   // unmeasured neighbours of each point whose sign that changes.
+  // (The lattice's boundary is all measured or exact: only inner points.)
   std::vector<std::int64_t> work;
-  for (std::int64_t k = 0; k < nz; ++k)
-    for (std::int64_t j = 0; j < ny; ++j) {
+  const std::uint8_t* st = lat.state.data();
+  for (std::int64_t k = 1; k + 1 < nz; ++k)
+    for (std::int64_t j = 1; j + 1 < ny; ++j) {
       const std::int64_t row = lat.index(0, j, k);
-      for (std::int64_t i = 0; i < nx; ++i) {
+      for (std::int64_t i = 1; i + 1 < nx; ++i) {
         const std::int64_t idx = row + i;
-        if (!unsure(idx)) continue;
-        const bool in = lat.inside(idx);
-        if ((i > 0 && lat.inside(idx - 1) != in) || (i + 1 < nx && lat.inside(idx + 1) != in) ||
-            (j > 0 && lat.inside(idx - nx) != in) || (j + 1 < ny && lat.inside(idx + nx) != in) ||
-            (k > 0 && lat.inside(idx - plane) != in) ||
-            (k + 1 < nz && lat.inside(idx + plane) != in))
-          work.push_back(idx);
+        const std::uint8_t v = st[idx];
+        const std::uint8_t differ = (st[idx - 1] ^ v) | (st[idx + 1] ^ v) | (st[idx - nx] ^ v) |
+                                    (st[idx + nx] ^ v) | (st[idx - plane] ^ v) |
+                                    (st[idx + plane] ^ v);
+        if ((differ & kInside) && !(v & (kExact | kMeasured))) work.push_back(idx);
       }
     }
   // The band's distances are in index order already (slabs in z order, each
@@ -932,8 +939,16 @@ class Builder {
     for (std::int64_t k = 0; k < nz; ++k)
       for (std::int64_t j = 0; j < ny; ++j) {
         const std::int64_t row = lat.index(0, j, k);
+        const std::uint8_t* st = lat.state.data();
+        const bool inner = j + 1 < ny && k + 1 < nz;
         for (std::int64_t i = 0; i < nx; ++i) {
           const std::int64_t idx = row + i;
+          // Most points have no crossed edge: one test for the three.
+          if (inner && i + 1 < nx &&
+              !(((st[idx + 1] ^ st[idx]) | (st[idx + step[1]] ^ st[idx]) |
+                 (st[idx + step[2]] ^ st[idx])) &
+                kInside))
+            continue;
           const bool in = lat.inside(idx);
           if (i + 1 < nx && in != lat.inside(idx + 1)) edge_keys.push_back(idx * 3);
           if (j + 1 < ny && in != lat.inside(idx + step[1])) edge_keys.push_back(idx * 3 + 1);

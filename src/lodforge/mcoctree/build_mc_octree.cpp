@@ -1247,6 +1247,11 @@ class Builder {
       }
       return m;
     }();
+    static const std::uint32_t corners = [] {
+      std::uint32_t m = 0;
+      for (int c = 0; c < 8; ++c) m |= 1u << detail::corner_point(c);
+      return m;
+    }();
     auto uniform = [&](std::uint32_t mask) {
       const std::uint32_t in = n.signs27 & mask;
       return in == 0 || in == mask;
@@ -1257,8 +1262,16 @@ class Builder {
       if ((h >> e & 1) && uniform(masks[e])) h &= static_cast<std::uint16_t>(~(1u << e));
     for (int f = 0; f < 6; ++f)
       if ((sp >> f & 1) && uniform(masks[12 + f])) sp &= static_cast<std::uint8_t>(~(1u << f));
+    // Nor do the signs of points no face contour reads (the centre; an edge's
+    // midpoint unless it is halved or on a split face; a face's centre
+    // unless it is split).
+    std::uint32_t read = corners;
+    for (int e = 0; e < 12; ++e)
+      if (h >> e & 1) read |= masks[e];
+    for (int f = 0; f < 6; ++f)
+      if (sp >> f & 1) read |= masks[12 + f];
     const std::uint64_t key =
-        std::uint64_t{n.signs27} | std::uint64_t{h} << 27 | std::uint64_t{sp} << 39;
+        std::uint64_t{n.signs27 & read} | std::uint64_t{h} << 27 | std::uint64_t{sp} << 39;
     if (auto c = counts_.find(key); c != McNode::kNone) return static_cast<int>(c);
     int c = detail::node_triangle_count(n, halved, split);
     if (counts_.size() < counts_.capacity() / 2) counts_.insert(key, static_cast<std::uint32_t>(c));

@@ -55,9 +55,10 @@ struct McBuildResult {
 
 /// Builds the octree of `mesh` (triangles; lines are ignored).
 ///
-/// Corner signs: the exact closest surface point (metrics/ TriangleBvh, the
-/// same closest-point need as the deviation measure, reused rather than
-/// duplicated) and the side of it by the angle-weighted pseudo-normal
+/// Corner signs: the exact closest surface point (metrics/
+/// closest_point_on_triangle; a cheap Morton-order hierarchy for the few
+/// points the band's triangle scan does not reach) and the side of it by the
+/// angle-weighted pseudo-normal
 /// (Baerentzen & Aanaes 2005: face, edge or vertex normal by where the closest
 /// point lies), computed in a band one cell wide around the triangles; the
 /// rest of the lattice, and the band points nearest an open rim (where the

@@ -101,16 +101,87 @@ struct Fan {
   std::array<std::uint32_t, kMaxLoop> loop{};
   std::array<std::uint32_t, kMaxLoop> tris{};
   std::array<Vec3, kMaxLoop> cross{};  // of tris[k]
+  std::array<Vec3, kMaxLoop> pos{};    // of loop[k]
+  std::array<float, kMaxLoop> len{};   // length(cross[k])
   float error = 0;                     // largest accumulated error of tris
   float d = 0;                         // criterion
 };
 
+/// A queued vertex. Removal order: smallest priority first, ties by index.
 struct HeapEntry {
   float d;
   std::uint32_t v;
-  std::uint32_t version;
-  // std::push_heap builds a max-heap: "less" = comes out later.
-  bool operator<(const HeapEntry& o) const { return d != o.d ? d > o.d : v > o.v; }
+  bool before(const HeapEntry& o) const { return d != o.d ? d < o.d : v < o.v; }
+};
+
+/// Binary min-heap of vertices with their position in it, so that a vertex's
+/// priority is updated in place (the heap holds each candidate once, no stale
+/// entries): it pops the same order as a lazy heap with versioned entries.
+class VertexHeap {
+ public:
+  void init(std::size_t vertices) { pos_.assign(vertices, kNone); }
+  bool empty() const { return heap_.empty(); }
+  std::uint32_t top() const { return heap_[0].v; }
+  void set(std::uint32_t v, float d) {
+    std::uint32_t i = pos_[v];
+    if (i == kNone) {
+      i = static_cast<std::uint32_t>(heap_.size());
+      heap_.push_back({d, v});
+      up(i);
+    } else {
+      float old = heap_[i].d;
+      heap_[i].d = d;
+      if (d < old)
+        up(i);
+      else
+        down(i);
+    }
+  }
+  void erase(std::uint32_t v) {
+    std::uint32_t i = pos_[v];
+    if (i == kNone) return;
+    pos_[v] = kNone;
+    HeapEntry last = heap_.back();
+    heap_.pop_back();
+    if (i == heap_.size()) return;
+    heap_[i] = last;
+    pos_[last.v] = i;
+    if (i > 0 && last.before(heap_[(i - 1) / 2]))
+      up(i);
+    else
+      down(i);
+  }
+
+ private:
+  void up(std::uint32_t i) {
+    HeapEntry e = heap_[i];
+    while (i > 0) {
+      std::uint32_t p = (i - 1) / 2;
+      if (!e.before(heap_[p])) break;
+      heap_[i] = heap_[p];
+      pos_[heap_[i].v] = i;
+      i = p;
+    }
+    heap_[i] = e;
+    pos_[e.v] = i;
+  }
+  void down(std::uint32_t i) {
+    HeapEntry e = heap_[i];
+    const auto size = static_cast<std::uint32_t>(heap_.size());
+    for (;;) {
+      std::uint32_t c = 2 * i + 1;
+      if (c >= size) break;
+      if (c + 1 < size && heap_[c + 1].before(heap_[c])) ++c;
+      if (!heap_[c].before(e)) break;
+      heap_[i] = heap_[c];
+      pos_[heap_[i].v] = i;
+      i = c;
+    }
+    heap_[i] = e;
+    pos_[e.v] = i;
+  }
+  std::vector<HeapEntry> heap_;
+  std::vector<std::uint32_t> pos_;  // index in heap_, kNone if not queued
 };
 
 /// A triangle (v, a, b) as seen from its vertex v (counter-clockwise), with
@@ -120,12 +191,14 @@ struct Corner {
   std::uint32_t t, a, b;
   Vec3 cross;
   float error;  // accumulated error of the triangle
+  Vec3 pa;      // position of a (positions never change: fans read no pos_)
 };
 
 /// One polygon to re-triangulate: the whole loop, or one side of a feature line.
 struct Side {
   int m = 0;                                   // polygon vertices
   std::array<std::uint32_t, kMaxLoop> poly{};  // mesh vertices, loop order
+  std::array<Vec3, kMaxLoop> p{};              // their positions
   // tris[j] had polygon edge (j, j+1): m of them for a ring, m - 1 otherwise.
   std::array<std::uint32_t, kMaxLoop> tris{};
   int ntris = 0;
@@ -136,6 +209,17 @@ struct Side {
 };
 
 using Tri8 = std::array<std::uint8_t, 3>;
+
+/// The new triangles of a queued vertex's plan (small holes only), so that
+/// its removal need not re-triangulate: the fan has not changed since (else
+/// the vertex would have been re-evaluated), and the queue's triangulation is
+/// a function of the fan alone. Only existing edges can have appeared since.
+struct CachedTriangulation {
+  static constexpr int kMax = 10;
+  std::uint8_t count = 0;  // 0: not cached
+  std::uint8_t side0 = 0;  // triangles of side 0
+  Tri8 tris[kMax];
+};
 
 /// A planned removal: the fan, its sides and their new triangles (polygon
 /// indices; side s owns tris[side_end[s-1] .. side_end[s])).
@@ -167,9 +251,11 @@ class Decimator {
   /// Adds triangle t (tv_ set) to the corner lists of its vertices.
   void link(std::uint32_t t, float error) {
     const Triangle& f = tv_[t];
-    Vec3 c = cross(pos_[f[1]] - pos_[f[0]], pos_[f[2]] - pos_[f[0]]);
-    for (int r = 0; r < 3; ++r)
-      corners_[f[r]].push_back({t, f[(r + 1) % 3], f[(r + 2) % 3], c, error});
+    const Vec3 p[3] = {pos_[f[0]], pos_[f[1]], pos_[f[2]]};
+    Vec3 c = cross(p[1] - p[0], p[2] - p[0]);
+    corners_[f[0]].push_back({t, f[1], f[2], c, error, p[1]});
+    corners_[f[1]].push_back({t, f[2], f[0], c, error, p[2]});
+    corners_[f[2]].push_back({t, f[0], f[1], c, error, p[0]});
   }
   bool classify(std::uint32_t v, Fan& fan) const;
   bool criterion(std::uint32_t v, Fan& fan) const;
@@ -178,7 +264,7 @@ class Decimator {
   /// an existing edge (costly, as it reads the neighbours' corner lists; a
   /// plan for the queue skips it, as such lines are rare, and the removal
   /// itself re-plans with it).
-  Keep plan(std::uint32_t v, Plan& plan, bool final) const;
+  Keep plan(std::uint32_t v, Plan& plan, bool final, bool cached = false) const;
   void apply(std::uint32_t v, const Plan& plan);
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
   Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const;
@@ -202,7 +288,6 @@ class Decimator {
   // Position vertices (equal positions merged): the topology.
   std::vector<Vec3> pos_;
   std::vector<std::vector<Corner>> corners_;
-  std::vector<std::uint32_t> version_;
   std::vector<Keep> keep_;
   std::vector<std::uint8_t> locked_;  // used by a line segment
   std::vector<std::uint8_t> removed_;
@@ -214,7 +299,7 @@ class Decimator {
   std::vector<std::uint32_t> origin_;  // input triangle
   std::vector<std::uint8_t> alive_;
 
-  std::vector<HeapEntry> heap_;
+  VertexHeap heap_;
   std::size_t live_triangles_ = 0;
   std::size_t live_vertices_ = 0;
   // pos_ is in units of unit_ model units (normalise_to_unit_box); so are the
@@ -222,7 +307,8 @@ class Decimator {
   double unit_ = 1;
   float budget_ = 0;
   float max_error_ = 0;
-  Plan plan_;  // scratch
+  Plan plan_;                               // scratch
+  std::vector<CachedTriangulation> cache_;  // per vertex, valid while queued
 };
 
 Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& options)
@@ -246,7 +332,8 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
 
   std::size_t nv = pos_.size();
   corners_.resize(nv);
-  version_.assign(nv, 0);
+  heap_.init(nv);
+  cache_.resize(nv);
   keep_.assign(nv, Keep::kCandidate);
   locked_.assign(nv, 0);
   removed_.assign(nv, 0);
@@ -298,20 +385,29 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   const std::vector<Corner>& cs = corners_[v];
   int n = static_cast<int>(cs.size());
   if (locked_[v] || n == 0 || n > static_cast<int>(kMaxDecimationValence)) return false;
-  std::array<std::uint32_t, kMaxLoop> src{}, dst{};
+  std::array<std::uint32_t, kMaxLoop> src, dst;
+  std::array<std::int8_t, kMaxLoop> succ;  // j with src[j] == dst[k], or -1
+  const Corner* c = cs.data();
   for (int k = 0; k < n; ++k) {
-    src[k] = cs[k].a;
-    dst[k] = cs[k].b;
+    src[k] = c[k].a;
+    dst[k] = c[k].b;
   }
   // Every neighbour at most once as a source and once as a target of the link.
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      if (src[i] == src[j] || dst[i] == dst[j]) return false;
+  // (Branch-free inner loops: which neighbour matches is unpredictable.)
+  std::uint64_t has_pred = 0;
+  unsigned duplicate = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::uint32_t si = src[i], di = dst[i];
+    int next = -1;
+    for (int j = 0; j < n; ++j) next = src[j] == di ? j : next;
+    for (int j = i + 1; j < n; ++j) duplicate |= unsigned(src[j] == si) | unsigned(dst[j] == di);
+    succ[i] = static_cast<std::int8_t>(next);
+    if (next >= 0) has_pred |= std::uint64_t{1} << next;
+  }
+  if (duplicate) return false;
   int start = -1;
   for (int k = 0; k < n; ++k) {
-    bool has_pred = false;
-    for (int j = 0; j < n && !has_pred; ++j) has_pred = dst[j] == src[k];
-    if (has_pred) continue;
+    if ((has_pred >> k) & 1) continue;
     if (start >= 0) return false;  // two open chains: a non-manifold vertex
     start = k;
   }
@@ -319,26 +415,29 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   int cur = fan.closed ? 0 : start;
   for (int s = 0; s < n; ++s) {
     fan.loop[s] = src[cur];
-    fan.tris[s] = cs[cur].t;
-    fan.cross[s] = cs[cur].cross;
-    fan.error = std::max(fan.error, cs[cur].error);
+    fan.tris[s] = c[cur].t;
+    fan.cross[s] = c[cur].cross;
+    fan.pos[s] = c[cur].pa;
+    fan.len[s] = length(c[cur].cross);
+    fan.error = std::max(fan.error, c[cur].error);
     if (s + 1 == n) break;
-    int next = -1;
-    for (int j = 0; j < n; ++j)
-      if (src[j] == dst[cur]) next = j;
+    int next = succ[cur];
     if (next < 0 || (fan.closed && dst[cur] == fan.loop[0])) return false;  // several fans
     cur = next;
   }
   if (fan.closed && dst[cur] != fan.loop[0]) return false;
   fan.n = n;
   fan.loop_size = fan.closed ? n : n + 1;
-  if (!fan.closed) fan.loop[n] = dst[cur];
+  if (!fan.closed) {
+    fan.loop[n] = dst[cur];
+    fan.pos[n] = pos_[dst[cur]];
+  }
   if (!fan.closed && n < 2) return false;
 
   // Feature edges: the spokes (v, loop[k]) between tris[k-1] and tris[k].
   int features = 0;
   for (int k = fan.closed ? 0 : 1; k < n; ++k) {
-    int k1 = (k + n - 1) % n;
+    int k1 = k == 0 ? n - 1 : k - 1;
     std::uint32_t t1 = fan.tris[k1], t2 = fan.tris[k];
     bool attribute =
         (has_materials_ && material_[t1] != material_[t2]) ||
@@ -347,7 +446,7 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     bool feature = attribute;
     if (!feature) {
       const Vec3 &n1 = fan.cross[k1], &n2 = fan.cross[k];
-      float l = length(n1) * length(n2);
+      float l = fan.len[k1] * fan.len[k];
       feature = l > 0 && dot(n1, n2) < cos_feature_ * l;
     }
     if (!feature) continue;
@@ -393,18 +492,19 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
   const Vec3& p = pos_[v];
   float d = -1;
   if (fan.cls == VertexClass::kBoundary) {
-    d = point_line_distance(p, pos_[fan.loop[0]], pos_[fan.loop[fan.n]]);
+    d = point_line_distance(p, fan.pos[0], fan.pos[fan.n]);
   } else if (fan.cls == VertexClass::kInteriorEdge) {
-    d = point_line_distance(p, pos_[fan.loop[fan.feature[0]]], pos_[fan.loop[fan.feature[1]]]);
+    d = point_line_distance(p, fan.pos[fan.feature[0]], fan.pos[fan.feature[1]]);
   } else {
     // Average plane: area-weighted normal and area-weighted centroid (eq. 3.1-3.3).
     Vec3 normal{0, 0, 0}, centre{0, 0, 0};
     float area = 0;
     for (int k = 0; k < fan.n; ++k) {
       const Vec3& c = fan.cross[k];
-      float a = length(c);
+      float a = fan.len[k];
       normal += c;
-      centre += (p + pos_[fan.loop[k]] + pos_[fan.loop[(k + 1) % fan.loop_size]]) * (a / 3.0f);
+      int k1 = k + 1 == fan.loop_size ? 0 : k + 1;
+      centre += (p + fan.pos[k] + fan.pos[k1]) * (a / 3.0f);
       area += a;
     }
     float nl = length(normal);
@@ -419,12 +519,20 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
 }
 
 void Decimator::evaluate(std::uint32_t v) {
-  ++version_[v];
   Keep k = plan(v, plan_, false);
   keep_[v] = k;
-  if (k != Keep::kCandidate) return;
-  heap_.push_back({plan_.priority, v, version_[v]});
-  std::push_heap(heap_.begin(), heap_.end());
+  if (k == Keep::kCandidate) {
+    heap_.set(v, plan_.priority);
+    CachedTriangulation& c = cache_[v];
+    c.count = 0;
+    if (plan_.tris.size() <= CachedTriangulation::kMax) {
+      c.count = static_cast<std::uint8_t>(plan_.tris.size());
+      c.side0 = static_cast<std::uint8_t>(plan_.side_end[0]);
+      std::copy(plan_.tris.begin(), plan_.tris.end(), c.tris);
+    }
+  } else {
+    heap_.erase(v);
+  }
 }
 
 bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
@@ -448,26 +556,37 @@ bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std
     out.push_back({idx[0], idx[1], idx[2]});
     return true;
   }
+  // This polygon's vertices, contiguous (uninitialised scratch: no Vec3).
+  float X[kMaxLoop], Y[kMaxLoop], PX[kMaxLoop], PY[kMaxLoop], PZ[kMaxLoop];
+  for (int k = 0; k < m; ++k) {
+    X[k] = side.x[idx[k]];
+    Y[k] = side.y[idx[k]];
+    const Vec3& p = side.p[idx[k]];
+    PX[k] = p.x;
+    PY[k] = p.y;
+    PZ[k] = p.z;
+  }
   float best = 0;
   int bi = -1, bj = -1;
   for (int i = 0; i < m; ++i) {
-    float ax = side.x[idx[i]], ay = side.y[idx[i]];
-    const Vec3& a = pos_[side.poly[idx[i]]];
-    for (int j = i + 2; j < m; ++j) {
-      if (i == 0 && j == m - 1) continue;
+    float ax = X[i], ay = Y[i];
+    for (int j = i + 2, jend = i == 0 ? m - 1 : m; j < jend; ++j) {
       // Split plane normal = line x normal = (ly, -lx) in the plane's basis;
       // aspect ratio = smallest signed distance / length of the split line.
-      float lx = side.x[idx[j]] - ax, ly = side.y[idx[j]] - ay;
-      float scale = std::sqrt((lx * lx + ly * ly) * length_squared(pos_[side.poly[idx[j]]] - a));
+      float lx = X[j] - ax, ly = Y[j] - ay;
+      float dx = PX[j] - PX[i], dy = PY[j] - PY[i], dz = PZ[j] - PZ[i];
+      float scale = std::sqrt((lx * lx + ly * ly) * (dx * dx + dy * dy + dz * dz));
       if (!(scale > 0)) continue;
       float bound = best * scale;
       float worst = std::numeric_limits<float>::infinity();
-      for (int k = 0; k < m && worst > bound; ++k) {
-        if (k == i || k == j) continue;
-        float s = (side.x[idx[k]] - ax) * ly - (side.y[idx[k]] - ay) * lx;
-        // The first half must be on the positive side, the second negative.
-        worst = std::min(worst, k > i && k < j ? s : -s);
-      }
+      // The first half (i, j) must be on the positive side, the rest negative
+      // (the order of the tests does not matter: worst is their minimum).
+      for (int k = i + 1; k < j && worst > bound; ++k)
+        worst = std::min(worst, (X[k] - ax) * ly - (Y[k] - ay) * lx);
+      for (int k = j + 1; k < m && worst > bound; ++k)
+        worst = std::min(worst, -((X[k] - ax) * ly - (Y[k] - ay) * lx));
+      for (int k = 0; k < i && worst > bound; ++k)
+        worst = std::min(worst, -((X[k] - ax) * ly - (Y[k] - ay) * lx));
       if (!(worst > bound)) continue;
       if (check_edges && edge_exists(side.poly[idx[i]], side.poly[idx[j]])) continue;
       best = worst / scale;
@@ -480,13 +599,20 @@ bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std
   // again among the lines that are not edges if the winner is one.
   if (final && !check_edges && edge_exists(side.poly[idx[bi]], side.poly[idx[bj]]))
     return split_loop(side, idx, m, out, true, true);
-  std::array<std::uint8_t, kMaxLoop> half{};
+  std::array<std::uint8_t, kMaxLoop> half;
   int h = 0;
   for (int k = bi; k <= bj; ++k) half[h++] = idx[k];
-  if (!split_loop(side, half.data(), h, out, final)) return false;
+  if (h == 3)
+    out.push_back({half[0], half[1], half[2]});
+  else if (!split_loop(side, half.data(), h, out, final))
+    return false;
   h = 0;
-  for (int k = bj; k != bi; k = (k + 1) % m) half[h++] = idx[k];
-  half[h++] = idx[bi];
+  for (int k = bj; k < m; ++k) half[h++] = idx[k];
+  for (int k = 0; k <= bi; ++k) half[h++] = idx[k];
+  if (h == 3) {
+    out.push_back({half[0], half[1], half[2]});
+    return true;
+  }
   return split_loop(side, half.data(), h, out, final);
 }
 
@@ -497,11 +623,11 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
   side.normal = n;
   Vec3 u = normalized(cross(n, std::abs(n.x) < 0.6f ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
   Vec3 w = cross(n, u);
-  const Vec3& origin = pos_[side.poly[0]];
+  const Vec3 origin = side.p[0];
   std::array<std::uint8_t, kMaxLoop> idx;
   for (int j = 0; j < side.m; ++j) {
     idx[j] = static_cast<std::uint8_t>(j);
-    Vec3 d = pos_[side.poly[j]] - origin;
+    Vec3 d = side.p[j] - origin;
     side.x[j] = dot(d, u);
     side.y[j] = dot(d, w);
   }
@@ -509,8 +635,8 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
   if (!split_loop(side, idx.data(), side.m, out, final)) return Keep::kNoSplit;
   // No fold, no sliver: each new normal points along the average-plane normal.
   for (std::size_t i = first; i < out.size(); ++i) {
-    const Vec3& a = pos_[side.poly[out[i][0]]];
-    Vec3 e1 = pos_[side.poly[out[i][1]]] - a, e2 = pos_[side.poly[out[i][2]]] - a;
+    const Vec3& a = side.p[out[i][0]];
+    Vec3 e1 = side.p[out[i][1]] - a, e2 = side.p[out[i][2]] - a;
     Vec3 c = cross(e1, e2);
     float cl = length(c);
     if (!(cl > kMinSine * length(e1) * length(e2)) || !(dot(c, side.normal) > kMinNormalDot * cl))
@@ -526,9 +652,26 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
 // | simple, corner      | 1     | loop[0 .. n)  (ring)           | - (3-ring: the triangle)|
 // | boundary            | 1     | loop[0 .. n]                   | loop[n]-loop[0]         |
 // | interior edge p < q | 2     | loop[p .. q], loop[q .. p+n]   | loop[p]-loop[q]         |
-Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
+Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const {
   Fan& fan = plan.fan;
   if (!criterion(v, fan)) return fan.why;
+  if (final) {
+    // The removal reads the neighbours' corner lists (existing edges, then
+    // unlinking and re-evaluating) and the fan's triangles: fetch them all
+    // at once instead of one miss after the other.
+    for (int k = 0; k < fan.loop_size; ++k) __builtin_prefetch(&corners_[fan.loop[k]]);
+    for (int k = 0; k < fan.n; ++k) {
+      __builtin_prefetch(&tv_[fan.tris[k]]);
+      __builtin_prefetch(&ta_[fan.tris[k]]);
+      __builtin_prefetch(&origin_[fan.tris[k]]);
+    }
+    for (int k = 0; k < fan.loop_size; ++k) {
+      const Corner* c = corners_[fan.loop[k]].data();
+      __builtin_prefetch(c);
+      __builtin_prefetch(c + 3);
+      __builtin_prefetch(c + 6);
+    }
+  }
   float accumulated = fan.error;
   accumulated += fan.d;
   if (accumulated > budget_) return Keep::kErrorBudget;
@@ -541,11 +684,14 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
   auto fill = [&](Side& s, int from, int count, int ntris) {
     s.m = count;
     s.ntris = ntris;
-    for (int j = 0; j < count; ++j) s.poly[j] = fan.loop[(from + j) % fan.loop_size];
+    for (int j = 0, i = from; j < count; ++j, i = i + 1 == fan.loop_size ? 0 : i + 1) {
+      s.poly[j] = fan.loop[i];
+      s.p[j] = fan.pos[i];
+    }
     s.normal = {0, 0, 0};
-    for (int j = 0; j < ntris; ++j) {
-      s.tris[j] = fan.tris[(from + j) % n];
-      s.normal += fan.cross[(from + j) % n];
+    for (int j = 0, i = from; j < ntris; ++j, i = i + 1 == n ? 0 : i + 1) {
+      s.tris[j] = fan.tris[i];
+      s.normal += fan.cross[i];
     }
   };
   if (fan.cls == VertexClass::kInteriorEdge) {
@@ -569,16 +715,38 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
   }
 
   plan.tris.clear();
+  if (cached && cache_[v].count > 0) {
+    // The queued plan's triangles, if none of their split lines (the edges
+    // that are neither polygon edges nor the side's closing edge, checked
+    // above) has become a mesh edge: then the final plan finds them too.
+    const CachedTriangulation& c = cache_[v];
+    plan.tris.assign(c.tris, c.tris + c.count);
+    plan.side_end[0] = c.side0;
+    plan.side_end[1] = c.count;
+    bool clear = true;
+    for (int i = 0; i < c.count && clear; ++i) {
+      const Side& side = sides[i < c.side0 ? 0 : 1];
+      for (int e = 0; e < 3 && clear; ++e) {
+        int a = c.tris[i][e], b = c.tris[i][(e + 1) % 3];
+        if (a > b) std::swap(a, b);
+        if (b - a == 1 || (a == 0 && b == side.m - 1)) continue;
+        clear = !edge_exists(side.poly[a], side.poly[b]);
+      }
+    }
+    if (clear) return Keep::kCandidate;
+    plan.tris.clear();
+  }
   float volume = 0;
+  const Vec3 pv = pos_[v];
   for (int s = 0; s < nsides; ++s) {
     Keep k = triangulate_side(sides[s], plan.tris, final);
     if (k != Keep::kCandidate) return k;
     plan.side_end[s] = plan.tris.size();
     for (std::size_t i = s == 0 ? 0 : plan.side_end[s - 1]; i < plan.side_end[s]; ++i) {
-      const Vec3& a = pos_[sides[s].poly[plan.tris[i][0]]];
-      const Vec3& b = pos_[sides[s].poly[plan.tris[i][1]]];
-      const Vec3& c = pos_[sides[s].poly[plan.tris[i][2]]];
-      volume += std::abs(dot(cross(b - a, c - a), pos_[v] - a));
+      const Vec3& a = sides[s].p[plan.tris[i][0]];
+      const Vec3& b = sides[s].p[plan.tris[i][1]];
+      const Vec3& c = sides[s].p[plan.tris[i][2]];
+      volume += std::abs(dot(cross(b - a, c - a), pv - a));
     }
   }
   if (fan.cls == VertexClass::kBoundary || fan.cls == VertexClass::kInteriorEdge) {
@@ -586,7 +754,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final) const {
     // it cuts off: count that slab too, or flat border strips would look free.
     int p = fan.cls == VertexClass::kBoundary ? 0 : fan.feature[0];
     int q = fan.cls == VertexClass::kBoundary ? fan.n : fan.feature[1];
-    volume += 3 * fan.d * length(cross(pos_[fan.loop[p]] - pos_[v], pos_[fan.loop[q]] - pos_[v]));
+    volume += 3 * fan.d * length(cross(fan.pos[p] - pv, fan.pos[q] - pv));
   }
   plan.priority = options_.priority == DecimationPriority::kErrorVolume ? volume / 6 : fan.d;
   if (!std::isfinite(plan.priority)) return Keep::kComplex;  // non-finite coordinates
@@ -671,15 +839,13 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
 bool Decimator::run(std::size_t triangles, std::size_t vertices) {
   while (live_triangles_ > triangles && live_vertices_ > vertices) {
     if (heap_.empty()) return false;
-    std::pop_heap(heap_.begin(), heap_.end());
-    HeapEntry e = heap_.back();
-    heap_.pop_back();
-    if (removed_[e.v] || e.version != version_[e.v]) continue;
-    Keep k = plan(e.v, plan_, true);
+    std::uint32_t v = heap_.top();
+    heap_.erase(v);
+    Keep k = plan(v, plan_, true, true);
     if (k == Keep::kCandidate)
-      apply(e.v, plan_);
+      apply(v, plan_);
     else
-      keep_[e.v] = k;
+      keep_[v] = k;
   }
   return true;
 }

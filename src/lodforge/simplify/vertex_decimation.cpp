@@ -27,6 +27,9 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "lodforge/mesh/weld.h"
 
@@ -206,6 +209,7 @@ struct Side {
   // Polygon vertices in the average plane (orthonormal u, w with u x w =
   // normal, origin poly[0]): the split-plane tests are 2D orientation tests.
   std::array<float, kMaxLoop> x{}, y{};
+  std::array<float, kMaxLoop> px{}, py{}, pz{};  // p, component-wise
 };
 
 using Tri8 = std::array<std::uint8_t, 3>;
@@ -269,7 +273,7 @@ class Decimator {
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
   Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const;
   bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
-                  bool final, bool check_edges = false) const;
+                  bool final, bool check_edges = false, bool top = false) const;
   std::uint32_t attribute_vertex(std::uint32_t t, std::uint32_t v) const {
     const auto& f = tv_[t];
     return ta_[t][f[0] == v ? 0 : f[1] == v ? 1 : 2];
@@ -396,6 +400,37 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   // (Branch-free inner loops: which neighbour matches is unpredictable.)
   std::uint64_t has_pred = 0;
   unsigned duplicate = 0;
+#if defined(__SSE2__)
+  // Four neighbours per comparison; the padding matches no vertex.
+  // Built in registers (a store then a wide load of the same bytes would
+  // stall on store forwarding).
+  const int n4 = (n + 3) & ~3;
+  __m128i vsrc[kMaxLoop / 4 + 1], vdst[kMaxLoop / 4 + 1];
+  for (int j = 0; j < n4; j += 4) {
+    auto at = [&](const std::array<std::uint32_t, kMaxLoop>& x, int k) {
+      return static_cast<int>(k < n ? x[k] : kNone);
+    };
+    vsrc[j / 4] = _mm_set_epi32(at(src, j + 3), at(src, j + 2), at(src, j + 1), at(src, j));
+    vdst[j / 4] = _mm_set_epi32(at(dst, j + 3), at(dst, j + 2), at(dst, j + 1), at(dst, j));
+  }
+  for (int i = 0; i < n; ++i) {
+    const __m128i di = _mm_set1_epi32(static_cast<int>(dst[i]));
+    const __m128i si = _mm_set1_epi32(static_cast<int>(src[i]));
+    std::uint64_t match = 0, same_src = 0, same_dst = 0;
+    for (int j = 0; j < n4; j += 4) {
+      __m128i a = vsrc[j / 4], b = vdst[j / 4];
+      auto mask = [](__m128i x) { return _mm_movemask_ps(_mm_castsi128_ps(x)); };
+      match |= std::uint64_t(mask(_mm_cmpeq_epi32(a, di))) << j;
+      same_src |= std::uint64_t(mask(_mm_cmpeq_epi32(a, si))) << j;
+      same_dst |= std::uint64_t(mask(_mm_cmpeq_epi32(b, di))) << j;
+    }
+    // Only itself: no other triangle with the same source or target.
+    duplicate |= unsigned((same_src | same_dst) != std::uint64_t{1} << i);
+    int next = match ? 63 - __builtin_clzll(match) : -1;  // the last match
+    succ[i] = static_cast<std::int8_t>(next);
+    if (next >= 0) has_pred |= std::uint64_t{1} << next;
+  }
+#else
   for (int i = 0; i < n; ++i) {
     const std::uint32_t si = src[i], di = dst[i];
     int next = -1;
@@ -404,6 +439,7 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     succ[i] = static_cast<std::int8_t>(next);
     if (next >= 0) has_pred |= std::uint64_t{1} << next;
   }
+#endif
   if (duplicate) return false;
   int start = -1;
   for (int k = 0; k < n; ++k) {
@@ -551,20 +587,29 @@ bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
 // valid ones the largest aspect ratio (smallest distance of a loop vertex to
 // the split plane over the line's length) wins.
 bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
-                           bool final, bool check_edges) const {
+                           bool final, bool check_edges, bool top) const {
   if (m == 3) {
     out.push_back({idx[0], idx[1], idx[2]});
     return true;
   }
   // This polygon's vertices, contiguous (uninitialised scratch: no Vec3).
-  float X[kMaxLoop], Y[kMaxLoop], PX[kMaxLoop], PY[kMaxLoop], PZ[kMaxLoop];
-  for (int k = 0; k < m; ++k) {
-    X[k] = side.x[idx[k]];
-    Y[k] = side.y[idx[k]];
-    const Vec3& p = side.p[idx[k]];
-    PX[k] = p.x;
-    PY[k] = p.y;
-    PZ[k] = p.z;
+  // The whole side (top, idx is the identity) is read in place.
+  float gx[kMaxLoop], gy[kMaxLoop], gpx[kMaxLoop], gpy[kMaxLoop], gpz[kMaxLoop];
+  const float *X = side.x.data(), *Y = side.y.data();
+  const float *PX = side.px.data(), *PY = side.py.data(), *PZ = side.pz.data();
+  if (!top) {
+    for (int k = 0; k < m; ++k) {
+      gx[k] = side.x[idx[k]];
+      gy[k] = side.y[idx[k]];
+      gpx[k] = side.px[idx[k]];
+      gpy[k] = side.py[idx[k]];
+      gpz[k] = side.pz[idx[k]];
+    }
+    X = gx;
+    Y = gy;
+    PX = gpx;
+    PY = gpy;
+    PZ = gpz;
   }
   float best = 0;
   int bi = -1, bj = -1;
@@ -598,7 +643,7 @@ bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std
   // Looking up edges is the costly part: do it for the winner only, and search
   // again among the lines that are not edges if the winner is one.
   if (final && !check_edges && edge_exists(side.poly[idx[bi]], side.poly[idx[bj]]))
-    return split_loop(side, idx, m, out, true, true);
+    return split_loop(side, idx, m, out, true, true, top);
   std::array<std::uint8_t, kMaxLoop> half;
   int h = 0;
   for (int k = bi; k <= bj; ++k) half[h++] = idx[k];
@@ -630,9 +675,12 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
     Vec3 d = side.p[j] - origin;
     side.x[j] = dot(d, u);
     side.y[j] = dot(d, w);
+    side.px[j] = side.p[j].x;
+    side.py[j] = side.p[j].y;
+    side.pz[j] = side.p[j].z;
   }
   std::size_t first = out.size();
-  if (!split_loop(side, idx.data(), side.m, out, final)) return Keep::kNoSplit;
+  if (!split_loop(side, idx.data(), side.m, out, final, false, true)) return Keep::kNoSplit;
   // No fold, no sliver: each new normal points along the average-plane normal.
   for (std::size_t i = first; i < out.size(); ++i) {
     const Vec3& a = side.p[out[i][0]];

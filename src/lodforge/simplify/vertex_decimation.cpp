@@ -117,7 +117,7 @@ struct HeapEntry {
   bool before(const HeapEntry& o) const { return d != o.d ? d < o.d : v < o.v; }
 };
 
-/// Binary min-heap of vertices with their position in it, so that a vertex's
+/// 4-ary min-heap of vertices with their position in it, so that a vertex's
 /// priority is updated in place (the heap holds each candidate once, no stale
 /// entries): it pops the same order as a lazy heap with versioned entries.
 class VertexHeap {
@@ -149,7 +149,7 @@ class VertexHeap {
     if (i == heap_.size()) return;
     heap_[i] = last;
     pos_[last.v] = i;
-    if (i > 0 && last.before(heap_[(i - 1) / 2]))
+    if (i > 0 && last.before(heap_[(i - 1) / 4]))
       up(i);
     else
       down(i);
@@ -159,7 +159,7 @@ class VertexHeap {
   void up(std::uint32_t i) {
     HeapEntry e = heap_[i];
     while (i > 0) {
-      std::uint32_t p = (i - 1) / 2;
+      std::uint32_t p = (i - 1) / 4;
       if (!e.before(heap_[p])) break;
       heap_[i] = heap_[p];
       pos_[heap_[i].v] = i;
@@ -172,9 +172,11 @@ class VertexHeap {
     HeapEntry e = heap_[i];
     const auto size = static_cast<std::uint32_t>(heap_.size());
     for (;;) {
-      std::uint32_t c = 2 * i + 1;
-      if (c >= size) break;
-      if (c + 1 < size && heap_[c + 1].before(heap_[c])) ++c;
+      std::uint32_t first = 4 * i + 1;
+      if (first >= size) break;
+      std::uint32_t c = first, end = std::min(first + 4, size);
+      for (std::uint32_t k = first + 1; k < end; ++k)
+        if (heap_[k].before(heap_[c])) c = k;
       if (!heap_[c].before(e)) break;
       heap_[i] = heap_[c];
       pos_[heap_[i].v] = i;
@@ -889,7 +891,16 @@ bool Decimator::run(std::size_t triangles, std::size_t vertices) {
     if (heap_.empty()) return false;
     std::uint32_t v = heap_.top();
     heap_.erase(v);
+    // The next vertex out is likely the one below v now: start fetching its
+    // corner list (header now, records after the plan), used by its plan.
+    std::uint32_t next = heap_.empty() ? v : heap_.top();
+    __builtin_prefetch(&corners_[next]);
     Keep k = plan(v, plan_, true, true);
+    const Corner* nc = corners_[next].data();
+    __builtin_prefetch(nc);
+    __builtin_prefetch(nc + 3);
+    __builtin_prefetch(nc + 6);
+    __builtin_prefetch(&cache_[next]);
     if (k == Keep::kCandidate)
       apply(v, plan_);
     else

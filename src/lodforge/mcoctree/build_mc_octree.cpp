@@ -52,6 +52,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/morton.h"
 #include "lodforge/mcoctree/cell_mesh.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/adjacency.h"
@@ -73,18 +74,6 @@ constexpr std::uint8_t kInside = 1, kExact = 2, kAssigned = 4, kMeasured = 8;
 constexpr float kRimGap = 0.25f;
 constexpr float kHiddenDetail = 0.2f;  // see Builder::number
 
-std::uint64_t spread3(std::uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-std::uint64_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-  return spread3(x) | spread3(y) << 1 | spread3(z) << 2;
-}
 // Exact closest points for the few queries the triangle scan leaves (an
 // open mesh's repairs, hole tests and edge points by a rim: a few thousand on
 // the bunny, many cells away from the surface): a bounding volume hierarchy
@@ -110,7 +99,7 @@ class TriangleTree {
         float u = size[a] > 0 ? (c[a] - box.lo[a]) / size[a] : 0.0f;
         q[a] = static_cast<std::uint32_t>(std::clamp(u * 1023.0f, 0.0f, 1023.0f));
       }
-      keyed[t] = morton(q[0], q[1], q[2]) << 32 | t;
+      keyed[t] = morton_code(q[0], q[1], q[2]) << 32 | t;
     }
     std::sort(keyed.begin(), keyed.end());
     order_.resize(n);
@@ -331,6 +320,24 @@ struct Lattice {
                       h;
   }
   bool inside(std::int64_t idx) const { return state[idx] & kInside; }
+  /// Calls fn(edge, x, y, z) for each cell of the lattice around the crossed
+  /// lattice edge `key` (point * 3 + axis a): it is edge 4a + q of the cell
+  /// whose lower corner is q's offsets (bit 0 on axis a + 1, bit 1 on a + 2)
+  /// below it; x, y, z in root-cube cell coordinates.
+  template <class Fn>
+  void for_each_cell_around(std::int64_t key, Fn&& fn) const {
+    const std::int64_t p = key / 3, a = key % 3;
+    const auto c = coords(p);
+    const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
+    for (int q = 0; q < 4; ++q) {
+      std::int64_t cell[3] = {c[0], c[1], c[2]};
+      cell[a1] -= q & 1, cell[a2] -= q >> 1;
+      if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] + 1 >= dim[a1] || cell[a2] + 1 >= dim[a2])
+        continue;
+      fn(static_cast<int>(4 * a + q), cell[0] + offset[0], cell[1] + offset[1],
+         cell[2] + offset[2]);
+    }
+  }
   bool on_border(std::int64_t idx) const {
     auto c = coords(idx);
     for (int a = 0; a < 3; ++a)
@@ -1085,21 +1092,11 @@ class Builder {
     // Leaves: finest cells whose corners differ in sign, i.e. the (up to)
     // four cells around each crossed lattice edge.
     std::vector<std::vector<std::uint64_t>> codes(D + 1);
-    for (auto key : edge_keys) {
-      const std::int64_t p = key / 3, a = key % 3;
-      const auto c = lat.coords(p);
-      const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
-      for (int q = 0; q < 4; ++q) {
-        std::int64_t cell[3] = {c[0], c[1], c[2]};
-        cell[a1] -= q & 1, cell[a2] -= q >> 1;
-        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] + 1 >= lat.dim[a1] ||
-            cell[a2] + 1 >= lat.dim[a2])
-          continue;
-        codes[D].push_back(morton(static_cast<std::uint32_t>(cell[0] + lat.offset[0]),
-                                  static_cast<std::uint32_t>(cell[1] + lat.offset[1]),
-                                  static_cast<std::uint32_t>(cell[2] + lat.offset[2])));
-      }
-    }
+    for (auto key : edge_keys)
+      lat.for_each_cell_around(key, [&](int, std::int64_t x, std::int64_t y, std::int64_t z) {
+        codes[D].push_back(morton_code(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                                       static_cast<std::uint32_t>(z)));
+      });
     radix_sort(codes[D], 3 * D);
     codes[D].erase(std::unique(codes[D].begin(), codes[D].end()), codes[D].end());
     stats_.leaves = codes[D].size();
@@ -1140,22 +1137,12 @@ class Builder {
         if (lat.inside(base + (c & 1) * step[0] + (c >> 1 & 1) * step[1] + (c >> 2) * step[2]))
           leaf.signs27 |= 1u << detail::corner_point(c);
     }
-    // Each crossed lattice edge is edge 4a + q of the cell whose lower
-    // corner is q's offsets (bit 0 on axis a + 1, bit 1 on a + 2) below it.
-    for (std::size_t v = 0; v < edge_keys.size(); ++v) {
-      const std::int64_t p = edge_keys[v] / 3, a = edge_keys[v] % 3;
-      const auto c = lat.coords(p);
-      const int a1 = static_cast<int>((a + 1) % 3), a2 = static_cast<int>((a + 2) % 3);
-      for (int q = 0; q < 4; ++q) {
-        std::int64_t cell[3] = {c[0], c[1], c[2]};
-        cell[a1] -= q & 1, cell[a2] -= q >> 1;
-        if (cell[a1] < 0 || cell[a2] < 0 || cell[a1] + 1 >= lat.dim[a1] ||
-            cell[a2] + 1 >= lat.dim[a2])
-          continue;
-        t_.nodes[find(D, cell[0] + lat.offset[0], cell[1] + lat.offset[1], cell[2] + lat.offset[2])]
-            .edge_vertex[4 * a + q] = static_cast<std::uint32_t>(v);
-      }
-    }
+    // Each crossed lattice edge is an edge of the (up to) four cells around it.
+    for (std::size_t v = 0; v < edge_keys.size(); ++v)
+      lat.for_each_cell_around(
+          edge_keys[v], [&](int edge, std::int64_t x, std::int64_t y, std::int64_t z) {
+            t_.nodes[find(D, x, y, z)].edge_vertex[edge] = static_cast<std::uint32_t>(v);
+          });
     for (int l = D - 1; l >= 0; --l)
       for (std::size_t i = level_offset_[l]; i < level_offset_[l + 1]; ++i)
         make_parent(t_.nodes[i]);

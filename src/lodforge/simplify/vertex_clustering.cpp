@@ -66,6 +66,7 @@
 #include <tbb/task_group.h>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/morton.h"
 
 namespace lodforge {
 namespace {
@@ -79,16 +80,6 @@ constexpr std::size_t kMaxCandidates = 64;
 constexpr double kRankTolerance = 1e-3;
 
 // ---------------------------------------------------------------- Morton codes
-
-std::uint64_t spread_bits(std::uint32_t v) {
-  std::uint64_t x = v & 0x1fffffu;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
 
 std::uint32_t compact_bits(std::uint64_t x) {
   x &= 0x1249249249249249ull;
@@ -1008,7 +999,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     for (int a = 0; a < 3; ++a) {
       double q = std::floor((double(mesh.positions[v][a]) - octree.lo[a]) * scale);
       auto qi = static_cast<std::uint32_t>(std::clamp(q, 0.0, double(max_q)));
-      c |= spread_bits(qi) << (2 - a);
+      c |= morton_spread(qi) << (2 - a);
     }
     order.push_back({c, static_cast<std::uint32_t>(v)});
   }

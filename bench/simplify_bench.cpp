@@ -3,18 +3,19 @@
 // largest mesh of the corpus (igea.ply, 268 686 triangles) at 50 % and 99 %
 // reduction, and vertex clustering's whole chain.
 //
-// | row                    | what is timed                                  | peer (ratio = time /
-// peer's)    |
-// |------------------------|------------------------------------------------|---------------------------------|
-// | meshopt_simplify       | meshopt_simplify to the target count           | - | | qem |
-// quadric_collapse to the target count           | meshopt_simplify, same target   | | decimate |
-// vertex_decimation to the target count          | qem, same target                | |
-// meshopt_simplifySloppy | meshopt_simplifySloppy to the cluster row's    | - | | | count | | |
-// cluster                | vertex_clustering, the chain up to its first   | meshopt_simplifySloppy,
-// same    | |                        | level at or below the target count             | count | |
-// cluster chain          | vertex_clustering, the whole chain             | meshopt_simplifySloppy
-// to the   | |                        |                                                | chain's
-// lowest level with       | |                        | | triangles                       |
+// clang-format off
+// | row                    | what is timed                                  | peer (ratio = time / peer's)     |
+// |------------------------|------------------------------------------------|----------------------------------|
+// | meshopt_simplify       | meshopt_simplify to the target count           | -                                |
+// | qem                    | quadric_collapse to the target count           | meshopt_simplify, same target    |
+// | decimate               | vertex_decimation to the target count          | qem, same target                 |
+// | meshopt_simplifySloppy | meshopt_simplifySloppy to the cluster row's    | -                                |
+// |                        | count                                          |                                  |
+// | cluster                | vertex_clustering, the chain up to its first   | meshopt_simplifySloppy, same     |
+// |                        | level at or below the target count             | count                            |
+// | cluster chain          | vertex_clustering, the whole chain             | meshopt_simplifySloppy to the    |
+// |                        |                                                | chain's lowest level             |
+// clang-format on
 //
 // Issue 4's targets: qem <= 1.5x meshopt_simplify, cluster chain <= 3x
 // meshopt_simplifySloppy, decimate <= 3x qem. Peers run before the rows that

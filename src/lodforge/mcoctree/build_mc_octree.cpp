@@ -1564,18 +1564,24 @@ int scan_resolution(const std::vector<RangeScan>& scans, const Box3& bounds) {
       std::clamp(std::lround(extent / (2.0 * spacing[spacing.size() / 2])), 2L, 1000L));
 }
 
+// The options both builders share: throws std::invalid_argument for a
+// resolution out of range; the returned object (null for all cores) limits
+// TBB's threads while it lives.
+std::unique_ptr<tbb::global_control> checked_thread_limit(const McBuildOptions& options) {
+  if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
+    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
+  if (options.threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               static_cast<std::size_t>(options.threads));
+}
+
 }  // namespace
 
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options) {
-  if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
-    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
+  auto limit = checked_thread_limit(options);
   if (mesh.triangles.empty()) throw DataError("mcoctree: the mesh has no triangles");
   for (const auto& p : mesh.positions)
     if (!is_finite(p)) throw DataError("mcoctree: the mesh has a non-finite coordinate");
-  std::unique_ptr<tbb::global_control> limit;
-  if (options.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(options.threads));
   McBuildResult result;
   auto t0 = Clock::now();
   // Pseudo-normals need shared vertices: weld exact duplicates (OBJ seams, STL soup).
@@ -1654,13 +1660,8 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 }
 
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuildOptions& options) {
-  if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
-    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
+  auto limit = checked_thread_limit(options);
   if (scans.empty()) throw DataError("mcoctree: no range scans");
-  std::unique_ptr<tbb::global_control> limit;
-  if (options.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(options.threads));
   McBuildResult result;
   auto t0 = Clock::now();
   ScanField field(scans);

@@ -7,7 +7,8 @@
 // levels). Then the colours: the input coloured by a smooth function of
 // position, its model at 20 %, and the mean colour error both ways.
 //
-//   mcoctree_quality [--mesh PATH] [--resolution N] [--samples N] [--out DIR]
+//   mcoctree_quality [--mesh PATH] [--resolution N] [--metric area|distance] [--samples N]
+//                    [--out DIR]
 //
 // Prints Markdown tables on stdout; writes DIR/mco_levels.png (the shaded
 // levels), DIR/mco_wireframe.png (40, 20 and 5 % in wire frame, Fig. 6.3-6.4)
@@ -37,6 +38,7 @@ using namespace lodforge;
 struct Settings {
   std::string mesh;
   int resolution = 0;  // 0: the builder's default
+  McPriorityMetric metric = McPriorityMetric::kArea;
   std::size_t samples = 200'000;
   std::string out;
 };
@@ -55,6 +57,8 @@ Settings parse(int argc, char** argv) {
       s.mesh = v;
     else if (k == "--resolution")
       s.resolution = std::stoi(v);
+    else if (k == "--metric")
+      s.metric = v == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea;
     else if (k == "--samples")
       s.samples = std::stoul(v);
     else if (k == "--out")
@@ -101,6 +105,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 McBuildOptions build_options(const Settings& s) {
   McBuildOptions o;
   if (s.resolution > 0) o.resolution = s.resolution;
+  o.metric = s.metric;
   return o;
 }
 
@@ -114,8 +119,9 @@ int main(int argc, char** argv) try {
   McOctree tree = build_mc_octree(input, build_options(s)).tree;
   double build_s = seconds_since(t0);
   TriangleMesh full = extract_mc_mesh(tree, {.percent = 100}).mesh;
-  fmt::print("## {} ({} triangles), octree depth {}, built in {:.2f} s\n\n", s.mesh,
-             input.triangle_count(), tree.depth, build_s);
+  fmt::print("## {} ({} triangles), octree depth {}, {} metric, built in {:.2f} s\n\n", s.mesh,
+             input.triangle_count(), tree.depth,
+             s.metric == McPriorityMetric::kArea ? "area" : "distance", build_s);
   fmt::print(
       "| LOD % | triangles | vertices | octree H / mean | qem of input H / mean | ratio | qem of "
       "octree 100 % H / mean | ratio |\n|---|---|---|---|---|---|---|---|\n");

@@ -77,6 +77,24 @@ TEST_F(McoCli, BuildInfoExtract) {
   EXPECT_THAT(r.err, HasSubstr("clamped"));
 }
 
+// --metric distance orders the expansions by the distance metric: a model of
+// the same full resolution, numbered differently; an unknown metric is a usage error.
+TEST_F(McoCli, PriorityMetricChoice) {
+  std::string area = model(), distance = path("distance.mco");
+  auto r = run_lodforge("mco build " + mesh_ + " -o " + distance +
+                        " --resolution 20 --threads 2 --metric distance");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto info = [&](const std::string& m) {
+    return nlohmann::json::parse(run_lodforge("mco info " + m + " --json").out);
+  };
+  EXPECT_EQ(info(area)["full_triangles"], info(distance)["full_triangles"]);
+  EXPECT_NE(read_text(area), read_text(distance));
+  r = run_lodforge("mco build " + mesh_ + " -o " + path("v.mco") + " --metric volume");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("volume"));
+  EXPECT_FALSE(fs::exists(path("v.mco")));
+}
+
 TEST_F(McoCli, ExtractFromATruncatedFileUpToWhatItHolds) {
   std::string m = model();
   std::string data = read_text(m);

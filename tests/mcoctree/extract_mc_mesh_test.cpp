@@ -32,9 +32,9 @@ TriangleMesh index_mesh(const McLodModel& m, std::uint32_t n) {
 // reachable count lies within 0.5 % (one expansion changes the count by a
 // few triangles, but near the coarse end a single expansion can add more
 // than 0.5 %: those requests get the nearest reachable count, counted and
-// printed, and must stay rare). Crack checks on both the compacted mesh and
-// the index buffer.
-void check_budgets(const McLodModel& t, int steps, bool crack_check) {
+// printed, and must stay rare: at most `rare` of the requests). Crack checks
+// on both the compacted mesh and the index buffer.
+void check_budgets(const McLodModel& t, int steps, bool crack_check, std::size_t rare) {
   const auto full = t.full_triangles();
   std::size_t worst_miss = 0, unreachable = 0;
   double worst_pct = 0;
@@ -64,8 +64,7 @@ void check_budgets(const McLodModel& t, int steps, bool crack_check) {
       ASSERT_TRUE(report.ok()) << "index buffer, budget " << want << ": " << report.describe();
     }
   }
-  EXPECT_LE(unreachable, static_cast<std::size_t>(steps / 100))
-      << "requests with no reachable count within 0.5 %";
+  EXPECT_LE(unreachable, rare) << "requests with no reachable count within 0.5 %";
   std::printf(
       "budgets: %d over 0..%llu, worst miss %zu triangles, worst %.3f %% (requests >= 1000), "
       "%zu requests >= 1000 with no reachable count within 0.5 %%\n",
@@ -96,7 +95,9 @@ TEST(ExtractMcMesh, TargetsAndClamping) {
   EXPECT_EQ(from_model.mesh.triangles, full.mesh.triangles);
   EXPECT_EQ(from_model.mesh.positions, full.mesh.positions);
   EXPECT_THROW(extract_mc_mesh(m, {.triangles = 3, .percent = 5}), std::invalid_argument);
-  check_budgets(m, 100, true);
+  // A 2 312-triangle sphere expands 18 triangles at a time, 0.8-1.8 % of the
+  // requests from 1 000 up: some get only the nearest reachable count.
+  check_budgets(m, 100, true, 10);
 }
 
 TEST(ExtractMcMesh, ColoursAreCarried) {
@@ -146,7 +147,7 @@ TEST(ExtractMcMesh, BunnyCrackFreeBudgetsAndQuality) {
       t.stored_triangles(), bytes_per_triangle,
       static_cast<double>(tree.memory_bytes()) / static_cast<double>(tree.full_triangles()));
   EXPECT_LE(bytes_per_triangle, 64.0);  // issue 6's target
-  check_budgets(t, 1000, true);
+  check_budgets(t, 1000, true, 10);
 
   // Quality: the extracted mesh and quadric collapse of the input at the same
   // triangle count, both against the input.

@@ -1,4 +1,5 @@
-// `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--close-holes] [--threads T]`
+// `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--close-holes]
+//                    [--metric area|distance] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco scan MESH --views K -o DIR [--resolution N]`
@@ -55,6 +56,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
     int resolution = 0;
     int threads = 0;
     bool close_holes = false;
+    std::string metric = "area";
   };
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
@@ -76,6 +78,12 @@ void add_mco_command(CLI::App& app, Runner& run) {
   build->add_flag("--close-holes", b->close_holes,
                   "Close the holes of an open mesh (a watertight model; default: the model "
                   "has borders where the input has them)");
+  build
+      ->add_option("--metric", b->metric,
+                   "Priority metric: area (default; the thesis's area difference) or distance "
+                   "(how far the finer surface lies from a coarse cell: lower error at every "
+                   "level, about 10 % more build time)")
+      ->check(CLI::IsMember({"area", "distance"}));
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
@@ -83,7 +91,9 @@ void add_mco_command(CLI::App& app, Runner& run) {
       auto t0 = std::chrono::steady_clock::now();
       McBuildOptions options{.resolution = b->resolution,
                              .threads = b->threads,
-                             .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen};
+                             .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
+                             .metric = b->metric == "distance" ? McPriorityMetric::kDistance
+                                                               : McPriorityMetric::kArea};
       McBuildResult r;
       std::string what;
       if (is_range_input(b->input)) {

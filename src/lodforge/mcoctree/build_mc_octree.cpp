@@ -44,8 +44,10 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <queue>
 #include <stdexcept>
@@ -54,6 +56,7 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/morton.h"
 #include "lodforge/mcoctree/cell_mesh.h"
+#include "lodforge/mcoctree/node_error.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/adjacency.h"
 #include "lodforge/mesh/weld.h"
@@ -414,45 +417,39 @@ void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
 }
 
 // Breadth-first flood fill from the assigned points: every unassigned point
-// takes the sign of the nearest assigned one (in lattice steps). The queue
-// holds packed coordinates (21 bits each), so that a step needs no division
-// to find its neighbours (the fill visits most of the lattice).
+// takes the sign of the nearest assigned one (in lattice steps; a tie goes to
+// the point first in the queue). Precondition: the lattice's border is all
+// assigned, so that only the seeds' neighbours need a bounds check and the
+// queue holds bare indices (the fill visits most of the lattice: its inner
+// loop is a load, a test and a store per neighbour).
 void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildStats& stats) {
-  const std::int64_t nx = lat.dim[0], ny = lat.dim[1], nz = lat.dim[2], plane = lat.plane();
-  auto pack = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) {
-    return i | j << 21 | k << 42;
+  assert(lat.state.size() <= std::numeric_limits<std::uint32_t>::max());
+  std::uint8_t* const st = lat.state.data();  // a byte store may alias a member: no reloads
+  std::vector<std::uint32_t> queue;
+  std::size_t flooded = 0;
+  auto visit = [&](std::int64_t q, std::uint8_t inside) {
+    const std::uint8_t s = st[q];
+    if (s & kAssigned) return;
+    assert(!lat.on_border(q));
+    st[q] = (s & kMeasured) | kAssigned | inside;
+    queue.push_back(static_cast<std::uint32_t>(q));
   };
-  std::vector<std::uint64_t> queue;
-  queue.reserve(seeds.size());
   for (auto idx : seeds) {
-    auto c = lat.coords(idx);
-    queue.push_back(pack(static_cast<std::uint64_t>(c[0]), static_cast<std::uint64_t>(c[1]),
-                         static_cast<std::uint64_t>(c[2])));
+    const std::uint8_t inside = st[idx] & kInside;
+    lattice_neighbours(lat, idx, [&](std::int64_t q) { visit(q, inside); });
   }
+  const std::int64_t step[6] = {-1, 1, -lat.dim[0], lat.dim[0], -lat.plane(), lat.plane()};
   for (std::size_t head = 0; head < queue.size(); ++head) {
     if (head >= (1u << 20) && 2 * head >= queue.size()) {  // keep only the frontier
+      flooded += head;
       queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
       head = 0;
     }
-    const std::uint64_t c = queue[head];
-    const auto i = static_cast<std::int64_t>(c & 0x1fffff),
-               j = static_cast<std::int64_t>(c >> 21 & 0x1fffff),
-               k = static_cast<std::int64_t>(c >> 42);
-    const std::int64_t idx = i + nx * j + plane * k;
-    const std::uint8_t inside = lat.state[idx] & kInside;
-    auto visit = [&](std::int64_t q, std::uint64_t packed) {
-      if (lat.state[q] & kAssigned) return;
-      lat.state[q] = (lat.state[q] & kMeasured) | kAssigned | inside;
-      ++stats.flooded_points;
-      queue.push_back(packed);
-    };
-    if (i > 0) visit(idx - 1, c - 1);
-    if (i + 1 < nx) visit(idx + 1, c + 1);
-    if (j > 0) visit(idx - nx, c - (std::uint64_t{1} << 21));
-    if (j + 1 < ny) visit(idx + nx, c + (std::uint64_t{1} << 21));
-    if (k > 0) visit(idx - plane, c - (std::uint64_t{1} << 42));
-    if (k + 1 < nz) visit(idx + plane, c + (std::uint64_t{1} << 42));
+    const std::int64_t idx = queue[head];
+    const std::uint8_t inside = st[idx] & kInside;
+    for (auto d : step) visit(idx + d, inside);
   }
+  stats.flooded_points += flooded + queue.size();
 }
 
 Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats) {
@@ -531,23 +528,33 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
         float l = length(inward[e]);
         inward[e] = l > 0 ? inward[e] / l : Vec3{};
       }
+      // The dot products below, dot(x - from[q], dir[q]), with their y and z
+      // terms taken once per row (the same sums in the same order).
+      const Vec3* from[4] = {&a, &a, &b, &c};
+      const Vec3* dir[4] = {&normal, &inward[0], &inward[1], &inward[2]};
+      const std::int64_t i0 = r.lo[0], i1 = r.hi[0];
       for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
-        for (auto j = r.lo[1]; j <= r.hi[1]; ++j)
-          for (auto i = r.lo[0]; i <= r.hi[0]; ++i) {
-            const Vec3 x{coord[0][static_cast<std::size_t>(i)],
-                         coord[1][static_cast<std::size_t>(j)],
-                         coord[2][static_cast<std::size_t>(k)]};
-            float off = dot(x - a, normal);
+        for (auto j = r.lo[1]; j <= r.hi[1]; ++j) {
+          const float y = coord[1][static_cast<std::size_t>(j)],
+                      z = coord[2][static_cast<std::size_t>(k)];
+          float dy[4], dz[4];
+          for (int q = 0; q < 4; ++q)
+            dy[q] = (y - from[q]->y) * dir[q]->y, dz[q] = (z - from[q]->z) * dir[q]->z;
+          Best* row = &best[static_cast<std::size_t>(lat.index(0, j, k - z0))];
+          for (auto i = i0; i <= i1; ++i) {
+            const float x = coord[0][static_cast<std::size_t>(i)];
+            auto along = [&](int q) { return ((x - from[q]->x) * dir[q]->x + dy[q]) + dz[q]; };
+            const float off = along(0);
             if (off * off > h2) continue;
             // No nearer than its plane: skip when a nearer triangle is known.
-            Best& bt = best[static_cast<std::size_t>(lat.index(i, j, k - z0))];
+            Best& bt = row[i];
             if (off * off >= bt.d2) continue;
-            const float beyond = std::max(
-                {0.0f, -dot(x - a, inward[0]), -dot(x - b, inward[1]), -dot(x - c, inward[2])});
+            const float beyond = std::max({0.0f, -along(1), -along(2), -along(3)});
             if (off * off + beyond * beyond > std::min(h2, bt.d2) * 1.001f + margin) continue;
-            TrianglePoint tp = closest_point_on_triangle(x, a, b, c);
+            TrianglePoint tp = closest_point_on_triangle({x, y, z}, a, b, c);
             if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
           }
+        }
     }
     auto& out = found[static_cast<std::size_t>(s)];
     for (std::size_t p = 0; p < best.size(); ++p) {
@@ -1411,15 +1418,10 @@ class Builder {
     return McNode::kNone;
   }
 
-  void number() {
+  // The thesis's metric (SPEC §5): |area of the children's triangulation -
+  // area of the node's own|, raised to a descendant's where that hides detail.
+  std::vector<float> area_metric() const {
     const auto count = static_cast<std::uint32_t>(t_.nodes.size());
-    make_near();
-    parent_.assign(count, McNode::kNone);
-    for (std::uint32_t i = 0; i < internal_; ++i)
-      for (int o = 0; o < 8; ++o)
-        if (auto c = t_.nodes[i].child(o); c != McNode::kNone) parent_[c] = i;
-    counts_.reserve(count);
-    expanded_.assign(count, 0);
     std::vector<float> metric(count, 0);
     std::vector<double> area(count);
     tbb::parallel_for(std::uint32_t{0}, count,
@@ -1452,6 +1454,35 @@ class Builder {
             c != McNode::kNone && !t_.nodes[c].leaf() && metric[c] > kHiddenDetail * area[i])
           metric[i] = std::max(metric[i], metric[c]);
     }
+    return metric;
+  }
+  // McPriorityMetric::kDistance: how far the finest surface under a node lies
+  // from the node's own triangles (summed over the surface points, see
+  // node_error.h), raised to the largest of any descendant's so that a node
+  // is never expanded after one of its descendants would be.
+  std::vector<float> distance_metric() const {
+    const std::vector<double> distance = detail::node_distance_sums(t_);
+    std::vector<float> metric(distance.begin(), distance.end());
+    for (std::size_t i = metric.size(); i-- > 0;) {
+      const McNode& n = t_.nodes[i];
+      for (int o = 0; o < 8; ++o)
+        if (auto c = n.child(o); c != McNode::kNone && !t_.nodes[c].leaf())
+          metric[i] = std::max(metric[i], metric[c]);
+    }
+    return metric;
+  }
+
+  void number(McPriorityMetric which) {
+    const auto count = static_cast<std::uint32_t>(t_.nodes.size());
+    make_near();
+    parent_.assign(count, McNode::kNone);
+    for (std::uint32_t i = 0; i < internal_; ++i)
+      for (int o = 0; o < 8; ++o)
+        if (auto c = t_.nodes[i].child(o); c != McNode::kNone) parent_[c] = i;
+    counts_.reserve(count);
+    expanded_.assign(count, 0);
+    std::vector<float> metric =
+        which == McPriorityMetric::kArea ? area_metric() : distance_metric();
     std::vector<int> tri(count, 0);
     std::vector<std::vector<std::uint32_t>> waiting(count);
     using Entry = std::pair<float, std::uint32_t>;
@@ -1466,10 +1497,20 @@ class Builder {
     while (!queue.empty()) {
       auto [m, i] = queue.top();
       queue.pop();
+      if (expanded_[i]) continue;  // a second entry (below)
       McNode& n = t_.nodes[i];
       if (auto b = blocker(i); b != McNode::kNone) {
         waiting[b].push_back(i);
         ++stats_.expansion_waits;
+        // The coarser neighbour inherits the waiting node's metric (it is
+        // expanded as early as the detail it holds back needs): without
+        // this, detail next to a flat coarse cell waits for the flat cell's
+        // own turn near the end (the bunny's bottom rim: 4.7 cells off at
+        // 20 %, Hausdorff 2.9 % of the diagonal instead of 1.1 %).
+        if (metric[b] < m) {
+          metric[b] = m;
+          queue.push({m, b});
+        }
         continue;
       }
       // Same-level cut cells around n whose faces or edges n's expansion splits.
@@ -1654,7 +1695,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
   if (holes) builder.mark_holes([&](const Vec3& x) { return gap(sd.bvh().closest_point(x)).gap; });
-  builder.number();
+  builder.number(options.metric);
   result.stats.seconds_priorities = since(t2);
   return result;
 }
@@ -1686,7 +1727,7 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
                      });
   result.stats.seconds_tree = since(t1);
   auto t2 = Clock::now();
-  builder.number();
+  builder.number(options.metric);
   result.stats.seconds_priorities = since(t2);
   return result;
 }

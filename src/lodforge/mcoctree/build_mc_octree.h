@@ -18,6 +18,18 @@ enum class McHoles {
   kCapped  ///< closed across each hole (a cap about midway between inside and outside)
 };
 
+/// How the priority numbering orders the expansions (SPEC §5).
+enum class McPriorityMetric {
+  /// The thesis's LOD metric: area of the children's triangulation minus the
+  /// node's own (its magnitude).
+  kArea,
+  /// How far the finest surface inside the node lies from the node's own
+  /// triangles (the sum over the surface points): the error a coarse level
+  /// shows. Lower deviation at every level (bunny: mean 10-25 % lower at
+  /// 80-5 %, see docs/RESULTS.md) at about 10 % more build time.
+  kDistance
+};
+
 struct McBuildOptions {
   /// Finest cells across the longest side of the mesh's bounding box (2..1000),
   /// or 0: chosen so that the full-resolution model has about as many
@@ -34,6 +46,8 @@ struct McBuildOptions {
   /// lacks (a cap over a scan's unseen bottom would be the largest error of
   /// every level); kCapped gives a closed (watertight) model.
   McHoles holes = McHoles::kOpen;
+  /// The priority metric; kArea by default, as the thesis and SPEC §5 define it.
+  McPriorityMetric metric = McPriorityMetric::kArea;
 };
 
 struct McBuildStats {

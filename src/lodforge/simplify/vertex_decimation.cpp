@@ -110,6 +110,72 @@ struct Fan {
   float d = 0;                         // criterion
 };
 
+/// A triangle (v, a, b) as seen from its vertex v (counter-clockwise), with
+/// (a - v) x (b - v): twice its area times its normal, and its error. Each vertex keeps the
+/// corners of its triangles, so that fans are read from one short array.
+struct Corner {
+  std::uint32_t t, a, b;
+  Vec3 cross;
+  float error;  // accumulated error of the triangle
+  Vec3 pa;      // position of a (positions never change: fans read no other vertex)
+};
+
+using Tri8 = std::array<std::uint8_t, 3>;
+
+/// The new triangles of a queued vertex's plan (small holes only), so that
+/// its removal need not re-triangulate: the fan has not changed since (else
+/// the vertex would have been re-evaluated), and the queue's triangulation is
+/// a function of the fan alone. Only existing edges can have appeared since.
+/// At most kMax triangles: each side has at most kMax + 2 < 16 vertices, so a
+/// polygon index takes 4 bits and the whole cache 16 bytes.
+class CachedTriangulation {
+ public:
+  static constexpr int kMax = 10;
+  int count() const { return sizes_ & 15; }
+  int side0() const { return sizes_ >> 4; }  // triangles of side 0
+  /// Keeps tris (side 0 first, side0 of them) if there are 1 .. kMax of them.
+  void store(const std::vector<Tri8>& tris, std::size_t side0) {
+    sizes_ = 0;
+    if (tris.empty() || tris.size() > kMax) return;
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (int e = 0; e < 3; ++e) {
+        int k = static_cast<int>(3 * i) + e;
+        if (k % 2 == 0) idx_[k / 2] = 0;
+        idx_[k / 2] |= static_cast<std::uint8_t>(tris[i][e] << 4 * (k % 2));
+      }
+    sizes_ = static_cast<std::uint8_t>(tris.size() | side0 << 4);
+  }
+  Tri8 tri(int i) const {
+    Tri8 t;
+    for (int e = 0; e < 3; ++e) t[e] = (idx_[(3 * i + e) / 2] >> 4 * ((3 * i + e) % 2)) & 15;
+    return t;
+  }
+
+ private:
+  std::uint8_t sizes_ = 0;  // count | side0 << 4; count 0: not cached
+  std::array<std::uint8_t, (3 * kMax + 1) / 2> idx_;
+};
+
+/// Everything a fan evaluation reads about its vertex, in one cache line (the
+/// neighbours of a removal are scattered: one miss each, not one per array).
+struct alignas(64) VertexState {
+  std::vector<Corner> corners;
+  Vec3 pos;                      // in normalised units (normalise_to_unit_box)
+  Keep keep = Keep::kCandidate;  // why it is still there
+  std::uint8_t locked = 0;       // used by a line segment
+  CachedTriangulation cache;     // valid while queued
+};
+static_assert(sizeof(VertexState) == 64);
+
+/// A triangle slot: its vertices, what it inherits, and whether it is in use.
+struct alignas(32) TriangleState {
+  Triangle v;                  // position vertices; v[0] == kNone: a free slot
+  Triangle a;                  // attribute vertices
+  std::uint32_t material = 0;  // 0 without materials
+  std::uint32_t origin = 0;    // input triangle
+  bool alive() const { return v[0] != kNone; }
+};
+
 /// A queued vertex. Removal order: smallest priority first, ties by index.
 struct HeapEntry {
   float d;
@@ -120,6 +186,8 @@ struct HeapEntry {
 /// 4-ary min-heap of vertices with their position in it, so that a vertex's
 /// priority is updated in place (the heap holds each candidate once, no stale
 /// entries): it pops the same order as a lazy heap with versioned entries.
+/// (The positions are an array of their own: a sift moves several entries,
+/// and their vertices' records are further apart than their positions.)
 class VertexHeap {
  public:
   void init(std::size_t vertices) { pos_.assign(vertices, kNone); }
@@ -189,16 +257,6 @@ class VertexHeap {
   std::vector<std::uint32_t> pos_;  // index in heap_, kNone if not queued
 };
 
-/// A triangle (v, a, b) as seen from its vertex v (counter-clockwise), with
-/// (a - v) x (b - v): twice its area times its normal, and its error. Each vertex keeps the
-/// corners of its triangles, so that fans are read from one short array.
-struct Corner {
-  std::uint32_t t, a, b;
-  Vec3 cross;
-  float error;  // accumulated error of the triangle
-  Vec3 pa;      // position of a (positions never change: fans read no pos_)
-};
-
 /// One polygon to re-triangulate: the whole loop, or one side of a feature line.
 struct Side {
   int m = 0;                                   // polygon vertices
@@ -212,19 +270,6 @@ struct Side {
   // normal, origin poly[0]): the split-plane tests are 2D orientation tests.
   std::array<float, kMaxLoop> x{}, y{};
   std::array<float, kMaxLoop> px{}, py{}, pz{};  // p, component-wise
-};
-
-using Tri8 = std::array<std::uint8_t, 3>;
-
-/// The new triangles of a queued vertex's plan (small holes only), so that
-/// its removal need not re-triangulate: the fan has not changed since (else
-/// the vertex would have been re-evaluated), and the queue's triangulation is
-/// a function of the fan alone. Only existing edges can have appeared since.
-struct CachedTriangulation {
-  static constexpr int kMax = 10;
-  std::uint8_t count = 0;  // 0: not cached
-  std::uint8_t side0 = 0;  // triangles of side 0
-  Tri8 tris[kMax];
 };
 
 /// A planned removal: the fan, its sides and their new triangles (polygon
@@ -254,14 +299,14 @@ class Decimator {
   SimplifyResult snapshot(StopReason reason, std::string detail) const;
 
  private:
-  /// Adds triangle t (tv_ set) to the corner lists of its vertices.
+  /// Adds triangle t (triangles_[t].v set) to the corner lists of its vertices.
   void link(std::uint32_t t, float error) {
-    const Triangle& f = tv_[t];
-    const Vec3 p[3] = {pos_[f[0]], pos_[f[1]], pos_[f[2]]};
+    const Triangle& f = triangles_[t].v;
+    const Vec3 p[3] = {vertices_[f[0]].pos, vertices_[f[1]].pos, vertices_[f[2]].pos};
     Vec3 c = cross(p[1] - p[0], p[2] - p[0]);
-    corners_[f[0]].push_back({t, f[1], f[2], c, error, p[1]});
-    corners_[f[1]].push_back({t, f[2], f[0], c, error, p[2]});
-    corners_[f[2]].push_back({t, f[0], f[1], c, error, p[0]});
+    vertices_[f[0]].corners.push_back({t, f[1], f[2], c, error, p[1]});
+    vertices_[f[1]].corners.push_back({t, f[2], f[0], c, error, p[2]});
+    vertices_[f[2]].corners.push_back({t, f[0], f[1], c, error, p[0]});
   }
   bool classify(std::uint32_t v, Fan& fan) const;
   bool criterion(std::uint32_t v, Fan& fan) const;
@@ -277,8 +322,8 @@ class Decimator {
   bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
                   bool final, bool check_edges = false, bool top = false) const;
   std::uint32_t attribute_vertex(std::uint32_t t, std::uint32_t v) const {
-    const auto& f = tv_[t];
-    return ta_[t][f[0] == v ? 0 : f[1] == v ? 1 : 2];
+    const TriangleState& f = triangles_[t];
+    return f.a[f.v[0] == v ? 0 : f.v[1] == v ? 1 : 2];
   }
 
   const TriangleMesh& input_;
@@ -292,29 +337,20 @@ class Decimator {
   std::vector<std::uint32_t> av_input_;
   std::vector<Segment> lines_;  // in attribute vertices
   // Position vertices (equal positions merged): the topology.
-  std::vector<Vec3> pos_;
-  std::vector<std::vector<Corner>> corners_;
-  std::vector<Keep> keep_;
-  std::vector<std::uint8_t> locked_;  // used by a line segment
-  std::vector<std::uint8_t> removed_;
+  std::vector<VertexState> vertices_;
 
   // Triangles.
-  std::vector<Triangle> tv_;  // position vertices
-  std::vector<Triangle> ta_;  // attribute vertices
-  std::vector<std::uint32_t> material_;
-  std::vector<std::uint32_t> origin_;  // input triangle
-  std::vector<std::uint8_t> alive_;
+  std::vector<TriangleState> triangles_;
 
   VertexHeap heap_;
   std::size_t live_triangles_ = 0;
   std::size_t live_vertices_ = 0;
-  // pos_ is in units of unit_ model units (normalise_to_unit_box); so are the
+  // Positions are in units of unit_ model units (normalise_to_unit_box); so are the
   // criteria, the accumulated errors and budget_ (the error budget).
   double unit_ = 1;
   float budget_ = 0;
   float max_error_ = 0;
-  Plan plan_;                               // scratch
-  std::vector<CachedTriangulation> cache_;  // per vertex, valid while queued
+  Plan plan_;  // scratch
 };
 
 Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& options)
@@ -329,44 +365,36 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
   TriangleMesh points;
   points.positions = std::move(w1.mesh.positions);
   WeldResult w2 = weld(points, {});
-  pos_ = std::move(w2.mesh.positions);
-  unit_ = normalise_to_unit_box(pos_);
+  unit_ = normalise_to_unit_box(w2.mesh.positions);
   budget_ = static_cast<float>(double(options.target.max_error) / unit_);
-  has_seams_ = pos_.size() != av_input_.size();
+  has_seams_ = w2.mesh.positions.size() != av_input_.size();
   has_materials_ = w1.mesh.has_materials();
   const std::vector<std::uint32_t>& pv = w2.remap;
 
-  std::size_t nv = pos_.size();
-  corners_.resize(nv);
+  std::size_t nv = w2.mesh.positions.size();
+  vertices_.resize(nv);
   heap_.init(nv);
-  cache_.resize(nv);
-  keep_.assign(nv, Keep::kCandidate);
-  locked_.assign(nv, 0);
-  removed_.assign(nv, 0);
-  for (const Segment& s : lines_) locked_[pv[s[0]]] = locked_[pv[s[1]]] = 1;
+  for (std::size_t v = 0; v < nv; ++v) vertices_[v].pos = w2.mesh.positions[v];
+  for (const Segment& s : lines_) vertices_[pv[s[0]]].locked = vertices_[pv[s[1]]].locked = 1;
 
   // Reserve the corner lists (with room for a few more after removals).
   std::vector<std::uint32_t> degree(nv, 0);
   for (const Triangle& a : w1.mesh.triangles)
     for (std::uint32_t i : a) ++degree[pv[i]];
-  for (std::size_t v = 0; v < nv; ++v) corners_[v].reserve(degree[v] + 4);
-  tv_.reserve(w1.mesh.triangles.size());
-  ta_.reserve(w1.mesh.triangles.size());
+  for (std::size_t v = 0; v < nv; ++v) vertices_[v].corners.reserve(degree[v] + 4);
+  triangles_.reserve(w1.mesh.triangles.size());
   for (std::size_t f = 0; f < w1.mesh.triangles.size(); ++f) {
     const Triangle& a = w1.mesh.triangles[f];
     Triangle p{pv[a[0]], pv[a[1]], pv[a[2]]};
     if (p[0] == p[1] || p[1] == p[2] || p[2] == p[0]) continue;  // degenerate after welding
-    auto t = static_cast<std::uint32_t>(tv_.size());
-    tv_.push_back(p);
-    ta_.push_back(a);
-    material_.push_back(w1.mesh.has_materials() ? w1.mesh.materials[f] : 0);
-    origin_.push_back(w1.face_origin[f]);
+    auto t = static_cast<std::uint32_t>(triangles_.size());
+    triangles_.push_back(
+        {p, a, w1.mesh.has_materials() ? w1.mesh.materials[f] : 0, w1.face_origin[f]});
     link(t, 0);
   }
-  alive_.assign(tv_.size(), 1);
-  live_triangles_ = tv_.size();
+  live_triangles_ = triangles_.size();
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (corners_[v].empty()) continue;
+    if (vertices_[v].corners.empty()) continue;
     ++live_vertices_;
     evaluate(v);
   }
@@ -388,9 +416,9 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   fan.error = 0;
   fan.why = Keep::kComplex;
   fan.attribute_feature = false;
-  const std::vector<Corner>& cs = corners_[v];
+  const std::vector<Corner>& cs = vertices_[v].corners;
   int n = static_cast<int>(cs.size());
-  if (locked_[v] || n == 0 || n > static_cast<int>(kMaxDecimationValence)) return false;
+  if (vertices_[v].locked || n == 0 || n > static_cast<int>(kMaxDecimationValence)) return false;
   std::array<std::uint32_t, kMaxLoop> src, dst;
   std::array<std::int8_t, kMaxLoop> succ;  // j with src[j] == dst[k], or -1
   const Corner* c = cs.data();
@@ -450,9 +478,10 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     start = k;
   }
   fan.closed = start < 0;
+  // Walk the fan on the corners themselves (src/dst only served the matching).
   int cur = fan.closed ? 0 : start;
   for (int s = 0; s < n; ++s) {
-    fan.loop[s] = src[cur];
+    fan.loop[s] = c[cur].a;
     fan.tris[s] = c[cur].t;
     fan.cross[s] = c[cur].cross;
     fan.pos[s] = c[cur].pa;
@@ -460,15 +489,16 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     fan.error = std::max(fan.error, c[cur].error);
     if (s + 1 == n) break;
     int next = succ[cur];
-    if (next < 0 || (fan.closed && dst[cur] == fan.loop[0])) return false;  // several fans
+    if (next < 0 || (fan.closed && c[cur].b == fan.loop[0])) return false;  // several fans
     cur = next;
   }
-  if (fan.closed && dst[cur] != fan.loop[0]) return false;
+  const std::uint32_t last = c[cur].b;  // target of the last triangle
+  if (fan.closed && last != fan.loop[0]) return false;
   fan.n = n;
   fan.loop_size = fan.closed ? n : n + 1;
   if (!fan.closed) {
-    fan.loop[n] = dst[cur];
-    fan.pos[n] = pos_[dst[cur]];
+    fan.loop[n] = last;
+    fan.pos[n] = vertices_[last].pos;
   }
   if (!fan.closed && n < 2) return false;
 
@@ -478,7 +508,7 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     int k1 = k == 0 ? n - 1 : k - 1;
     std::uint32_t t1 = fan.tris[k1], t2 = fan.tris[k];
     bool attribute =
-        (has_materials_ && material_[t1] != material_[t2]) ||
+        (has_materials_ && triangles_[t1].material != triangles_[t2].material) ||
         (has_seams_ && (attribute_vertex(t1, v) != attribute_vertex(t2, v) ||
                         attribute_vertex(t1, fan.loop[k]) != attribute_vertex(t2, fan.loop[k])));
     bool feature = attribute;
@@ -527,7 +557,7 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
   bool feature = fan.cls == VertexClass::kInteriorEdge || fan.cls == VertexClass::kCorner;
   if (feature && options_.preserve_feature_edges) return false;
   if (fan.cls == VertexClass::kCorner && fan.attribute_feature) return false;
-  const Vec3& p = pos_[v];
+  const Vec3& p = vertices_[v].pos;
   float d = -1;
   if (fan.cls == VertexClass::kBoundary) {
     d = point_line_distance(p, fan.pos[0], fan.pos[fan.n]);
@@ -558,23 +588,17 @@ bool Decimator::criterion(std::uint32_t v, Fan& fan) const {
 
 void Decimator::evaluate(std::uint32_t v) {
   Keep k = plan(v, plan_, false);
-  keep_[v] = k;
+  vertices_[v].keep = k;
   if (k == Keep::kCandidate) {
     heap_.set(v, plan_.priority);
-    CachedTriangulation& c = cache_[v];
-    c.count = 0;
-    if (plan_.tris.size() <= CachedTriangulation::kMax) {
-      c.count = static_cast<std::uint8_t>(plan_.tris.size());
-      c.side0 = static_cast<std::uint8_t>(plan_.side_end[0]);
-      std::copy(plan_.tris.begin(), plan_.tris.end(), c.tris);
-    }
+    vertices_[v].cache.store(plan_.tris, plan_.side_end[0]);
   } else {
     heap_.erase(v);
   }
 }
 
 bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
-  for (const Corner& c : corners_[a])
+  for (const Corner& c : vertices_[a].corners)
     if (c.a == b || c.b == b) return true;
   return false;
 }
@@ -709,14 +733,12 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
     // The removal reads the neighbours' corner lists (existing edges, then
     // unlinking and re-evaluating) and the fan's triangles: fetch them all
     // at once instead of one miss after the other.
-    for (int k = 0; k < fan.loop_size; ++k) __builtin_prefetch(&corners_[fan.loop[k]]);
+    for (int k = 0; k < fan.loop_size; ++k) __builtin_prefetch(&vertices_[fan.loop[k]]);
     for (int k = 0; k < fan.n; ++k) {
-      __builtin_prefetch(&tv_[fan.tris[k]]);
-      __builtin_prefetch(&ta_[fan.tris[k]]);
-      __builtin_prefetch(&origin_[fan.tris[k]]);
+      __builtin_prefetch(&triangles_[fan.tris[k]]);
     }
     for (int k = 0; k < fan.loop_size; ++k) {
-      const Corner* c = corners_[fan.loop[k]].data();
+      const Corner* c = vertices_[fan.loop[k]].corners.data();
       __builtin_prefetch(c);
       __builtin_prefetch(c + 3);
       __builtin_prefetch(c + 6);
@@ -757,7 +779,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
     fill(sides[0], 0, n, n);
     if (n == 3) {
       // The only new triangle uses three existing edges: it must not exist yet.
-      for (const Corner& c : corners_[fan.loop[0]])
+      for (const Corner& c : vertices_[fan.loop[0]].corners)
         if ((c.a == fan.loop[1] && c.b == fan.loop[2]) ||
             (c.a == fan.loop[2] && c.b == fan.loop[1]))
           return Keep::kExistingEdge;
@@ -765,19 +787,19 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
   }
 
   plan.tris.clear();
-  if (cached && cache_[v].count > 0) {
+  if (cached && vertices_[v].cache.count() > 0) {
     // The queued plan's triangles, if none of their split lines (the edges
     // that are neither polygon edges nor the side's closing edge, checked
     // above) has become a mesh edge: then the final plan finds them too.
-    const CachedTriangulation& c = cache_[v];
-    plan.tris.assign(c.tris, c.tris + c.count);
-    plan.side_end[0] = c.side0;
-    plan.side_end[1] = c.count;
+    const CachedTriangulation& c = vertices_[v].cache;
+    for (int i = 0; i < c.count(); ++i) plan.tris.push_back(c.tri(i));
+    plan.side_end[0] = static_cast<std::size_t>(c.side0());
+    plan.side_end[1] = plan.tris.size();
     bool clear = true;
-    for (int i = 0; i < c.count && clear; ++i) {
-      const Side& side = sides[i < c.side0 ? 0 : 1];
+    for (int i = 0; i < c.count() && clear; ++i) {
+      const Side& side = sides[i < c.side0() ? 0 : 1];
       for (int e = 0; e < 3 && clear; ++e) {
-        int a = c.tris[i][e], b = c.tris[i][(e + 1) % 3];
+        int a = plan.tris[i][e], b = plan.tris[i][(e + 1) % 3];
         if (a > b) std::swap(a, b);
         if (b - a == 1 || (a == 0 && b == side.m - 1)) continue;
         clear = !edge_exists(side.poly[a], side.poly[b]);
@@ -787,7 +809,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
     plan.tris.clear();
   }
   float volume = 0;
-  const Vec3 pv = pos_[v];
+  const Vec3 pv = vertices_[v].pos;
   for (int s = 0; s < nsides; ++s) {
     Keep k = triangulate_side(sides[s], plan.tris, final);
     if (k != Keep::kCandidate) return k;
@@ -834,25 +856,24 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
       inherit[s].attribute[j] =
           attribute_vertex(side.tris[j < side.ntris ? j : j - 1], side.poly[j]);
     for (int j = 0; j < side.ntris; ++j) {
-      inherit[s].material[j] = material_[side.tris[j]];
-      inherit[s].origin[j] = origin_[side.tris[j]];
+      inherit[s].material[j] = triangles_[side.tris[j]].material;
+      inherit[s].origin[j] = triangles_[side.tris[j]].origin;
     }
   }
 
   // Apply: kill the fan, write the new triangles into its slots.
   for (int k = 0; k < n; ++k) {
     std::uint32_t t = fan.tris[k];
-    alive_[t] = 0;
+    triangles_[t].v[0] = kNone;
     for (std::uint32_t x : {fan.loop[k], fan.loop[(k + 1) % fan.loop_size]}) {
-      auto& list = corners_[x];
+      auto& list = vertices_[x].corners;
       auto it = std::find_if(list.begin(), list.end(), [t](const Corner& c) { return c.t == t; });
       *it = list.back();
       list.pop_back();
     }
   }
-  corners_[v].clear();
-  removed_[v] = 1;
-  keep_[v] = Keep::kCandidate;
+  vertices_[v].corners.clear();
+  vertices_[v].keep = Keep::kCandidate;
   std::size_t slot = 0;
   for (int s = 0; s < nsides; ++s) {
     const Side& side = sides[s];
@@ -869,11 +890,10 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
           break;
         }
       }
-      tv_[t] = {side.poly[c[0]], side.poly[c[1]], side.poly[c[2]]};
-      ta_[t] = {in.attribute[c[0]], in.attribute[c[1]], in.attribute[c[2]]};
-      material_[t] = in.material[from];
-      origin_[t] = in.origin[from];
-      alive_[t] = 1;
+      triangles_[t] = {{side.poly[c[0]], side.poly[c[1]], side.poly[c[2]]},
+                       {in.attribute[c[0]], in.attribute[c[1]], in.attribute[c[2]]},
+                       in.material[from],
+                       in.origin[from]};
       link(t, accumulated);
     }
   }
@@ -894,32 +914,30 @@ bool Decimator::run(std::size_t triangles, std::size_t vertices) {
     // The next vertex out is likely the one below v now: start fetching its
     // corner list (header now, records after the plan), used by its plan.
     std::uint32_t next = heap_.empty() ? v : heap_.top();
-    __builtin_prefetch(&corners_[next]);
+    __builtin_prefetch(&vertices_[next]);
     Keep k = plan(v, plan_, true, true);
-    const Corner* nc = corners_[next].data();
+    const Corner* nc = vertices_[next].corners.data();
     __builtin_prefetch(nc);
     __builtin_prefetch(nc + 3);
     __builtin_prefetch(nc + 6);
-    __builtin_prefetch(&cache_[next]);
     if (k == Keep::kCandidate)
       apply(v, plan_);
     else
-      keep_[v] = k;
+      vertices_[v].keep = k;
   }
   return true;
 }
 
 StopReason Decimator::stuck_reason() const {
-  for (std::uint32_t v = 0; v < keep_.size(); ++v)
-    if (!removed_[v] && !corners_[v].empty() && keep_[v] == Keep::kErrorBudget)
-      return StopReason::kErrorBudgetReached;
+  for (const VertexState& v : vertices_)
+    if (!v.corners.empty() && v.keep == Keep::kErrorBudget) return StopReason::kErrorBudgetReached;
   return StopReason::kCannotSimplify;
 }
 
 std::string Decimator::stuck_detail() const {
   std::array<std::size_t, static_cast<int>(Keep::kCount)> count{};
-  for (std::uint32_t v = 0; v < keep_.size(); ++v)
-    if (!removed_[v] && !corners_[v].empty()) ++count[static_cast<int>(keep_[v])];
+  for (const VertexState& v : vertices_)
+    if (!v.corners.empty()) ++count[static_cast<int>(v.keep)];
   static constexpr const char* kText[] = {
       "candidates",
       "interior-edge or corner vertices (feature edges preserved)",
@@ -947,9 +965,9 @@ SimplifyResult Decimator::snapshot(StopReason reason, std::string detail) const 
   r.stop_detail = std::move(detail);
   r.error = static_cast<float>(double(max_error_) * unit_);  // model units
   std::vector<std::uint32_t> id(av_input_.size(), kNone);
-  for (std::size_t t = 0; t < tv_.size(); ++t)
-    if (alive_[t])
-      for (std::uint32_t a : ta_[t]) id[a] = 0;
+  for (const TriangleState& f : triangles_)
+    if (f.alive())
+      for (std::uint32_t a : f.a) id[a] = 0;
   for (const Segment& s : lines_) id[s[0]] = id[s[1]] = 0;
   TriangleMesh& m = r.mesh;
   for (std::uint32_t a = 0; a < id.size(); ++a) {
@@ -964,11 +982,11 @@ SimplifyResult Decimator::snapshot(StopReason reason, std::string detail) const 
   }
   m.triangles.reserve(live_triangles_);
   r.face_map.reserve(live_triangles_);
-  for (std::size_t t = 0; t < tv_.size(); ++t) {
-    if (!alive_[t]) continue;
-    m.triangles.push_back({id[ta_[t][0]], id[ta_[t][1]], id[ta_[t][2]]});
-    r.face_map.push_back(origin_[t]);
-    if (input_.has_materials()) m.materials.push_back(material_[t]);
+  for (const TriangleState& f : triangles_) {
+    if (!f.alive()) continue;
+    m.triangles.push_back({id[f.a[0]], id[f.a[1]], id[f.a[2]]});
+    r.face_map.push_back(f.origin);
+    if (input_.has_materials()) m.materials.push_back(f.material);
   }
   for (const Segment& s : lines_) m.lines.push_back({id[s[0]], id[s[1]]});
   return r;

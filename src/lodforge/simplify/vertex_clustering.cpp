@@ -601,14 +601,44 @@ struct LevelContext {
   Weights weights;
 };
 
-/// Four floats, one per candidate: the unit of the scoring loops (SSE where
-/// the target has it; the library sqrt may set errno, which keeps compilers
-/// from vectorising it in plain loops).
+/// Four floats, one per triangle or per candidate: the unit of the scoring
+/// loops (SSE where the target has it; the library sqrt may set errno, which
+/// keeps compilers from vectorising it in plain loops). A mask has all bits
+/// of a lane set or none.
 struct F4 {
 #if defined(__SSE2__)
   __m128 v;
   static F4 load(const float* p) {
     return {_mm_loadu_ps(p)};
+  }
+  static F4 set(float a, float b, float c, float d) {
+    return {_mm_setr_ps(a, b, c, d)};
+  }
+  /// The mask of the lanes whose integer equals `value`.
+  static F4 lanes_equal(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                        std::uint32_t value) {
+    const __m128i x = _mm_setr_epi32(int(a), int(b), int(c), int(d));
+    return {_mm_castsi128_ps(_mm_cmpeq_epi32(x, _mm_set1_epi32(int(value))))};
+  }
+  /// The mask of the first n lanes.
+  static F4 lanes_below(std::uint32_t n) {
+    return {_mm_castsi128_ps(_mm_cmplt_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(int(n))))};
+  }
+  /// The lanes set in b but not in a.
+  friend F4 and_not(F4 a, F4 b) {
+    return {_mm_andnot_ps(a.v, b.v)};
+  }
+  /// a where the mask is set, else b.
+  friend F4 select(F4 mask, F4 a, F4 b) {
+    return {_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v))};
+  }
+  /// a where the mask is set, else +0.
+  friend F4 operator&(F4 a, F4 mask) {
+    return {_mm_and_ps(a.v, mask.v)};
+  }
+  /// Rows to columns.
+  friend void transpose(F4& a, F4& b, F4& c, F4& d) {
+    _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v);
   }
   static F4 splat(float x) {
     return {_mm_set1_ps(x)};
@@ -641,6 +671,34 @@ struct F4 {
   }
   static F4 load(const float* p) {
     return map([&](int l) { return p[l]; });
+  }
+  static F4 set(float a, float b, float c, float d) {
+    return {{a, b, c, d}};
+  }
+  static F4 lanes_equal(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                        std::uint32_t value) {
+    const std::uint32_t x[4] = {a, b, c, d};
+    return map([&](int l) { return std::bit_cast<float>(x[l] == value ? ~0u : 0u); });
+  }
+  static F4 lanes_below(std::uint32_t n) {
+    return map([&](int l) { return std::bit_cast<float>(std::uint32_t(l) < n ? ~0u : 0u); });
+  }
+  friend F4 and_not(F4 a, F4 b) {
+    return map([&](int l) {
+      return std::bit_cast<float>(~std::bit_cast<std::uint32_t>(a.v[l]) &
+                                  std::bit_cast<std::uint32_t>(b.v[l]));
+    });
+  }
+  friend F4 select(F4 mask, F4 a, F4 b) {
+    return map([&](int l) { return std::bit_cast<std::uint32_t>(mask.v[l]) ? a.v[l] : b.v[l]; });
+  }
+  friend F4 operator&(F4 a, F4 mask) {
+    return map([&](int l) { return std::bit_cast<std::uint32_t>(mask.v[l]) ? a.v[l] : 0.0f; });
+  }
+  friend void transpose(F4& a, F4& b, F4& c, F4& d) {
+    const F4 r[4] = {a, b, c, d};
+    F4* out[4] = {&a, &b, &c, &d};
+    for (int i = 0; i < 4; ++i) *out[i] = map([&](int l) { return r[l].v[i]; });
   }
   static F4 splat(float x) {
     return map([&](int) { return x; });
@@ -681,53 +739,104 @@ struct Scratch {
   std::array<std::array<double, 4>, kMaxCandidates + 1> score;
   std::size_t m = 0;                                        ///< contenders
   std::array<std::uint32_t, kMaxCandidates + 1> contender;  ///< candidates that can still win
-  /// The contenders relative to the cell's mean, padded to a multiple of
-  /// kLanes, and their area and volume sums.
+  /// The contenders relative to the cell's mean and their area and volume
+  /// sums (padded to a multiple of kLanes).
   static constexpr std::size_t kPadded = (kMaxCandidates + 1 + kLanes - 1) / kLanes * kLanes;
   std::array<float, kPadded> cx, cy, cz, area, volume;
 };
 
-/// Sums the area and volume heuristics of the first n (a multiple of kLanes)
-/// padded contenders over the triangles around cell `cell` of the previous
-/// level, straight from the triangles (no intermediate arrays): for each
-/// triangle (a, b, c), relative to `origin`, with n = (b - a) x (c - a) (twice
-/// the area normal), 6 x volume(a, b, c, x) = |n . a - n . x|; for each with
-/// one corner inside the cell and the two outside p, r (in orientation
-/// order), moving the inside corner to x gives area 0.5 |p x r - x x (r - p)|
-/// (triangles with two or three corners inside collapse). Returns the area of
+/// Sums the area and volume heuristics of the first m contenders (relative
+/// to `origin` in s.cx, s.cy, s.cz) over the triangles around cell `cell` of
+/// the previous level into s.area and s.volume, straight from the triangles
+/// (no intermediate arrays): for each triangle (a, b, c), relative to
+/// `origin`, with n = (b - a) x (c - a) (twice the area normal),
+/// 6 x volume(a, b, c, x) = |n . a - n . x|; for each with one corner inside
+/// the cell and the two outside p, r, moving the inside corner to x gives
+/// area 0.5 |p x r - x x (r - p)| (triangles with two or three corners inside
+/// collapse; swapping p and r only flips signs, exactly). Returns the area of
 /// the triangles before the move.
+///
+/// Four triangles at a time, one per lane: what depends on the triangle alone
+/// (its corners, normal, p x r) is computed once per four triangles, not once
+/// per triangle and group of four candidates. The sums stay in triangle order
+/// per candidate (four candidates' sums side by side, the four triangles'
+/// values transposed into them) in single precision, as one triangle per
+/// step would give them; lanes past the last triangle and collapsing
+/// triangles add +0.
+template <bool kArea, bool kVolume>
 double score_faces(const LevelContext& ctx, std::uint32_t cell, const Vec3& origin, Scratch& s,
-                   std::size_t n, bool area, bool volume) {
+                   std::size_t m) {
   const Cut& prev = ctx.prev;
-  const std::uint32_t first = ctx.faces->start[cell], last = ctx.faces->start[cell + 1];
-  assert(last > first);
+  const CellFaces& faces = *ctx.faces;
+  const std::uint32_t first = faces.start[cell], last = faces.start[cell + 1];
+  assert(last > first && m > 0);
+  const std::size_t padded = (m + kLanes - 1) / kLanes * kLanes;
+  std::fill_n(s.area.begin(), padded, 0.0f);
+  std::fill_n(s.volume.begin(), padded, 0.0f);
   double area_before = 0;
-  for (std::size_t g = 0; g < n; g += kLanes) {
-    const F4 x = F4::load(&s.cx[g]), y = F4::load(&s.cy[g]), z = F4::load(&s.cz[g]);
-    F4 area_sum = F4::splat(0), volume_sum = F4::splat(0);
-    for (std::uint32_t k = first; k < last; ++k) {
-      const std::uint32_t f = ctx.faces->entry[k] >> 2, inside = ctx.faces->entry[k] & 3;
-      const Triangle& t = prev.tris[f];
-      const Vec3 a = prev.pos[t[0]] - origin, b = prev.pos[t[1]] - origin,
-                 c = prev.pos[t[2]] - origin;
-      const Vec3 nrm = cross(b - a, c - a);
-      if (g == 0) area_before += 0.5 * double(sqrt_nonnegative(dot(nrm, nrm)));
-      if (volume)
-        volume_sum =
-            volume_sum + abs(F4::splat(dot(nrm, a)) -
-                             (F4::splat(nrm.x) * x + F4::splat(nrm.y) * y + F4::splat(nrm.z) * z));
-      if (!area || inside == 3) continue;
-      const Vec3& p = inside == 0 ? b : a;
-      const Vec3& r = inside == 2 ? b : c;
-      const Vec3 pr = cross(p, r), d = r - p;
-      const F4 dx = F4::splat(d.x), dy = F4::splat(d.y), dz = F4::splat(d.z);
-      const F4 ax = F4::splat(pr.x) - (y * dz - z * dy);
-      const F4 ay = F4::splat(pr.y) - (z * dx - x * dz);
-      const F4 az = F4::splat(pr.z) - (x * dy - y * dx);
-      area_sum = area_sum + sqrt(ax * ax + ay * ay + az * az);
+  for (std::uint32_t k0 = first; k0 < last; k0 += kLanes) {
+    // The block's triangles, one per lane (the last one repeated past the end).
+    const std::uint32_t lanes = std::min<std::uint32_t>(kLanes, last - k0);
+    std::uint32_t code[kLanes];
+    const Triangle* t[kLanes];
+    for (std::uint32_t l = 0; l < kLanes; ++l) {
+      code[l] = faces.entry[k0 + std::min(l, lanes - 1)];
+      t[l] = &prev.tris[code[l] >> 2];
     }
-    area_sum.store(&s.area[g]);
-    volume_sum.store(&s.volume[g]);
+    auto corner = [&](int i, int axis) {
+      return F4::set(prev.pos[(*t[0])[i]][axis], prev.pos[(*t[1])[i]][axis],
+                     prev.pos[(*t[2])[i]][axis], prev.pos[(*t[3])[i]][axis]) -
+             F4::splat(origin[axis]);
+    };
+    const F4 ax = corner(0, 0), ay = corner(0, 1), az = corner(0, 2);
+    const F4 bx = corner(1, 0), by = corner(1, 1), bz = corner(1, 2);
+    const F4 cx = corner(2, 0), cy = corner(2, 1), cz = corner(2, 2);
+    const F4 ux = bx - ax, uy = by - ay, uz = bz - az;
+    const F4 wx = cx - ax, wy = cy - ay, wz = cz - az;
+    const F4 nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    alignas(16) float length[kLanes];
+    sqrt(nx * nx + ny * ny + nz * nz).store(length);
+    for (std::uint32_t l = 0; l < lanes; ++l) area_before += 0.5 * double(length[l]);
+    const F4 in_block = F4::lanes_below(lanes);
+    const F4 d = nx * ax + ny * ay + nz * az;
+    // The corners outside the cell (which corner is inside: code & 3; 3 when
+    // the triangle collapses).
+    const auto inside = [&](std::uint32_t which) {
+      return F4::lanes_equal(code[0] & 3, code[1] & 3, code[2] & 3, code[3] & 3, which);
+    };
+    const F4 first_inside = inside(0), third_inside = inside(2);
+    const F4 keep = and_not(inside(3), in_block);
+    const F4 px = select(first_inside, bx, ax), py = select(first_inside, by, ay),
+             pz = select(first_inside, bz, az);
+    const F4 rx = select(third_inside, bx, cx), ry = select(third_inside, by, cy),
+             rz = select(third_inside, bz, cz);
+    const F4 qx = py * rz - pz * ry, qy = pz * rx - px * rz, qz = px * ry - py * rx;  // p x r
+    const F4 dx = rx - px, dy = ry - py, dz = rz - pz;
+    for (std::size_t g = 0; g < padded; g += kLanes) {
+      // Rows: contenders g.. (past m: zeros, never read); columns: triangles.
+      F4 volume[kLanes] = {F4::splat(0), F4::splat(0), F4::splat(0), F4::splat(0)};
+      F4 area[kLanes] = {F4::splat(0), F4::splat(0), F4::splat(0), F4::splat(0)};
+      const std::size_t rows = std::min(kLanes, m - g);
+      for (std::size_t j = 0; j < rows; ++j) {
+        const F4 x = F4::splat(s.cx[g + j]), y = F4::splat(s.cy[g + j]), z = F4::splat(s.cz[g + j]);
+        if (kVolume) volume[j] = abs(d - (nx * x + ny * y + nz * z)) & in_block;
+        if (kArea) {
+          const F4 ex = qx - (y * dz - z * dy);
+          const F4 ey = qy - (z * dx - x * dz);
+          const F4 ez = qz - (x * dy - y * dx);
+          area[j] = sqrt(ex * ex + ey * ey + ez * ez) & keep;
+        }
+      }
+      if (kVolume) {
+        transpose(volume[0], volume[1], volume[2], volume[3]);
+        (F4::load(&s.volume[g]) + volume[0] + volume[1] + volume[2] + volume[3])
+            .store(&s.volume[g]);
+      }
+      if (kArea) {
+        transpose(area[0], area[1], area[2], area[3]);
+        (F4::load(&s.area[g]) + area[0] + area[1] + area[2] + area[3]).store(&s.area[g]);
+      }
+    }
   }
   return area_before;
 }
@@ -845,13 +954,14 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
   const std::size_t m = s.m;
   const bool measure = ctx.faces != nullptr && (use.area > 0 || use.volume > 0);
   if (measure && m > 1) {
-    const std::size_t padded = (m + kLanes - 1) / kLanes * kLanes;
-    for (std::size_t k = 0; k < padded; ++k) {
-      const Vec3 r = s.candidate[s.contender[std::min(k, m - 1)]] - origin;
+    for (std::size_t k = 0; k < m; ++k) {
+      const Vec3 r = s.candidate[s.contender[k]] - origin;
       s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
     }
     const double area_before =
-        score_faces(ctx, cell, origin, s, padded, use.area > 0, use.volume > 0);
+        use.area > 0 ? use.volume > 0 ? score_faces<true, true>(ctx, cell, origin, s, m)
+                                      : score_faces<true, false>(ctx, cell, origin, s, m)
+                     : score_faces<false, true>(ctx, cell, origin, s, m);
     for (std::size_t c = 0; c < m; ++c) {
       auto& h = s.score[s.contender[c]];
       if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[c]) - area_before);

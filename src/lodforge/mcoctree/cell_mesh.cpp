@@ -51,16 +51,16 @@ std::array<SlotChildren, kSlotCount> make_slot_children() {
   return out;
 }
 
-const std::array<SlotChildren, kSlotCount>& slot_children() {
-  static const auto t = make_slot_children();
-  return t;
-}
+// At load time rather than on first use: slot_vertex is called for every
+// slot of every node the build looks at, and a guarded static costs a check
+// per call.
+const std::array<SlotChildren, kSlotCount> kSlotChildren = make_slot_children();
 
 }  // namespace
 
 std::uint32_t slot_vertex(const McOctree& tree, const McNode& n, int slot, std::uint16_t halved) {
   if (slot < 24 && !(halved >> (slot / 2) & 1)) return n.edge_vertex[slot / 2];
-  const SlotChildren& sc = slot_children()[slot];
+  const SlotChildren& sc = kSlotChildren[slot];
   for (int i = 0; i < sc.count; ++i) {
     std::uint32_t c = n.child(sc.c[i].octant);
     if (c != McNode::kNone) return tree.nodes[c].edge_vertex[sc.c[i].edge];

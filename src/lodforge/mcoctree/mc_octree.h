@@ -45,9 +45,17 @@ struct McNode {
   /// Index of the child in octant o, or kNone.
   std::uint32_t child(int o) const {
     if (!(child_mask >> o & 1)) return kNone;
-    return first_child +
-           static_cast<std::uint32_t>(__builtin_popcount(child_mask & ((1u << o) - 1)));
+    return first_child + kBitCount[child_mask & ((1u << o) - 1)];
   }
+
+ private:
+  // Set bits of each byte: __builtin_popcount is a library call on the
+  // baseline x86-64 (no POPCNT), and child() is in every inner loop.
+  static constexpr std::array<std::uint8_t, 256> kBitCount = [] {
+    std::array<std::uint8_t, 256> n{};
+    for (int b = 1; b < 256; ++b) n[b] = static_cast<std::uint8_t>(n[b >> 1] + (b & 1));
+    return n;
+  }();
 };
 
 /// A packed RGB colour.

@@ -555,35 +555,41 @@ struct CellFaces {
   void build(std::span<const Triangle> mapped, std::span<const char> wanted) {
     const std::size_t cells = wanted.size();
     start.assign(cells + 1, 0);
-    struct Corners {
-      std::uint32_t cell[3], code[3], add[3];
-    };
-    auto corners = [&](std::size_t f) {
-      const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
-      const std::uint32_t ab = a == b, bc = b == c, ac = a == c;
-      const auto g = static_cast<std::uint32_t>(4 * f);
-      return Corners{
-          {a, b, c},
-          {g + ((ab | ac) ? 3u : 0u), g + ((ab | bc) ? 3u : 1u), g + ((ac | bc) ? 3u : 2u)},
-          {std::uint32_t(wanted[a] != 0), (1 - ab) & std::uint32_t(wanted[b] != 0),
-           (1 - ac) & (1 - bc) & std::uint32_t(wanted[c] != 0)}};
+    // Whether each corner starts an entry: its cell is wanted and no earlier
+    // corner of the triangle is in it (0 or 1, for adding).
+    auto adds = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      const std::uint32_t ab = a != b, ac = a != c, bc = b != c;
+      return std::array<std::uint32_t, 3>{std::uint32_t(wanted[a]), ab & std::uint32_t(wanted[b]),
+                                          ac & bc & std::uint32_t(wanted[c])};
     };
     // Count into start[cell + 1], turn the counts into starts, fill with
     // start[cell]++ (which leaves the starts shifted down by one cell) and
     // shift them back. A corner that adds nothing writes to a spare last slot.
-    for (std::size_t f = 0; f < mapped.size(); ++f) {
-      const Corners k = corners(f);
-      for (int i = 0; i < 3; ++i) start[k.cell[i] + 1] += k.add[i];
+    std::uint32_t* count = start.data() + 1;
+    for (const Triangle& t : mapped) {
+      const auto add = adds(t[0], t[1], t[2]);
+      count[t[0]] += add[0];
+      count[t[1]] += add[1];
+      count[t[2]] += add[2];
     }
     for (std::size_t j = 0; j < cells; ++j) start[j + 1] += start[j];
     const std::uint32_t spare = start[cells];
     entry.resize(spare + 1);
+    std::uint32_t* next = start.data();
+    std::uint32_t* out = entry.data();
     for (std::size_t f = 0; f < mapped.size(); ++f) {
-      const Corners k = corners(f);
+      const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
+      const auto add = adds(a, b, c);
+      // The inside corner's index, or 3 when another corner shares the cell.
+      const auto g = static_cast<std::uint32_t>(4 * f);
+      const std::uint32_t code[3] = {g + (a == b || a == c ? 3u : 0u),
+                                     g + (a == b || b == c ? 3u : 1u),
+                                     g + (a == c || b == c ? 3u : 2u)};
+      const std::uint32_t cell[3] = {a, b, c};
       for (int i = 0; i < 3; ++i) {
-        std::uint32_t& next = start[k.cell[i]];
-        entry[k.add[i] ? next : spare] = k.code[i];
-        next += k.add[i];
+        const std::uint32_t at = next[cell[i]];
+        out[add[i] ? at : spare] = code[i];
+        next[cell[i]] = at + add[i];
       }
     }
     entry.pop_back();
@@ -1105,10 +1111,13 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   order.reserve(nv);
   for (std::size_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
+    // The offset from the box's corner is >= 0 (the rounding of an exact
+    // difference >= 0), so truncation is the floor: no floor emulation
+    // (baseline x86-64 has no rounding instruction).
     std::uint64_t c = 0;
     for (int a = 0; a < 3; ++a) {
-      double q = std::floor((double(mesh.positions[v][a]) - octree.lo[a]) * scale);
-      auto qi = static_cast<std::uint32_t>(std::clamp(q, 0.0, double(max_q)));
+      const double q = (double(mesh.positions[v][a]) - octree.lo[a]) * scale;
+      const auto qi = static_cast<std::uint32_t>(std::min(q, double(max_q)));
       c |= morton_spread(qi) << (2 - a);
     }
     order.push_back({c, static_cast<std::uint32_t>(v)});

@@ -80,12 +80,17 @@ constexpr float kHiddenDetail = 0.2f;  // see Builder::number
 // Exact closest points for the few queries the triangle scan leaves (an
 // open mesh's repairs, hole tests and edge points by a rim: a few thousand on
 // the bunny, many cells away from the surface): a bounding volume hierarchy
-// built the cheap way, triangles in Morton order of their centroids, leaves
-// of kLeaf consecutive ones, a complete binary tree over the leaves whose
-// boxes are merged bottom-up. Its queries visit a few more triangles than a
-// surface-area-heuristic tree's, but it is built in a small fraction of the
-// time (that build took ~20 % of the bunny's). Among triangles at the same
-// distance the lowest index wins (the answer does not depend on the hint).
+// built the cheap way (Lauterbach et al. 2009, "LBVH"): triangles in Morton
+// order of their centroids, each node split where the highest bit of the
+// Morton code in which its triangles differ changes, so that a node's
+// triangles lie in one octree cell of that code and its children in two
+// halves of it; leaves of at most kLeaf triangles. Its queries visit a few
+// more nodes than a surface-area-heuristic tree's, but it is built in a small
+// fraction of the time (that build took ~20 % of the bunny's). (A complete
+// binary tree over the Morton order, cut at fixed counts rather than at cell
+// boundaries, had boxes spanning distant parts of the mesh: its queries
+// visited about twice the nodes.) Among triangles at the same distance the lowest
+// index wins (the answer depends neither on the tree nor on the hint).
 class TriangleTree {
  public:
   explicit TriangleTree(const TriangleMesh& m) : m_(m) {
@@ -106,26 +111,17 @@ class TriangleTree {
     }
     std::sort(keyed.begin(), keyed.end());
     order_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(keyed[i]);
-    const std::size_t leaves = (n + kLeaf - 1) / kLeaf;
-    first_leaf_ = 1;
-    while (first_leaf_ < leaves) first_leaf_ *= 2;
-    lo_.assign(2 * first_leaf_, Vec3{INFINITY, INFINITY, INFINITY});
-    hi_.assign(2 * first_leaf_, Vec3{-INFINITY, -INFINITY, -INFINITY});
     tri_lo_.resize(n);
     tri_hi_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
+      order_[i] = static_cast<std::uint32_t>(keyed[i]);
       const auto& f = m.triangles[order_[i]];
       tri_lo_[i] = min(P[f[0]], min(P[f[1]], P[f[2]]));
       tri_hi_[i] = max(P[f[0]], max(P[f[1]], P[f[2]]));
-      Vec3& lo = lo_[first_leaf_ + i / kLeaf];
-      Vec3& hi = hi_[first_leaf_ + i / kLeaf];
-      lo = min(lo, tri_lo_[i]), hi = max(hi, tri_hi_[i]);
     }
-    for (std::size_t i = first_leaf_; i-- > 1;) {
-      lo_[i] = min(lo_[2 * i], lo_[2 * i + 1]);
-      hi_[i] = max(hi_[2 * i], hi_[2 * i + 1]);
-    }
+    nodes_.reserve(2 * (n / kLeaf + 1));
+    nodes_.emplace_back();
+    build(0, 0, static_cast<std::uint32_t>(n), keyed);
   }
 
   ClosestPoint closest_point(const Vec3& p, std::uint32_t hint = ClosestPoint::kNone) const {
@@ -147,24 +143,24 @@ class TriangleTree {
       }
       return d2;
     };
-    auto box_d2 = [&](std::size_t i) { return distance2(lo_[i], hi_[i]); };
+    auto box_d2 = [&](std::uint32_t i) { return distance2(nodes_[i].lo, nodes_[i].hi); };
     struct Entry {
-      std::size_t node;
+      std::uint32_t node;
       float d2;
     };
-    Entry stack[64];
+    Entry stack[96];  // the depth is at most 30 Morton bits + log2(n) equal-code halvings
     int top = 0;
-    stack[top++] = {1, box_d2(1)};
+    stack[top++] = {0, box_d2(0)};
     while (top > 0) {
       const Entry e = stack[--top];
       if (e.d2 > best.distance_squared) continue;
-      if (e.node >= first_leaf_) {
-        const std::size_t first = (e.node - first_leaf_) * kLeaf;
-        for (std::size_t i = first; i < std::min(order_.size(), first + kLeaf); ++i)
+      const Node& node = nodes_[e.node];
+      if (node.count > 0) {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
           if (distance2(tri_lo_[i], tri_hi_[i]) <= best.distance_squared) test(order_[i]);
         continue;
       }
-      Entry a{2 * e.node, box_d2(2 * e.node)}, b{2 * e.node + 1, box_d2(2 * e.node + 1)};
+      Entry a{node.first, box_d2(node.first)}, b{node.first + 1, box_d2(node.first + 1)};
       if (b.d2 < a.d2) std::swap(a, b);
       if (b.d2 <= best.distance_squared) stack[top++] = b;
       if (a.d2 <= best.distance_squared) stack[top++] = a;
@@ -173,11 +169,42 @@ class TriangleTree {
   }
 
  private:
-  static constexpr std::size_t kLeaf = 4;
+  static constexpr std::uint32_t kLeaf = 4;
+  // A leaf: its triangles order_[first, first + count). An inner node
+  // (count 0): its children nodes_[first] and nodes_[first + 1].
+  struct Node {
+    Vec3 lo, hi;
+    std::uint32_t first = 0, count = 0;
+  };
+  // Node i over the triangles [b, e) of the Morton order.
+  void build(std::uint32_t i, std::uint32_t b, std::uint32_t e,
+             const std::vector<std::uint64_t>& keyed) {
+    if (e - b <= kLeaf) {
+      Vec3 lo = tri_lo_[b], hi = tri_hi_[b];
+      for (std::uint32_t k = b + 1; k < e; ++k) lo = min(lo, tri_lo_[k]), hi = max(hi, tri_hi_[k]);
+      nodes_[i] = {lo, hi, b, e - b};
+      return;
+    }
+    const std::uint64_t first = keyed[b] >> 32, last = keyed[e - 1] >> 32;
+    std::uint32_t split = b + (e - b) / 2;  // all codes equal: halve
+    if (first != last) {
+      const std::uint64_t bit = std::uint64_t{1} << (63 - __builtin_clzll(first ^ last));
+      const std::uint64_t prefix = (last & ~(bit - 1)) << 32;  // the first key of the upper half
+      split = static_cast<std::uint32_t>(
+          std::lower_bound(keyed.begin() + b, keyed.begin() + e, prefix) - keyed.begin());
+    }
+    const auto children = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.emplace_back();
+    nodes_.emplace_back();
+    build(children, b, split, keyed);
+    build(children + 1, split, e, keyed);
+    nodes_[i] = {min(nodes_[children].lo, nodes_[children + 1].lo),
+                 max(nodes_[children].hi, nodes_[children + 1].hi), children, 0};
+  }
+
   const TriangleMesh& m_;
   std::vector<std::uint32_t> order_;   // triangles in Morton order
-  std::size_t first_leaf_ = 1;         // node i: children 2i, 2i + 1; leaves from here
-  std::vector<Vec3> lo_, hi_;          // per node: its box
+  std::vector<Node> nodes_;            // [0]: the root
   std::vector<Vec3> tri_lo_, tri_hi_;  // per triangle, in Morton order: its box
 };
 

@@ -16,19 +16,18 @@
 // so attribute seams stay sharp.
 //
 // Implementation notes (meshoptimizer's simplifier is the speed model): the
-// collapse loop is bound by memory latency, so per-vertex and per-triangle
-// state sit in one record each (128 and 32 bytes) and small per-vertex state
-// (versions) in compact arrays; a per-position list of live triangles
-// rewritten by appending; collapses worked in passes like meshoptimizer's
-// (see PassQueue: a pass picks the cheapest collapses with distinct ends up to
-// a cost limit and performs them in memory order, with our placement and
-// checks), queue entries of 16 bytes with lazy deletion (an entry carries the
-// sum of the version stamps of its two vertices; stale entries leave when
-// the next pass merges in the new ones); set-up in a few linear passes
-// without maps or sorting; no allocation per collapse beyond amortised vector
-// growth; coordinates in power-of-two normalised units, so results do not
-// depend on the model's unit. Per collapse the work is: the checks over the
-// two fans, and one evaluation and queue entry per edge of the merged vertex.
+// collapse loop is bound by memory latency (collapses jump around the mesh in
+// cost order), so per-vertex and per-triangle state sit in one record each
+// (128 and 32 bytes) and small per-vertex state (versions) in compact arrays;
+// a per-position list of live triangles rewritten by appending; a bucket
+// queue of 16-byte edge entries with lazy deletion (an entry carries the sum
+// of the version stamps of its two vertices; stale entries are dropped in bulk
+// when their bucket comes up and when they outnumber the live edges); set-up
+// in a few linear passes without maps or sorting; no allocation per collapse
+// beyond amortised vector growth; coordinates in power-of-two normalised
+// units, so results do not depend on the model's unit. Per collapse the work
+// is: one valid pop, the checks over the two fans, and one evaluation and
+// push per edge of the merged vertex.
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <algorithm>
@@ -40,7 +39,6 @@
 #include <cstring>
 #include <limits>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "lodforge/core/error.h"
@@ -142,154 +140,205 @@ struct Collapse {
   D3 w;
 };
 
-/// A queued collapse of edge {a, b}: 16 bytes, four to a cache line. `key`
-/// orders entries (see queue_key()). `stamp` is the sum of the versions of a
-/// and b when it was queued; versions only grow, so the sum is unchanged
-/// exactly when neither end changed.
-struct QueueEntry {
+/// A queued collapse of edge {a, b}: 16 bytes, so that the four children of a
+/// node of the 4-ary heap below span at most two cache lines. `key` orders
+/// entries (see heap_key()). `stamp` is the sum of the versions of a and b
+/// when it was pushed; versions only grow, so the sum is unchanged exactly
+/// when neither end changed.
+struct HeapEntry {
   std::uint32_t key;
   std::uint32_t a, b;
   std::uint32_t stamp;
 };
 
-/// The queue key of a cost: the bits of the float cost (non-negative floats
+/// The heap key of a cost: the bits of the float cost (non-negative floats
 /// order like their bit patterns, and their sign bit is free), shifted up to
 /// make room for the deferred flag, so that a deferred sliver goes after an
 /// ordinary collapse of the same cost.
-inline std::uint32_t queue_key(double cost, bool deferred) {
+inline std::uint32_t heap_key(double cost, bool deferred) {
   float f = static_cast<float>(cost);
   std::uint32_t u;
   std::memcpy(&u, &f, 4);
   return u << 1 | std::uint32_t{deferred};
 }
-inline bool is_deferred(const QueueEntry& e) {
+inline bool is_deferred(const HeapEntry& e) {
   return (e.key & 1) != 0;
 }
 
-/// The cost a key stands for (the deferred flag dropped).
-inline float key_cost(std::uint32_t key) {
-  const std::uint32_t u = key >> 1;
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
-/// Sorts `v` by key, stably (equal keys keep their order, so the result
-/// depends on nothing else): LSD radix sort in three rounds of 11 bits, a
-/// round skipped when every key has the same digit. `tmp` is scratch.
-void sort_by_key(std::vector<QueueEntry>& v, std::vector<QueueEntry>& tmp) {
-  constexpr int kBits = 11;
-  constexpr std::uint32_t kRadix = 1u << kBits;
-  std::array<std::array<std::uint32_t, kRadix>, 3> count{};
-  for (const QueueEntry& e : v)
-    for (int r = 0; r < 3; ++r) ++count[r][(e.key >> (kBits * r)) & (kRadix - 1)];
-  tmp.resize(v.size());
-  for (int r = 0; r < 3; ++r) {
-    std::array<std::uint32_t, kRadix>& c = count[r];
-    if (c[(v.empty() ? 0 : v[0].key >> (kBits * r)) & (kRadix - 1)] == v.size()) continue;
-    std::uint32_t sum = 0;
-    for (std::uint32_t& x : c) sum += std::exchange(x, sum);
-    for (const QueueEntry& e : v) tmp[c[(e.key >> (kBits * r)) & (kRadix - 1)]++] = e;
-    v.swap(tmp);
-  }
-}
-
-/// The queue of collapses, worked in passes (meshoptimizer's scheme, with
-/// our placement and checks): the queued collapses sorted by cost; a pass
-/// picks, cheapest first and up to a cost limit, collapses whose two ends no
-/// earlier pick of the pass uses, and hands them out in memory order (by
-/// their first vertex), so that consecutive collapses find each other's
-/// records and triangles in cache instead of jumping around the mesh. A pick
-/// keeps the cost it was queued with: its ends, hence their quadrics and
-/// positions, change only by its own collapse. The checks run when it is
-/// handed out, against the mesh as it is then.
-///
-/// Collapses queued during a pass (the edges of the vertices it changed) are
-/// sorted and merged in before the next one; stale entries (see run()) and
-/// dropped ones leave then. Every decision depends on the mesh only, not on
-/// the target, so a target merely stops the sequence (chains are prefixes).
-class PassQueue {
+/// Min-heap of HeapEntry by (cost, deferred last), 4-ary: half the depth of a
+/// binary heap and its children side by side in memory. Entries are deleted
+/// lazily (see run()), so pops dominate; a pop moves the hole down to a leaf
+/// and then sifts the last entry up from there (Floyd), which saves one
+/// comparison per level since the last entry usually belongs near the bottom.
+class EdgeHeap {
  public:
-  /// A pass picks collapses up to kLimitFactor times the cost of the entry at
-  /// 1 / kLimitRank of the queue: larger passes are faster (fewer merges,
-  /// more collapses per sweep), smaller ones closer to the exact greedy order.
-  static constexpr float kLimitFactor = 1.5f;
-  static constexpr std::size_t kLimitRank = 3;
-
-  explicit PassQueue(std::size_t vertices) : picked_(vertices, 0) {}
-  bool empty() const { return sorted_.empty() && fresh_.empty(); }
-  void clear() {
-    sorted_.clear();
-    fresh_.clear();
-    batch_.clear();
-    pos_ = 0;
-  }
-  void push(const QueueEntry& e) { fresh_.push_back(e); }
-  /// The next collapse to try (an index for entry() and drop()), starting a
-  /// new pass when this one is done; false if none is queued.
+  bool empty() const { return v_.empty(); }
+  std::size_t size() const { return v_.size(); }
+  const HeapEntry& top() const { return v_[0]; }
+  void clear() { v_.clear(); }
+  /// Drops the entries for which `stale` holds and re-orders the rest.
   template <class Stale>
-  bool next(std::uint32_t& index, Stale stale) {
-    while (pos_ == batch_.size())
-      if (!start_pass(stale)) return false;
-    index = batch_[pos_++];
-    return true;
+  void drop_if(Stale stale) {
+    std::erase_if(v_, stale);
+    make();
   }
-  const QueueEntry& entry(std::uint32_t i) const { return sorted_[i]; }
-  /// The collapse after the current one in this pass, if any (for prefetching).
-  const QueueEntry* peek(std::size_t ahead = 0) const {
-    return pos_ + ahead < batch_.size() ? &sorted_[batch_[pos_ + ahead]] : nullptr;
+  /// Becomes the entries of `from` (this heap must be empty); `from` is left
+  /// empty, with this heap's old storage.
+  void take(std::vector<HeapEntry>& from) {
+    assert(v_.empty());
+    v_.swap(from);
+    make();
   }
-  /// Entry i was tried and is not to be tried again as it is.
-  void drop(std::uint32_t i) { sorted_[i].a = kNone; }
+  /// Appends without ordering; call make() before the next push or pop.
+  void append(const HeapEntry& e) { v_.push_back(e); }
+  void make() {
+    if (v_.size() < 2) return;
+    for (std::size_t i = (v_.size() - 2) / 4 + 1; i-- > 0;) sift_down(i);
+  }
+  void push(const HeapEntry& e) {
+    v_.push_back(e);
+    sift_up(v_.size() - 1, e);
+  }
+  HeapEntry pop() {
+    const HeapEntry top = v_[0];
+    const HeapEntry last = v_.back();
+    v_.pop_back();
+    const std::size_t n = v_.size();
+    if (n == 0) return top;
+    std::size_t i = 0;
+    HeapEntry* h = v_.data();
+    // Full families first, with a branch-free minimum of four.
+    for (std::size_t c = 1; c + 4 <= n; c = 4 * i + 1) {
+      // Which child is smallest is data: select by arithmetic, not branches.
+      std::size_t b01 = c + std::size_t{h[c + 1].key < h[c].key};
+      std::size_t b23 = c + 2 + std::size_t{h[c + 3].key < h[c + 2].key};
+      std::size_t best = b01 + (b23 - b01) * std::size_t{h[b23].key < h[b01].key};
+      h[i] = h[best];
+      i = best;
+    }
+    if (std::size_t c = 4 * i + 1; c < n) {
+      std::size_t best = c;
+      for (std::size_t j = c + 1; j < n; ++j)
+        if (h[j].key < h[best].key) best = j;
+      h[i] = h[best];
+      i = best;
+    }
+    sift_up(i, last);
+    return top;
+  }
 
  private:
-  template <class Stale>
-  bool start_pass(Stale stale) {
-    std::erase_if(fresh_, stale);
-    sort_by_key(fresh_, scratch_);
-    scratch_.clear();
-    scratch_.reserve(sorted_.size() + fresh_.size());
-    std::size_t j = 0;
-    for (const QueueEntry& e : sorted_) {
-      if (e.a == kNone || stale(e)) continue;
-      for (; j < fresh_.size() && fresh_[j].key < e.key; ++j) scratch_.push_back(fresh_[j]);
-      scratch_.push_back(e);
+  void sift_up(std::size_t i, const HeapEntry& x) {
+    while (i > 0) {
+      std::size_t p = (i - 1) / 4;
+      if (v_[p].key <= x.key) break;
+      v_[i] = v_[p];
+      i = p;
     }
-    scratch_.insert(scratch_.end(), fresh_.begin() + static_cast<std::ptrdiff_t>(j), fresh_.end());
-    sorted_.swap(scratch_);
-    fresh_.clear();
-    batch_.clear();
-    pos_ = 0;
-    const std::size_t n = sorted_.size();
-    if (n == 0) return false;
-    const std::uint32_t limit =
-        queue_key(double{key_cost(sorted_[n / kLimitRank].key)} * kLimitFactor, true);
-    ++pass_;
-    std::vector<std::uint64_t>& order = order_;
-    order.clear();
-    for (std::uint32_t i = 0; i < n && sorted_[i].key <= limit; ++i) {
-      const QueueEntry& e = sorted_[i];
-      if (picked_[e.a] == pass_ || picked_[e.b] == pass_) continue;
-      picked_[e.a] = picked_[e.b] = pass_;
-      order.push_back(std::uint64_t{e.a} << 32 | i);
+    v_[i] = x;
+  }
+  void sift_down(std::size_t i) {
+    const HeapEntry x = v_[i];
+    const std::size_t n = v_.size();
+    for (;;) {
+      std::size_t c = 4 * i + 1;
+      if (c >= n) break;
+      std::size_t end = std::min(c + 4, n), best = c;
+      std::uint32_t kb = v_[c].key;
+      for (std::size_t j = c + 1; j < end; ++j)
+        if (v_[j].key < kb) kb = v_[j].key, best = j;
+      if (kb >= x.key) break;
+      v_[i] = v_[best];
+      i = best;
     }
-    std::sort(order.begin(), order.end());
-    for (std::uint64_t x : order) batch_.push_back(static_cast<std::uint32_t>(x));
-    return true;
+    v_[i] = x;
   }
 
-  std::vector<QueueEntry> sorted_;   // by key, as of the start of the pass
-  std::vector<QueueEntry> fresh_;    // queued during the pass
-  std::vector<QueueEntry> scratch_;  // for sorting and merging
-  std::vector<std::uint64_t> order_;
-  std::vector<std::uint32_t> batch_;  // the pass's picks (indices in sorted_)
-  std::size_t pos_ = 0;
-  std::vector<std::uint32_t> picked_;  // per vertex: the last pass that picked it
-  std::uint32_t pass_ = 0;
+  std::vector<HeapEntry> v_;
 };
 
-/// Smallest cosine between a triangle's normal and its input triangle's.
-constexpr double kMinCosine = 0.02;
+/// The queue of collapses: a bucket queue in front of a small exact heap.
+/// Keys are bucketed by their top bits (the float exponent and a few mantissa
+/// bits, so a bucket spans a few percent of cost); a push beyond the current
+/// bucket is an append, and only the current bucket is kept in heap order,
+/// so the heap holds a few hundred entries instead of all of them and stale
+/// entries (see run()) cost an append and a pop in that small heap. The order
+/// stays exact: a push into the current bucket or below goes into the heap.
+class CollapseQueue {
+ public:
+  static constexpr int kShift = 18;  // key bits below the bucket index
+  static constexpr std::size_t kBuckets = std::size_t{1} << (32 - kShift);
+
+  CollapseQueue() : buckets_(kBuckets), used_(kBuckets / 64) {}
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
+  void clear() {
+    for (std::size_t w = 0; w < used_.size(); ++w)
+      for (std::uint64_t bits = used_[w]; bits != 0; bits &= bits - 1)
+        buckets_[64 * w + static_cast<std::size_t>(std::countr_zero(bits))].clear();
+    std::fill(used_.begin(), used_.end(), 0);
+    heap_.clear();
+    current_ = 0;
+    size_ = 0;
+  }
+  void push(const HeapEntry& e) {
+    ++size_;
+    std::size_t b = e.key >> kShift;
+    if (b <= current_) {
+      heap_.push(e);
+    } else {
+      buckets_[b].push_back(e);
+      used_[b / 64] |= std::uint64_t{1} << (b % 64);
+    }
+  }
+  /// Removes the smallest entry into `out`; false if there is none. Entries
+  /// for which `stale` holds are dropped in bulk when their bucket becomes
+  /// the heap (most entries are stale by then: they were pushed long before
+  /// their cost came up, and their vertices changed since), so they cost a
+  /// scan instead of a pop.
+  template <class Stale>
+  bool pop(HeapEntry& out, Stale stale) {
+    while (heap_.empty()) {
+      if (size_ == 0) return false;
+      // The next bucket in use becomes the heap.
+      std::size_t w = (current_ + 1) / 64;
+      std::uint64_t bits = used_[w] & (~std::uint64_t{0} << ((current_ + 1) % 64));
+      while (bits == 0) bits = used_[++w];
+      current_ = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+      used_[w] &= ~(std::uint64_t{1} << (current_ % 64));
+      std::vector<HeapEntry>& bucket = buckets_[current_];
+      const std::size_t before = bucket.size();
+      std::erase_if(bucket, stale);
+      size_ -= before - bucket.size();
+      heap_.take(bucket);
+    }
+    --size_;
+    out = heap_.pop();
+    return true;
+  }
+  /// The next entry of the current bucket, if any (for prefetching).
+  const HeapEntry* peek() const { return heap_.empty() ? nullptr : &heap_.top(); }
+  /// Drops the entries for which `stale` holds.
+  template <class Stale>
+  void drop_if(Stale stale) {
+    heap_.drop_if(stale);
+    size_ = heap_.size();
+    for (std::size_t w = 0; w < used_.size(); ++w)
+      for (std::uint64_t bits = used_[w]; bits != 0; bits &= bits - 1) {
+        std::size_t b = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+        std::erase_if(buckets_[b], stale);
+        size_ += buckets_[b].size();
+        if (buckets_[b].empty()) used_[w] &= ~(std::uint64_t{1} << (b % 64));
+      }
+  }
+
+ private:
+  std::vector<std::vector<HeapEntry>> buckets_;
+  std::vector<std::uint64_t> used_;  // bit b: bucket b is not empty
+  EdgeHeap heap_;                    // the current bucket and anything below it
+  std::size_t current_ = 0;
+  std::size_t size_ = 0;
+};
 
 /// What try_collapse decided.
 enum class Outcome { kDone, kRejected, kSliver, kOverBudget };
@@ -318,7 +367,7 @@ class Collapser {
   void build();
   void compute_kinds();
   void compute_quadrics();
-  void fill_queue();
+  void fill_heap();
   void push_edges(std::uint32_t a, bool collect_rejected = false);
   bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out);
   Outcome try_collapse(const Collapse& c, bool allow_slivers);
@@ -380,19 +429,16 @@ class Collapser {
     std::uint32_t v[3];  // positions
     std::uint32_t w[3];  // wedges
     float error;         // the bound e(T)
-    std::uint8_t alive;
-    // The input triangle's unit normal x 127, rounded: no collapse may turn
-    // the triangle by about 90 degrees or more from it (0: no normal).
-    std::int8_t normal[3];
+    std::uint32_t alive;
   };
   std::vector<Tri> tri_;
   std::size_t live_triangles_ = 0;
 
-  PassQueue queue_{0};
+  CollapseQueue heap_;
   std::size_t collapses_since_fill_ = 0;
   std::size_t budget_rejections_ = 0;
   // Rejected collapses are retried when their neighbourhood changes; a full
-  // refill of the queue is only the safety net, tried a few times.
+  // refill of the heap is only the safety net, tried a few times.
   static constexpr int kMaxRefills = 4;
   int refills_ = 0;
 
@@ -451,7 +497,6 @@ void Collapser::build() {
   const std::size_t np = position_first_input.size();
   vx_.resize(np);
   version_.assign(np, 0);
-  queue_ = PassQueue(np);
   std::vector<std::uint32_t> last_input(np, kNone);
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t p = vertex_position[i];
@@ -482,7 +527,7 @@ void Collapser::build() {
   }
 
   // Triangles: drop those using a position twice.
-  tri_.assign(nf, Tri{{0, 0, 0}, {0, 0, 0}, 0.0f, 0, {0, 0, 0}});
+  tri_.assign(nf, Tri{{0, 0, 0}, {0, 0, 0}, 0.0f, 0});
   std::vector<std::uint8_t> used(np, 0);
   for (std::size_t t = 0; t < nf; ++t) {
     for (int k = 0; k < 3; ++k) {
@@ -689,9 +734,6 @@ void Collapser::compute_quadrics() {
     if (len <= 0) continue;
     double area = 0.5 * len;
     n = n * (1 / len);
-    const double nc[3] = {n.x, n.y, n.z};
-    for (int k = 0; k < 3; ++k)
-      tri_[t].normal[k] = static_cast<std::int8_t>(std::lround(nc[k] * 127));
     Quadric q;
     q.add_plane(n, -dot(n, p[0]), area);
     for (int k = 0; k < 3; ++k) vx_[tri_[t].v[k]].q.add(q);
@@ -960,7 +1002,7 @@ void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
   auto push = [&](std::uint32_t b) {
     if (collect_rejected && vx_[b].rejected) requeue_.push_back(b);
     Collapse c;
-    if (evaluate(a, b, c)) queue_.push({queue_key(c.cost, false), a, b, version_[a] + version_[b]});
+    if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t* c = tri_[ts[i]].v;
@@ -978,8 +1020,8 @@ void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
   }
 }
 
-void Collapser::fill_queue() {
-  queue_.clear();
+void Collapser::fill_heap() {
+  heap_.clear();
   // Every edge once, from the triangles: a half-edge a -> b stands for its
   // edge when a < b, or when there is no b -> a (an open border, which only
   // joins vertices that are not free).
@@ -999,8 +1041,7 @@ void Collapser::fill_queue() {
         if (twin) continue;
       }
       Collapse c;
-      if (evaluate(a, b, c))
-        queue_.push({queue_key(c.cost, false), a, b, version_[a] + version_[b]});
+      if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
     }
   }
   collapses_since_fill_ = 0;
@@ -1075,14 +1116,6 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     double area2_new = norm2(n_new), area2_old = norm2(n_old);
     if (area2_new <= 0 && area2_old > 0) return false;
     if (dot(n_old, n_new) < 0) return false;
-    // Against the input triangle too, so that turns do not add up over
-    // collapses: the cosine must stay above kMinCosine, which is more than
-    // the rounding of the stored normal can change (|error| <= 0.007).
-    const std::int8_t* n0 = tri_[t].normal;
-    const D3 n_in{double(n0[0]), double(n0[1]), double(n0[2])};
-    const double d_in = dot(n_in, n_new), n2_in = norm2(n_in);
-    if (n2_in > 0 && (d_in <= 0 || d_in * d_in < kMinCosine * kMinCosine * area2_new * n2_in))
-      return false;
     if (min_q > 0) {
       // quality = 2 sqrt(3) |n| / l (l = sum of squared edge lengths), so
       // q_new < min_q  <=>  12 |n_new|^2 < min_q^2 l_new^2 and
@@ -1241,44 +1274,47 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
              std::to_string(target) + ")";
     return StopReason::kTargetReached;
   }
-  if (queue_.empty() && collapses_since_fill_ == 0) fill_queue();
-  auto stale = [&](const QueueEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; };
+  if (heap_.empty() && collapses_since_fill_ == 0) fill_heap();
+  auto stale = [&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; };
   while (live_triangles_ > target) {
-    std::uint32_t index;
-    if (!queue_.next(index, stale)) {
+    if (heap_.size() > 8 * live_triangles_ + 1024) {
+      // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
+      // dropping them keeps the heap shallow and in cache as the mesh shrinks.
+      heap_.drop_if(stale);
+    }
+    HeapEntry e;
+    if (!heap_.pop(e, stale)) {
       // Collapses rejected earlier may be allowed now that their
       // neighbourhood changed: try every edge again while that still helps.
       if (collapses_since_fill_ == 0 || ++refills_ > kMaxRefills) break;
-      fill_queue();
+      fill_heap();
       continue;
     }
-    const QueueEntry e = queue_.entry(index);
-    // Picks of a pass have distinct ends, so no earlier one changed these.
-    assert(!stale(e));
-    // Ask for both fans' triangles at once, before the evaluation, instead
-    // of one miss after the other in the checks; and for the records of the
-    // next pick's ends, which arrive while this one is checked and done.
+    const bool deferred = is_deferred(e);
+    if (stale(e)) continue;
+    // The two fans are usually cold (the last collapse was elsewhere): ask
+    // for all their triangles at once, before the evaluation, instead of one
+    // miss after the other in the checks.
     for (std::uint32_t x : {e.a, e.b}) {
       const std::uint32_t* ts = tris_begin(x);
       for (std::uint32_t i = 0; i < vx_[x].ref_count; ++i) __builtin_prefetch(&tri_[ts[i]]);
     }
-    if (const QueueEntry* next = queue_.peek())
+    if (const HeapEntry* next = heap_.peek()) {
+      // Likely the next collapse: its ends' records arrive while this one is
+      // checked and done.
       for (std::uint32_t x : {next->a, next->b}) {
         __builtin_prefetch(&vx_[x]);
         __builtin_prefetch(reinterpret_cast<const char*>(&vx_[x]) + 64);
       }
-    Collapse c;
-    if (!evaluate(e.a, e.b, c)) {
-      queue_.drop(index);
-      continue;
     }
+    Collapse c;
+    if (!evaluate(e.a, e.b, c)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than
     // twice its cost is left (ties: after the others); then it is taken, since
     // the alternative is a worse shape.
-    Outcome outcome = try_collapse(c, is_deferred(e));
-    if (outcome != Outcome::kDone) queue_.drop(index);
+    Outcome outcome = try_collapse(c, deferred);
     if (outcome == Outcome::kSliver) {
-      queue_.push({queue_key(2 * c.cost, true), e.a, e.b, e.stamp});
+      heap_.push({heap_key(2 * c.cost, true), e.a, e.b, e.stamp});
       continue;
     }
     if (outcome == Outcome::kOverBudget) {
@@ -1292,9 +1328,10 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       continue;
     }
     ++collapses_since_fill_;
-    if (const QueueEntry* next = queue_.peek()) {
-      // The records of the next pick's ends were asked for above and have
-      // arrived by now: ask for their triangle lists.
+    if (const HeapEntry* next = heap_.peek()) {
+      // The records of the next collapse's ends were asked for above and
+      // have arrived by now: ask for their triangle lists, which arrive while
+      // the edges of the merged vertex are queued.
       __builtin_prefetch(tris_begin(next->a));
       __builtin_prefetch(tris_begin(next->b));
     }

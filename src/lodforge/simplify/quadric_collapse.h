@@ -14,8 +14,7 @@
 /// position twice are dropped (they have no area); everything else is kept.
 ///
 /// The result never has a triangle whose normal turned by more than 90 degrees
-/// in one collapse or by about 89 degrees or more from its input triangle, a
-/// new zero-area triangle, a sliver below
+/// in one collapse, a new zero-area triangle, a sliver below
 /// `min_triangle_quality` (unless it was already worse), two triangles on the
 /// same three vertices, or a topology change of a manifold part (link
 /// condition).

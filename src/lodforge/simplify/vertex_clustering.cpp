@@ -392,9 +392,10 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
 /// with three distinct corners must come sorted by their smallest corner (they
 /// do: the previous level's triangles are sorted by smallest vertex and the
 /// map to cells is monotone); `origin(i)` is its input triangle. Applies the
-/// face rules, drops the new vertices nothing uses and leaves the compaction
-/// map (new vertex -> kept index or kNone) in `scratch.keep`. `line_candidates` holds the lines
-/// found before (they come first); the remapped `lines` follow.
+/// face rules; reads nothing of `to` but its faces, so that it can run beside
+/// the choice of the new vertices (drop_unused_vertices then drops those
+/// nothing uses). `line_candidates` holds the lines found before (they come
+/// first); the remapped `lines` follow.
 ///
 /// | remapped triangle          | becomes                                    |
 /// |----------------------------|--------------------------------------------|
@@ -457,10 +458,9 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
 }
 
 /// The second half of remap_faces, once `to.tris` holds the kept triangles:
-/// appends the previous level's lines, mapped, to `line_candidates`, keeps
-/// in `to.lines` those that are neither an edge of a kept triangle nor a
-/// line seen before, and drops the new vertices nothing uses (the compaction
-/// map in `scratch.keep`).
+/// appends the previous level's lines, mapped, to `line_candidates` and
+/// keeps in `to.lines` those that are neither an edge of a kept triangle nor
+/// a line seen before.
 void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
                   std::size_t new_count, std::vector<Segment>& line_candidates, Cut& to,
                   RemapScratch& scratch) {
@@ -505,8 +505,12 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
     for (const Segment& s : not_edges)
       if (scratch.seen_lines.insert(s)) to.lines.push_back(s);
   }
+}
 
-  // Compact: keep the vertices a triangle or line uses, in order.
+/// Once `to` has its faces (remap_faces) and its new_count vertices: drops
+/// the vertices no triangle or line uses, keeping the order, and leaves the
+/// map (new vertex -> kept index or kNone) in `scratch.keep`.
+void drop_unused_vertices(std::size_t new_count, Cut& to, RemapScratch& scratch) {
   auto& keep = scratch.keep;
   keep.assign(new_count, kNone);
   for (const Triangle& t : to.tris) keep[t[0]] = keep[t[1]] = keep[t[2]] = 0;
@@ -1230,6 +1234,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     cut.tris.resize(out);
     cut.tri_origin.resize(out);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
+    drop_unused_vertices(count, cut, remap_scratch);
     const std::vector<std::uint32_t>& keep = remap_scratch.keep;
     for (std::uint32_t& n : node_of)
       if (n != kNone) n = keep[n];
@@ -1364,6 +1369,19 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // The first level's quadrics and the cell face lists are independent
     // sequential passes (each scatters into its own arrays): side by side
     // when a second thread is free.
+    // The faces of the new level need only the mapped triangles, not the
+    // new vertices: they are remapped beside the quadrics, face lists and
+    // choices (a task a free thread takes; one thread runs it at the wait).
+    // Declared after everything it touches, so that on an exception it is
+    // waited for before they go.
+    tbb::task_group remapping;
+    remapping.run([&] {
+      line_candidates.clear();
+      remap_faces(
+          cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
+          [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
+          options.no_lines, line_candidates, next, remap_scratch);
+    });
     tbb::parallel_invoke(
         [&] {
           if (!quadrics_from_triangles) return;
@@ -1402,11 +1420,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         next.orig[j] = c.orig;
       }
     });
-    line_candidates.clear();
-    remap_faces(
-        cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
-        [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
-        options.no_lines, line_candidates, next, remap_scratch);
+    remapping.wait();
+    drop_unused_vertices(cells, next, remap_scratch);
     const std::vector<std::uint32_t>& keep = remap_scratch.keep;
     if (next.tris.empty() && next.lines.empty())
       return finish(StopReason::kCannotSimplify,

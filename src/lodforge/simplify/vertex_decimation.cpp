@@ -25,6 +25,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #if defined(__SSE2__)
@@ -127,33 +128,31 @@ using Tri8 = std::array<std::uint8_t, 3>;
 /// the vertex would have been re-evaluated), and the queue's triangulation is
 /// a function of the fan alone. Only existing edges can have appeared since.
 /// At most kMax triangles: each side has at most kMax + 2 < 16 vertices, so a
-/// polygon index takes 4 bits and the whole cache 16 bytes.
+/// triangle takes 12 bits (4 per polygon index), five of them a word, whose
+/// top 4 bits hold the count (word 0) and the triangles of side 0 (word 1).
 class CachedTriangulation {
  public:
   static constexpr int kMax = 10;
-  int count() const { return sizes_ & 15; }
-  int side0() const { return sizes_ >> 4; }  // triangles of side 0
-  /// Keeps tris (side 0 first, side0 of them) if there are 1 .. kMax of them.
+  int count() const { return static_cast<int>(words_[0] >> 60); }
+  int side0() const { return static_cast<int>(words_[1] >> 60); }
+  /// Keeps tris (side 0 first, side0 of them) if there are at most kMax.
   void store(const std::vector<Tri8>& tris, std::size_t side0) {
-    sizes_ = 0;
-    if (tris.empty() || tris.size() > kMax) return;
+    words_[0] = words_[1] = 0;
+    if (tris.size() > kMax) return;
     for (std::size_t i = 0; i < tris.size(); ++i)
-      for (int e = 0; e < 3; ++e) {
-        int k = static_cast<int>(3 * i) + e;
-        if (k % 2 == 0) idx_[k / 2] = 0;
-        idx_[k / 2] |= static_cast<std::uint8_t>(tris[i][e] << 4 * (k % 2));
-      }
-    sizes_ = static_cast<std::uint8_t>(tris.size() | side0 << 4);
+      words_[i / 5] |= std::uint64_t(tris[i][0] | tris[i][1] << 4 | tris[i][2] << 8)
+                       << 12 * (i % 5);
+    words_[0] |= std::uint64_t(tris.size()) << 60;
+    words_[1] |= std::uint64_t(side0) << 60;
   }
   Tri8 tri(int i) const {
-    Tri8 t;
-    for (int e = 0; e < 3; ++e) t[e] = (idx_[(3 * i + e) / 2] >> 4 * ((3 * i + e) % 2)) & 15;
-    return t;
+    std::uint64_t w = words_[i / 5] >> 12 * (i % 5);
+    return {static_cast<std::uint8_t>(w & 15), static_cast<std::uint8_t>(w >> 4 & 15),
+            static_cast<std::uint8_t>(w >> 8 & 15)};
   }
 
  private:
-  std::uint8_t sizes_ = 0;  // count | side0 << 4; count 0: not cached
-  std::array<std::uint8_t, (3 * kMax + 1) / 2> idx_;
+  std::uint64_t words_[2] = {0, 0};
 };
 
 /// Everything a fan evaluation reads about its vertex, in one cache line (the
@@ -163,7 +162,7 @@ struct alignas(64) VertexState {
   Vec3 pos;                      // in normalised units (normalise_to_unit_box)
   Keep keep = Keep::kCandidate;  // why it is still there
   std::uint8_t locked = 0;       // used by a line segment
-  CachedTriangulation cache;     // valid while queued
+  CachedTriangulation cache;     // valid while queued (count() 0: none)
 };
 static_assert(sizeof(VertexState) == 64);
 
@@ -275,8 +274,9 @@ struct Side {
   Vec3 normal;  // sum of the side triangles' cross products, then its unit vector
   // Polygon vertices in the average plane (orthonormal u, w with u x w =
   // normal, origin poly[0]): the split-plane tests are 2D orientation tests.
-  std::array<float, kMaxLoop> x{}, y{};
-  std::array<float, kMaxLoop> px{}, py{}, pz{};  // p, component-wise
+  // Three more entries: the split search reads them four at a time.
+  std::array<float, kMaxLoop + 3> x{}, y{};
+  std::array<float, kMaxLoop + 3> px{}, py{}, pz{};  // p, component-wise
 };
 
 /// A planned removal: the fan, its sides and their new triangles (polygon
@@ -610,6 +610,52 @@ bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
   return false;
 }
 
+/// Four floats in one SSE register (GCC/Clang vector extension, plain code on
+/// other targets); comparisons give Int4 lanes of -1 (true) or 0.
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = std::int32_t __attribute__((vector_size(16)));
+
+Float4 load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+Float4 sqrt4(Float4 v) {
+#if defined(__SSE2__)
+  return _mm_sqrt_ps(v);
+#else
+  for (int l = 0; l < 4; ++l) v[l] = std::sqrt(v[l]);
+  return v;
+#endif
+}
+
+Float4 splat(float x) {
+  return Float4{x, x, x, x};
+}
+
+Float4 infinity4() {
+  return splat(std::numeric_limits<float>::infinity());
+}
+
+/// Lane-wise std::min(a, b) (b if a is NaN; a if b is NaN).
+Float4 min4(Float4 a, Float4 b) {
+  return b < a ? b : a;
+}
+
+/// Signed distance of point k to the split plane of line (a, a + l) (up to the
+/// scale below), in the average plane's basis: positive on the left of the line.
+Float4 split_distance(Float4 kx, Float4 ky, Float4 ax, Float4 ay, Float4 lx, Float4 ly) {
+  return (kx - ax) * ly - (ky - ay) * lx;
+}
+
+/// The split plane normal is line x normal = (ly, -lx) in the plane's basis;
+/// aspect ratio = smallest signed distance / this scale (the normal's length
+/// times the line's length in 3D, d).
+Float4 split_scale(Float4 lx, Float4 ly, Float4 dx, Float4 dy, Float4 dz) {
+  return sqrt4((lx * lx + ly * ly) * (dx * dx + dy * dy + dz * dz));
+}
+
 // Recursive loop splitting (Schroeder 1992 §"Triangulation"): a split line
 // joins two non-neighbouring loop vertices; the split plane contains it and is
 // orthogonal to the average plane. A split is valid if the loop vertices
@@ -625,51 +671,84 @@ bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std
     out.push_back({idx[0], idx[1], idx[2]});
     return true;
   }
-  // This polygon's vertices, contiguous (uninitialised scratch: no Vec3).
-  // The whole side (top, idx is the identity) is read in place.
-  float gx[kMaxLoop], gy[kMaxLoop], gpx[kMaxLoop], gpy[kMaxLoop], gpz[kMaxLoop];
-  const float *X = side.x.data(), *Y = side.y.data();
-  const float *PX = side.px.data(), *PY = side.py.data(), *PZ = side.pz.data();
-  if (!top) {
-    for (int k = 0; k < m; ++k) {
-      gx[k] = side.x[idx[k]];
-      gy[k] = side.y[idx[k]];
-      gpx[k] = side.px[idx[k]];
-      gpy[k] = side.py[idx[k]];
-      gpz[k] = side.pz[idx[k]];
-    }
-    X = gx;
-    Y = gy;
-    PX = gpx;
-    PY = gpy;
-    PZ = gpz;
-  }
   float best = 0;
   int bi = -1, bj = -1;
-  for (int i = 0; i < m; ++i) {
-    float ax = X[i], ay = Y[i];
-    for (int j = i + 2, jend = i == 0 ? m - 1 : m; j < jend; ++j) {
-      // Split plane normal = line x normal = (ly, -lx) in the plane's basis;
-      // aspect ratio = smallest signed distance / length of the split line.
-      float lx = X[j] - ax, ly = Y[j] - ay;
-      float dx = PX[j] - PX[i], dy = PY[j] - PY[i], dz = PZ[j] - PZ[i];
-      float scale = std::sqrt((lx * lx + ly * ly) * (dx * dx + dy * dy + dz * dz));
-      if (!(scale > 0)) continue;
-      float bound = best * scale;
-      float worst = std::numeric_limits<float>::infinity();
-      // The first half (i, j) must be on the positive side, the rest negative
-      // (the order of the tests does not matter: worst is their minimum).
-      for (int k = i + 1; k < j && worst > bound; ++k)
-        worst = std::min(worst, (X[k] - ax) * ly - (Y[k] - ay) * lx);
-      for (int k = j + 1; k < m && worst > bound; ++k)
-        worst = std::min(worst, -((X[k] - ax) * ly - (Y[k] - ay) * lx));
-      for (int k = 0; k < i && worst > bound; ++k)
-        worst = std::min(worst, -((X[k] - ax) * ly - (Y[k] - ay) * lx));
-      if (!(worst > bound)) continue;
-      if (check_edges && edge_exists(side.poly[idx[i]], side.poly[idx[j]])) continue;
-      best = worst / scale;
-      bi = i;
-      bj = j;
+  // Split line (i, j), of this scale, with this smallest signed distance of
+  // another vertex to its plane: the best so far if valid and better.
+  auto consider = [&](int i, int j, float scale, float worst) {
+    if (!(scale > 0) || !(worst > best * scale)) return;
+    if (check_edges && edge_exists(side.poly[idx[i]], side.poly[idx[j]])) return;
+    best = worst / scale;
+    bi = i;
+    bj = j;
+  };
+  if (m == 4) {
+    // The two split lines of a quad, (0, 2) and (1, 3), in lanes 0 and 1:
+    // the vertices in lane order from i (rotated by 0), the one between (1),
+    // j (2) and the other one (3).
+    const float q[5][4] = {{side.x[idx[0]], side.x[idx[1]], side.x[idx[2]], side.x[idx[3]]},
+                           {side.y[idx[0]], side.y[idx[1]], side.y[idx[2]], side.y[idx[3]]},
+                           {side.px[idx[0]], side.px[idx[1]], side.px[idx[2]], side.px[idx[3]]},
+                           {side.py[idx[0]], side.py[idx[1]], side.py[idx[2]], side.py[idx[3]]},
+                           {side.pz[idx[0]], side.pz[idx[1]], side.pz[idx[2]], side.pz[idx[3]]}};
+    auto rotated = [&](int c, int r) { return Float4{q[c][r], q[c][(r + 1) % 4], 0, 0}; };
+    const Float4 ax = rotated(0, 0), ay = rotated(1, 0);
+    const Float4 lx = rotated(0, 2) - ax, ly = rotated(1, 2) - ay;
+    const Float4 scale = split_scale(lx, ly, rotated(2, 2) - rotated(2, 0),
+                                     rotated(3, 2) - rotated(3, 0), rotated(4, 2) - rotated(4, 0));
+    const Float4 worst =
+        min4(min4(infinity4(), split_distance(rotated(0, 1), rotated(1, 1), ax, ay, lx, ly)),
+             -split_distance(rotated(0, 3), rotated(1, 3), ax, ay, lx, ly));
+    consider(0, 2, scale[0], worst[0]);
+    consider(1, 3, scale[1], worst[1]);
+  } else {
+    // This polygon's vertices, contiguous (uninitialised scratch: no Vec3;
+    // three more entries, read by the last group of four, set to 0). The whole
+    // side (top, idx is the identity) is read in place.
+    float gx[kMaxLoop + 3], gy[kMaxLoop + 3], gpx[kMaxLoop + 3], gpy[kMaxLoop + 3],
+        gpz[kMaxLoop + 3];
+    const float *X = side.x.data(), *Y = side.y.data();
+    const float *PX = side.px.data(), *PY = side.py.data(), *PZ = side.pz.data();
+    if (!top) {
+      for (int k = 0; k < m; ++k) {
+        gx[k] = side.x[idx[k]];
+        gy[k] = side.y[idx[k]];
+        gpx[k] = side.px[idx[k]];
+        gpy[k] = side.py[idx[k]];
+        gpz[k] = side.pz[idx[k]];
+      }
+      for (int k = m; k < m + 3; ++k) gx[k] = gy[k] = gpx[k] = gpy[k] = gpz[k] = 0;
+      X = gx;
+      Y = gy;
+      PX = gpx;
+      PY = gpy;
+      PZ = gpz;
+    }
+    // The split lines from i to four j at once (lanes past the last j are
+    // computed and ignored).
+    const Int4 lane = {0, 1, 2, 3};
+    for (int i = 0; i < m; ++i) {
+      const Float4 ax = splat(X[i]), ay = splat(Y[i]);
+      for (int jb = i + 2, jend = i == 0 ? m - 1 : m; jb < jend; jb += 4) {
+        const Int4 j = jb + lane;
+        const Float4 lx = load4(X + jb) - ax, ly = load4(Y + jb) - ay;
+        const Float4 scale = split_scale(lx, ly, load4(PX + jb) - PX[i], load4(PY + jb) - PY[i],
+                                         load4(PZ + jb) - PZ[i]);
+        // The first half (i, j) must be on the positive side, the rest
+        // negative: k < i and k > j negative, i < k < j positive.
+        auto distance = [&](int k) {
+          return split_distance(splat(X[k]), splat(Y[k]), ax, ay, lx, ly);
+        };
+        Float4 worst = infinity4();
+        for (int k = 0; k < i; ++k) worst = min4(worst, -distance(k));
+        for (int k = i + 1; k < jb; ++k) worst = min4(worst, distance(k));
+        for (int k = jb; k < m; ++k) {
+          Float4 d = distance(k);
+          d = k > j ? -d : d;
+          worst = min4(worst, k == j ? infinity4() : d);
+        }
+        for (int l = 0; l < 4 && jb + l < jend; ++l) consider(i, jb + l, scale[l], worst[l]);
+      }
     }
   }
   if (bi < 0) return false;
@@ -712,17 +791,7 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
     side.py[j] = side.p[j].y;
     side.pz[j] = side.p[j].z;
   }
-  std::size_t first = out.size();
   if (!split_loop(side, idx.data(), side.m, out, final, false, true)) return Keep::kNoSplit;
-  // No fold, no sliver: each new normal points along the average-plane normal.
-  for (std::size_t i = first; i < out.size(); ++i) {
-    const Vec3& a = side.p[out[i][0]];
-    Vec3 e1 = side.p[out[i][1]] - a, e2 = side.p[out[i][2]] - a;
-    Vec3 c = cross(e1, e2);
-    float cl = length(c);
-    if (!(cl > kMinSine * length(e1) * length(e2)) || !(dot(c, side.normal) > kMinNormalDot * cl))
-      return Keep::kFold;
-  }
   return Keep::kCandidate;
 }
 
@@ -821,14 +890,20 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
   float volume = 0;
   const Vec3 pv = vertices_[v].pos;
   for (int s = 0; s < nsides; ++s) {
+    const Side& side = sides[s];
     Keep k = triangulate_side(sides[s], plan.tris, final);
     if (k != Keep::kCandidate) return k;
     plan.side_end[s] = plan.tris.size();
+    // No fold, no sliver: each new normal points along the average-plane
+    // normal. Each new triangle adds the tetrahedron it spans with v.
     for (std::size_t i = s == 0 ? 0 : plan.side_end[s - 1]; i < plan.side_end[s]; ++i) {
-      const Vec3& a = sides[s].p[plan.tris[i][0]];
-      const Vec3& b = sides[s].p[plan.tris[i][1]];
-      const Vec3& c = sides[s].p[plan.tris[i][2]];
-      volume += std::abs(dot(cross(b - a, c - a), pv - a));
+      const Vec3& a = side.p[plan.tris[i][0]];
+      Vec3 e1 = side.p[plan.tris[i][1]] - a, e2 = side.p[plan.tris[i][2]] - a;
+      Vec3 c = cross(e1, e2);
+      float cl = length(c);
+      if (!(cl > kMinSine * length(e1) * length(e2)) || !(dot(c, side.normal) > kMinNormalDot * cl))
+        return Keep::kFold;
+      volume += std::abs(dot(c, pv - a));
     }
   }
   if (fan.cls == VertexClass::kBoundary || fan.cls == VertexClass::kInteriorEdge) {

@@ -443,6 +443,23 @@ void lattice_neighbours(const Lattice& lat, std::int64_t idx, Fn&& fn) {
   }
 }
 
+// Runs fn(k, out) for the layers k in [first, last) of the lattice in
+// parallel, each appending to its own vector, and returns what they appended
+// in layer order (what one loop over the layers would give).
+template <class Fn>
+std::vector<std::int64_t> collect_by_layer(std::int64_t first, std::int64_t last, Fn&& fn) {
+  std::vector<std::vector<std::int64_t>> part(
+      static_cast<std::size_t>(std::max<std::int64_t>(last - first, 0)));
+  tbb::parallel_for(first, last,
+                    [&](std::int64_t k) { fn(k, part[static_cast<std::size_t>(k - first)]); });
+  std::size_t n = 0;
+  for (const auto& p : part) n += p.size();
+  std::vector<std::int64_t> out;
+  out.reserve(n);
+  for (const auto& p : part) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
 // Breadth-first flood fill from the assigned points: every unassigned point
 // takes the sign of the nearest assigned one (in lattice steps; a tie goes to
 // the point first in the queue). Precondition: the lattice's border is all
@@ -637,20 +654,21 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   // (the inside leaks through a gap narrower than the band), and so do the
   // unmeasured neighbours of each point whose sign that changes.
   // (The lattice's boundary is all measured or exact: only inner points.)
-  std::vector<std::int64_t> work;
   const std::uint8_t* st = lat.state.data();
-  for (std::int64_t k = 1; k + 1 < nz; ++k)
-    for (std::int64_t j = 1; j + 1 < ny; ++j) {
-      const std::int64_t row = lat.index(0, j, k);
-      for (std::int64_t i = 1; i + 1 < nx; ++i) {
-        const std::int64_t idx = row + i;
-        const std::uint8_t v = st[idx];
-        const std::uint8_t differ = (st[idx - 1] ^ v) | (st[idx + 1] ^ v) | (st[idx - nx] ^ v) |
-                                    (st[idx + nx] ^ v) | (st[idx - plane] ^ v) |
-                                    (st[idx + plane] ^ v);
-        if ((differ & kInside) && !(v & (kExact | kMeasured))) work.push_back(idx);
-      }
-    }
+  std::vector<std::int64_t> work =
+      collect_by_layer(1, nz - 1, [&](std::int64_t k, std::vector<std::int64_t>& out) {
+        for (std::int64_t j = 1; j + 1 < ny; ++j) {
+          const std::int64_t row = lat.index(0, j, k);
+          for (std::int64_t i = 1; i + 1 < nx; ++i) {
+            const std::int64_t idx = row + i;
+            const std::uint8_t v = st[idx];
+            const std::uint8_t differ = (st[idx - 1] ^ v) | (st[idx + 1] ^ v) | (st[idx - nx] ^ v) |
+                                        (st[idx + nx] ^ v) | (st[idx - plane] ^ v) |
+                                        (st[idx + plane] ^ v);
+            if ((differ & kInside) && !(v & (kExact | kMeasured))) out.push_back(idx);
+          }
+        }
+      });
   // The band's distances are in index order already (slabs in z order, each
   // in index order); only the repairs' are merged in.
   const auto banded = static_cast<std::ptrdiff_t>(lat.distance.size());
@@ -1075,27 +1093,28 @@ class Builder {
     const std::int64_t nx = lat.dim[0], ny = lat.dim[1], nz = lat.dim[2];
 
     // Vertices: one per finest lattice edge whose ends differ in sign.
-    std::vector<std::int64_t> edge_keys;  // point index * 3 + axis, ascending
     const std::int64_t step[3] = {1, nx, lat.plane()};
-    for (std::int64_t k = 0; k < nz; ++k)
-      for (std::int64_t j = 0; j < ny; ++j) {
-        const std::int64_t row = lat.index(0, j, k);
-        const std::uint8_t* st = lat.state.data();
-        const bool inner = j + 1 < ny && k + 1 < nz;
-        for (std::int64_t i = 0; i < nx; ++i) {
-          const std::int64_t idx = row + i;
-          // Most points have no crossed edge: one test for the three.
-          if (inner && i + 1 < nx &&
-              !(((st[idx + 1] ^ st[idx]) | (st[idx + step[1]] ^ st[idx]) |
-                 (st[idx + step[2]] ^ st[idx])) &
-                kInside))
-            continue;
-          const bool in = lat.inside(idx);
-          if (i + 1 < nx && in != lat.inside(idx + 1)) edge_keys.push_back(idx * 3);
-          if (j + 1 < ny && in != lat.inside(idx + step[1])) edge_keys.push_back(idx * 3 + 1);
-          if (k + 1 < nz && in != lat.inside(idx + step[2])) edge_keys.push_back(idx * 3 + 2);
-        }
-      }
+    const std::vector<std::int64_t> edge_keys =  // point index * 3 + axis, ascending
+        collect_by_layer(0, nz, [&](std::int64_t k, std::vector<std::int64_t>& out) {
+          const std::uint8_t* st = lat.state.data();
+          for (std::int64_t j = 0; j < ny; ++j) {
+            const std::int64_t row = lat.index(0, j, k);
+            const bool inner = j + 1 < ny && k + 1 < nz;
+            for (std::int64_t i = 0; i < nx; ++i) {
+              const std::int64_t idx = row + i;
+              // Most points have no crossed edge: one test for the three.
+              if (inner && i + 1 < nx &&
+                  !(((st[idx + 1] ^ st[idx]) | (st[idx + step[1]] ^ st[idx]) |
+                     (st[idx + step[2]] ^ st[idx])) &
+                    kInside))
+                continue;
+              const bool in = lat.inside(idx);
+              if (i + 1 < nx && in != lat.inside(idx + 1)) out.push_back(idx * 3);
+              if (j + 1 < ny && in != lat.inside(idx + step[1])) out.push_back(idx * 3 + 1);
+              if (k + 1 < nz && in != lat.inside(idx + step[2])) out.push_back(idx * 3 + 2);
+            }
+          }
+        });
     if (edge_keys.empty())
       throw DataError("mcoctree: the surface crosses no lattice edge (resolution too low?)");
     t_.positions.resize(edge_keys.size());
@@ -1141,9 +1160,8 @@ class Builder {
     level_offset_.assign(D + 2, 0);
     for (int l = 0; l <= D; ++l) level_offset_[l + 1] = level_offset_[l] + codes[l].size();
     t_.nodes.assign(level_offset_[D + 1], McNode{});
-    index_.reserve(t_.nodes.size());
     for (int l = 0; l <= D; ++l)
-      for (std::size_t i = 0; i < codes[l].size(); ++i) {
+      tbb::parallel_for(std::size_t{0}, codes[l].size(), [&](std::size_t i) {
         McNode& node = t_.nodes[level_offset_[l] + i];
         node.level = static_cast<std::uint8_t>(l);
         std::uint64_t c = codes[l][i];
@@ -1152,8 +1170,6 @@ class Builder {
           for (int a = 0; a < 3; ++a)
             xyz[a] |= static_cast<std::uint32_t>((c >> (3 * b + a)) & 1) << b;
         node.coords = {xyz[0], xyz[1], xyz[2]};
-        index_.insert(coord_key(l, xyz[0], xyz[1], xyz[2]),
-                      static_cast<std::uint32_t>(level_offset_[l] + i));
         if (l < D) {
           auto first = std::lower_bound(codes[l + 1].begin(), codes[l + 1].end(), c << 3);
           node.first_child =
@@ -1161,25 +1177,34 @@ class Builder {
           for (auto it = first; it != codes[l + 1].end() && (*it >> 3) == c; ++it)
             node.child_mask |= static_cast<std::uint8_t>(1u << (*it & 7));
         }
-      }
-    // Leaves from the lattice, then parents bottom-up.
-    for (std::size_t i = level_offset_[D]; i < level_offset_[D + 1]; ++i) {
+      });
+    index_.reserve(t_.nodes.size());
+    for (std::size_t i = 0; i < t_.nodes.size(); ++i) {
+      const McNode& node = t_.nodes[i];
+      index_.insert(coord_key(node.level, node.coords[0], node.coords[1], node.coords[2]),
+                    static_cast<std::uint32_t>(i));
+    }
+    // Leaves from the lattice, then parents bottom-up (each level's nodes
+    // only read the level below).
+    tbb::parallel_for(level_offset_[D], level_offset_[D + 1], [&](std::size_t i) {
       McNode& leaf = t_.nodes[i];
       auto base = lat.index(leaf.coords[0] - lat.offset[0], leaf.coords[1] - lat.offset[1],
                             leaf.coords[2] - lat.offset[2]);
       for (int c = 0; c < 8; ++c)
         if (lat.inside(base + (c & 1) * step[0] + (c >> 1 & 1) * step[1] + (c >> 2) * step[2]))
           leaf.signs27 |= 1u << detail::corner_point(c);
-    }
-    // Each crossed lattice edge is an edge of the (up to) four cells around it.
-    for (std::size_t v = 0; v < edge_keys.size(); ++v)
+    });
+    // Each crossed lattice edge is an edge of the (up to) four cells around
+    // it (and each edge of a leaf is one lattice edge: no two writes meet).
+    tbb::parallel_for(std::size_t{0}, edge_keys.size(), [&](std::size_t v) {
       lat.for_each_cell_around(
           edge_keys[v], [&](int edge, std::int64_t x, std::int64_t y, std::int64_t z) {
             t_.nodes[find(D, x, y, z)].edge_vertex[edge] = static_cast<std::uint32_t>(v);
           });
+    });
     for (int l = D - 1; l >= 0; --l)
-      for (std::size_t i = level_offset_[l]; i < level_offset_[l + 1]; ++i)
-        make_parent(t_.nodes[i]);
+      tbb::parallel_for(level_offset_[l], level_offset_[l + 1],
+                        [&](std::size_t i) { make_parent(t_.nodes[i]); });
   }
 
   // Holes of an open input. A node with a surface point (its own or, where
@@ -1247,9 +1272,17 @@ class Builder {
       }
     }
     node.signs27 = fill_unknown(signs, known);
+    // Per edge: the lattice points of its ends.
+    static const std::array<std::array<int, 2>, 12> ends = [] {
+      std::array<std::array<int, 2>, 12> p{};
+      for (int e = 0; e < 12; ++e) {
+        auto [lo, hi] = detail::edge_corners(e);
+        p[e] = {detail::corner_point(lo), detail::corner_point(hi)};
+      }
+      return p;
+    }();
     for (int e = 0; e < 12; ++e) {
-      auto [lo, hi] = detail::edge_corners(e);
-      int plo = detail::corner_point(lo), phi = detail::corner_point(hi), pmid = (plo + phi) / 2;
+      const int plo = ends[e][0], phi = ends[e][1], pmid = (plo + phi) / 2;
       bool slo = node.signs27 >> plo & 1, shi = node.signs27 >> phi & 1,
            smid = node.signs27 >> pmid & 1;
       if (slo == shi) continue;

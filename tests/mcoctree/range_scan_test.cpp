@@ -108,6 +108,10 @@ TEST(RangeScan, StanfordBunnyFromScansCoversBunZipper) {
       c.b_to_a.mean_pct, c.b_to_a.max_pct);
   EXPECT_LE(c.a_to_b.mean_pct, 0.1);
   EXPECT_LE(c.a_to_b.max_pct, 1.0);
+  // The other way: bubbles around stray points are dropped and voids filled
+  // (clean_scan_signs; 32 % of the diagonal before, a blob around a stray
+  // point of ear_back.ply). The mean stays high: see docs/RESULTS.md.
+  EXPECT_LE(c.b_to_a.max_pct, 5.0);
 }
 
 }  // namespace

@@ -103,8 +103,10 @@ void add_mco_command(CLI::App& app, Runner& run) {
           for (auto g : sc.grid) points += g >= 0;
         r = build_mc_octree(scans, options);
         what = fmt::format(
-            "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded)", scans.size(),
-            points, r.stats.band_points, r.stats.carved_points, r.stats.flooded_points);
+            "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
+            "filled, {} bubbles dropped)",
+            scans.size(), points, r.stats.band_points, r.stats.carved_points,
+            r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
       } else {
         TriangleMesh mesh = load_geometry(b->input);
         r = build_mc_octree(mesh, options);

@@ -58,6 +58,7 @@
 #include "lodforge/mcoctree/cell_mesh.h"
 #include "lodforge/mcoctree/node_error.h"
 #include "lodforge/mcoctree/range_scan.h"
+#include "lodforge/mcoctree/sign_components.h"
 #include "lodforge/mesh/adjacency.h"
 #include "lodforge/mesh/weld.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
@@ -76,6 +77,10 @@ constexpr std::uint8_t kInside = 1, kExact = 2, kAssigned = 4, kMeasured = 8;
 // A surface point more than kRimGap cells beyond an open rim is invented.
 constexpr float kRimGap = 0.25f;
 constexpr float kHiddenDetail = 0.2f;  // see Builder::number
+// Range scans: an inside region smaller than this many lattice points, or
+// than this fraction of the largest, is a bubble (see clean_scan_signs).
+constexpr std::size_t kMinScanPart = 64;
+constexpr double kMinScanPartFraction = 0.01;
 
 // Exact closest points for the few queries the triangle scan leaves (an
 // open mesh's repairs, hole tests and edge points by a rim: a few thousand on
@@ -970,6 +975,13 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
     if (frontier) seeds.push_back(idx);
   }
   flood_fill(lat, seeds, stats);
+  // Voids inside the object and bubbles around stray points (sign_components.h).
+  const detail::SignCleanup cleanup =
+      detail::clean_scan_signs(lat.state, lat.dim, kInside, kMinScanPart, kMinScanPartFraction);
+  stats.filled_voids = cleanup.filled_voids;
+  stats.dropped_parts = cleanup.dropped_parts;
+  for (auto& e : lat.distance)  // a flipped point's distance keeps its magnitude
+    if ((e.distance < 0) != lat.inside(e.idx)) e.distance = -e.distance;
   std::sort(lat.distance.begin(), lat.distance.end());
   return lat;
 }

@@ -55,6 +55,8 @@ struct McBuildStats {
   std::size_t flooded_points = 0;   ///< lattice points whose sign came from the flood fill
   std::size_t sign_repairs = 0;     ///< flooded points later given an exact distance
   std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
+  std::size_t filled_voids = 0;     ///< range scans: enclosed outside regions made inside
+  std::size_t dropped_parts = 0;    ///< range scans: small inside regions (bubbles) made outside
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
   std::size_t hole_nodes = 0;       ///< nodes left without triangles over the input's holes

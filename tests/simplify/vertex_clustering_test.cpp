@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -335,6 +336,11 @@ TEST(VertexClustering, EmptyAndBadInput) {
   TriangleMesh nan = test::make_tetrahedron();
   nan.positions[2].y = std::nanf("");
   EXPECT_THROW(vertex_clustering(nan), DataError);
+  // Only used coordinates must be finite: an unused one is never quantised.
+  TriangleMesh unused_nan = test::make_tetrahedron();
+  unused_nan.positions.push_back({std::nanf(""), std::numeric_limits<float>::infinity(), 0});
+  std::vector<SimplifyResult> u = vertex_clustering(unused_nan);
+  EXPECT_EQ(u[0].mesh.vertex_count(), 4u);
 }
 
 TEST(VertexClustering, RandomSoupsNeverBreakTheRules) {

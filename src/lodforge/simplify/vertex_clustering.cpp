@@ -1111,22 +1111,31 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   if (!(octree.side > 0)) octree.side = 1;
   const double scale = double(1u << kMaxDepth) / octree.side;
   const std::uint32_t max_q = (1u << kMaxDepth) - 1;
-  std::vector<CodedVertex> order;
-  order.reserve(nv);
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!used[v]) continue;
-    // The offset from the box's corner is >= 0 (the rounding of an exact
-    // difference >= 0), so truncation is the floor: no floor emulation
-    // (baseline x86-64 has no rounding instruction).
-    std::uint64_t c = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double q = (double(mesh.positions[v][a]) - octree.lo[a]) * scale;
-      const auto qi = static_cast<std::uint32_t>(std::min(q, double(max_q)));
-      c |= morton_spread(qi) << (2 - a);
+  // Codes in parallel, one slot per vertex: an unused vertex gets ~0 (above
+  // every 63-bit code), sorts last and is cut off. The order of equal codes
+  // is settled below, so the sort's input order does not matter.
+  constexpr std::uint64_t kUnused = ~std::uint64_t(0);
+  std::vector<CodedVertex> order(nv);
+  for_chunks(nv, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t v = lo; v < hi; ++v) {
+      if (!used[v]) {  // its coordinates may be anything
+        order[v] = {kUnused, static_cast<std::uint32_t>(v)};
+        continue;
+      }
+      // The offset from the box's corner is >= 0 (the rounding of an exact
+      // difference >= 0), so truncation is the floor: no floor emulation
+      // (baseline x86-64 has no rounding instruction).
+      std::uint64_t c = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double q = (double(mesh.positions[v][a]) - octree.lo[a]) * scale;
+        const auto qi = static_cast<std::uint32_t>(std::min(q, double(max_q)));
+        c |= morton_spread(qi) << (2 - a);
+      }
+      order[v] = {c, static_cast<std::uint32_t>(v)};
     }
-    order.push_back({c, static_cast<std::uint32_t>(v)});
-  }
+  });
   radix_sort(order);
+  while (!order.empty() && order.back().code == kUnused) order.pop_back();
   // Equal codes (coordinates closer than the finest cell): order by position
   // so that equal coordinates are neighbours, then by index.
   for (std::size_t i = 0; i < order.size();) {
@@ -1212,25 +1221,43 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       cut.tris[at] = t;
       cut.tri_origin[at] = static_cast<std::uint32_t>(f);
     }
-    // start[v] is now the end of v's run.
-    std::size_t out = 0, begin = 0;
-    for (std::size_t v = 0; v < count; ++v) {
-      const std::size_t end = start[v];
-      const std::size_t n = end - begin;
-      if (n == 1) {
-        cut.tris[out] = cut.tris[begin];
-        cut.tri_origin[out] = cut.tri_origin[begin];
-        ++out;
-      } else if (n > 1) {
-        for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
-          cut.tris[out + i] = cut.tris[begin + i];
-          cut.tri_origin[out + i] = cut.tri_origin[begin + i];
+    // start[v] is now the end of v's run. The runs of vertices [v0, v1) are
+    // squeezed to the front of their part; two halves side by side (one
+    // thread runs both), the second then moved up if the first lost doublets.
+    auto squeeze = [&](std::size_t v0, std::size_t v1, RemapScratch& scratch) {
+      std::size_t begin = v0 == 0 ? 0 : start[v0 - 1], out = begin;
+      for (std::size_t v = v0; v < v1; ++v) {
+        const std::size_t end = start[v];
+        const std::size_t n = end - begin;
+        if (n == 1) {
+          cut.tris[out] = cut.tris[begin];
+          cut.tri_origin[out] = cut.tri_origin[begin];
+          ++out;
+        } else if (n > 1) {
+          for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
+            cut.tris[out + i] = cut.tris[begin + i];
+            cut.tri_origin[out + i] = cut.tri_origin[begin + i];
+          }
+          out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
+                            scratch);
         }
-        out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
-                          remap_scratch);
+        begin = end;
       }
-      begin = end;
+      return out;
+    };
+    const std::size_t half = count / 2;
+    const std::size_t second = half == 0 ? 0 : start[half - 1];
+    std::size_t first_end = 0, second_end = 0;
+    RemapScratch second_scratch;
+    tbb::parallel_invoke([&] { first_end = squeeze(0, half, remap_scratch); },
+                         [&] { second_end = squeeze(half, count, second_scratch); });
+    if (first_end != second) {  // the first half lost doublets
+      std::copy(cut.tris.begin() + second, cut.tris.begin() + second_end,
+                cut.tris.begin() + first_end);
+      std::copy(cut.tri_origin.begin() + second, cut.tri_origin.begin() + second_end,
+                cut.tri_origin.begin() + first_end);
     }
+    const std::size_t out = first_end + (second_end - second);
     cut.tris.resize(out);
     cut.tri_origin.resize(out);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);

@@ -117,10 +117,11 @@ struct VertexClusteringOptions {
 /// further level (cells with more than 64 vertices score 64 of them), so
 /// O(V + F) in practice as the levels shrink geometrically. The cells of a
 /// level are processed in parallel (TBB, in chunks of 2048 cells; smaller
-/// levels run on the calling thread), and copying a finished level into its
-/// result overlaps the next level's work; the result does not depend on the
-/// thread count. The area and volume heuristics are summed in single
-/// precision relative to the cell's mean, four candidates at a time, and
+/// levels run on the calling thread), a level's faces are remapped beside
+/// the choice of its vertices, and copying a finished level into its result
+/// overlaps the next level's work; the result does not depend on the thread
+/// count. The area and volume heuristics are summed in single
+/// precision relative to the cell's mean, four triangles at a time, and
 /// only in cells with more than one contender (see above). Memory: a few
 /// arrays of O(V + F) reused over the levels, plus the results. Throws
 /// DataError if an index is out of range, a used coordinate is not finite or

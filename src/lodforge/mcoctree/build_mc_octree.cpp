@@ -174,7 +174,7 @@ class TriangleTree {
   }
 
  private:
-  static constexpr std::uint32_t kLeaf = 4;
+  static constexpr std::uint32_t kLeaf = 8;
   // A leaf: its triangles order_[first, first + count). An inner node
   // (count 0): its children nodes_[first] and nodes_[first + 1].
   struct Node {
@@ -577,18 +577,20 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
         float l = length(inward[e]);
         inward[e] = l > 0 ? inward[e] / l : Vec3{};
       }
-      // The dot products below, dot(x - from[q], dir[q]), with their y and z
-      // terms taken once per row (the same sums in the same order).
+      // The dot products below, dot(x - from[q], dir[q]), with their z terms
+      // taken once per layer and their y terms once per row (the same sums in
+      // the same order).
       const Vec3* from[4] = {&a, &a, &b, &c};
       const Vec3* dir[4] = {&normal, &inward[0], &inward[1], &inward[2]};
       const std::int64_t i0 = r.lo[0], i1 = r.hi[0];
-      for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k)
+      for (auto k = std::max(r.lo[2], z0); k <= std::min(r.hi[2], z1 - 1); ++k) {
+        const float z = coord[2][static_cast<std::size_t>(k)];
+        float dz[4];
+        for (int q = 0; q < 4; ++q) dz[q] = (z - from[q]->z) * dir[q]->z;
         for (auto j = r.lo[1]; j <= r.hi[1]; ++j) {
-          const float y = coord[1][static_cast<std::size_t>(j)],
-                      z = coord[2][static_cast<std::size_t>(k)];
-          float dy[4], dz[4];
-          for (int q = 0; q < 4; ++q)
-            dy[q] = (y - from[q]->y) * dir[q]->y, dz[q] = (z - from[q]->z) * dir[q]->z;
+          const float y = coord[1][static_cast<std::size_t>(j)];
+          float dy[4];
+          for (int q = 0; q < 4; ++q) dy[q] = (y - from[q]->y) * dir[q]->y;
           Best* row = &best[static_cast<std::size_t>(lat.index(0, j, k - z0))];
           for (auto i = i0; i <= i1; ++i) {
             const float x = coord[0][static_cast<std::size_t>(i)];
@@ -604,6 +606,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
             if (tp.distance_squared < bt.d2) bt = {tp.distance_squared, t, tp.barycentric};
           }
         }
+      }
     }
     auto& out = found[static_cast<std::size_t>(s)];
     for (std::size_t p = 0; p < best.size(); ++p) {
@@ -662,14 +665,17 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
   const std::uint8_t* st = lat.state.data();
   std::vector<std::int64_t> work =
       collect_by_layer(1, nz - 1, [&](std::int64_t k, std::vector<std::int64_t>& out) {
-        for (std::int64_t j = 1; j + 1 < ny; ++j) {
-          const std::int64_t row = lat.index(0, j, k);
-          for (std::int64_t i = 1; i + 1 < nx; ++i) {
+        // Copies in locals: a push could alias what the lambda refers to.
+        const std::uint8_t* const s = st;
+        const std::int64_t row_step = nx, layer_step = plane, rows = ny, cols = nx;
+        for (std::int64_t j = 1; j + 1 < rows; ++j) {
+          const std::int64_t row = j * row_step + k * layer_step;
+          for (std::int64_t i = 1; i + 1 < cols; ++i) {
             const std::int64_t idx = row + i;
-            const std::uint8_t v = st[idx];
-            const std::uint8_t differ = (st[idx - 1] ^ v) | (st[idx + 1] ^ v) | (st[idx - nx] ^ v) |
-                                        (st[idx + nx] ^ v) | (st[idx - plane] ^ v) |
-                                        (st[idx + plane] ^ v);
+            const std::uint8_t v = s[idx];
+            const std::uint8_t differ = (s[idx - 1] ^ v) | (s[idx + 1] ^ v) |
+                                        (s[idx - row_step] ^ v) | (s[idx + row_step] ^ v) |
+                                        (s[idx - layer_step] ^ v) | (s[idx + layer_step] ^ v);
             if ((differ & kInside) && !(v & (kExact | kMeasured))) out.push_back(idx);
           }
         }
@@ -1108,22 +1114,25 @@ class Builder {
     const std::int64_t step[3] = {1, nx, lat.plane()};
     const std::vector<std::int64_t> edge_keys =  // point index * 3 + axis, ascending
         collect_by_layer(0, nz, [&](std::int64_t k, std::vector<std::int64_t>& out) {
-          const std::uint8_t* st = lat.state.data();
-          for (std::int64_t j = 0; j < ny; ++j) {
-            const std::int64_t row = lat.index(0, j, k);
-            const bool inner = j + 1 < ny && k + 1 < nz;
-            for (std::int64_t i = 0; i < nx; ++i) {
+          // Copies in locals: a push could alias what the lambda refers to.
+          const std::uint8_t* const st = lat.state.data();
+          const std::int64_t sx = nx, sy = ny, sz = nz, row_step = step[1], layer_step = step[2];
+          auto inside = [&](std::int64_t idx) { return (st[idx] & kInside) != 0; };
+          for (std::int64_t j = 0; j < sy; ++j) {
+            const std::int64_t row = j * row_step + k * layer_step;
+            const bool inner = j + 1 < sy && k + 1 < sz;
+            for (std::int64_t i = 0; i < sx; ++i) {
               const std::int64_t idx = row + i;
               // Most points have no crossed edge: one test for the three.
-              if (inner && i + 1 < nx &&
-                  !(((st[idx + 1] ^ st[idx]) | (st[idx + step[1]] ^ st[idx]) |
-                     (st[idx + step[2]] ^ st[idx])) &
+              if (inner && i + 1 < sx &&
+                  !(((st[idx + 1] ^ st[idx]) | (st[idx + row_step] ^ st[idx]) |
+                     (st[idx + layer_step] ^ st[idx])) &
                     kInside))
                 continue;
-              const bool in = lat.inside(idx);
-              if (i + 1 < nx && in != lat.inside(idx + 1)) out.push_back(idx * 3);
-              if (j + 1 < ny && in != lat.inside(idx + step[1])) out.push_back(idx * 3 + 1);
-              if (k + 1 < nz && in != lat.inside(idx + step[2])) out.push_back(idx * 3 + 2);
+              const bool in = inside(idx);
+              if (i + 1 < sx && in != inside(idx + 1)) out.push_back(idx * 3);
+              if (j + 1 < sy && in != inside(idx + row_step)) out.push_back(idx * 3 + 1);
+              if (k + 1 < sz && in != inside(idx + layer_step)) out.push_back(idx * 3 + 2);
             }
           }
         });
@@ -1422,20 +1431,20 @@ class Builder {
       const std::uint32_t in = n.signs27 & mask;
       return in == 0 || in == mask;
     };
-    std::uint16_t h = halved;
-    std::uint8_t sp = split;
-    for (int e = 0; e < 12; ++e)
-      if ((h >> e & 1) && uniform(masks[e])) h &= static_cast<std::uint16_t>(~(1u << e));
-    for (int f = 0; f < 6; ++f)
-      if ((sp >> f & 1) && uniform(masks[12 + f])) sp &= static_cast<std::uint8_t>(~(1u << f));
     // Nor do the signs of points no face contour reads (the centre; an edge's
     // midpoint unless it is halved or on a split face; a face's centre
     // unless it is split).
+    std::uint16_t h = 0;
+    std::uint8_t sp = 0;
     std::uint32_t read = corners;
-    for (int e = 0; e < 12; ++e)
-      if (h >> e & 1) read |= masks[e];
-    for (int f = 0; f < 6; ++f)
-      if (sp >> f & 1) read |= masks[12 + f];
+    for (std::uint32_t bits = halved; bits; bits &= bits - 1) {
+      const int e = __builtin_ctz(bits);
+      if (!uniform(masks[e])) h |= static_cast<std::uint16_t>(1u << e), read |= masks[e];
+    }
+    for (std::uint32_t bits = split; bits; bits &= bits - 1) {
+      const int f = __builtin_ctz(bits);
+      if (!uniform(masks[12 + f])) sp |= static_cast<std::uint8_t>(1u << f), read |= masks[12 + f];
+    }
     const std::uint64_t key =
         std::uint64_t{n.signs27 & read} | std::uint64_t{h} << 27 | std::uint64_t{sp} << 39;
     if (auto c = counts_.find(key); c != McNode::kNone) return static_cast<int>(c);

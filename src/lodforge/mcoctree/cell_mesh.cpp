@@ -8,15 +8,6 @@
 namespace lodforge::detail {
 namespace {
 
-struct Candidate {
-  std::uint8_t octant;
-  std::uint8_t edge;
-};
-struct SlotChildren {
-  std::array<Candidate, 2> c{};
-  int count = 0;
-};
-
 std::array<SlotChildren, kSlotCount> make_slot_children() {
   std::array<SlotChildren, kSlotCount> out{};
   for (int s = 0; s < kSlotCount; ++s) {
@@ -51,22 +42,12 @@ std::array<SlotChildren, kSlotCount> make_slot_children() {
   return out;
 }
 
+}  // namespace
+
 // At load time rather than on first use: slot_vertex is called for every
 // slot of every node the build looks at, and a guarded static costs a check
 // per call.
 const std::array<SlotChildren, kSlotCount> kSlotChildren = make_slot_children();
-
-}  // namespace
-
-std::uint32_t slot_vertex(const McOctree& tree, const McNode& n, int slot, std::uint16_t halved) {
-  if (slot < 24 && !(halved >> (slot / 2) & 1)) return n.edge_vertex[slot / 2];
-  const SlotChildren& sc = kSlotChildren[slot];
-  for (int i = 0; i < sc.count; ++i) {
-    std::uint32_t c = n.child(sc.c[i].octant);
-    if (c != McNode::kNone) return tree.nodes[c].edge_vertex[sc.c[i].edge];
-  }
-  return McNode::kNone;
-}
 
 int node_triangle_count(const McNode& n, std::uint16_t halved, std::uint8_t split) {
   if (halved == 0 && split == 0) return standard_case(corner_signs(n.signs27)).count;

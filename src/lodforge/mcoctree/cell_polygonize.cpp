@@ -190,46 +190,123 @@ const StandardCase& standard_case(std::uint8_t corner_signs) {
   return standard_table()[corner_signs];
 }
 
+namespace {
+
+// Segment slot of two adjacent boundary points; the whole edge uses 2e.
+std::uint8_t slot_of(int p, int q, bool whole_edge, int edge) {
+  if (whole_edge) return static_cast<std::uint8_t>(2 * edge);
+  int lo = p < q ? p : q, hi = p < q ? q : p;
+  int d = hi - lo;
+  int axis = d == 1 ? 0 : d == 3 ? 1 : 2;
+  int c[3] = {coord(lo, 0), coord(lo, 1), coord(lo, 2)};
+  bool on_edge = (c[(axis + 1) % 3] != 1) && (c[(axis + 2) % 3] != 1);
+  if (on_edge) {
+    int b = (c[(axis + 1) % 3] / 2) | ((c[(axis + 2) % 3] / 2) << 1);
+    return static_cast<std::uint8_t>(2 * (4 * axis + b) + c[axis]);
+  }
+  // Interior half-line of the face: the one coordinate in {0,2} that is not the axis.
+  int fa = c[(axis + 1) % 3] != 1 ? (axis + 1) % 3 : (axis + 2) % 3;
+  int f = 2 * fa + c[fa] / 2;
+  int u = (fa + 1) % 3, v = (fa + 2) % 3;
+  int far = lo == point_at(fa, c[fa], 1, 1) ? hi : lo;
+  int k = coord(far, u) == 0 ? 0 : coord(far, u) == 2 ? 1 : coord(far, v) == 0 ? 2 : 3;
+  return static_cast<std::uint8_t>(24 + 4 * f + k);
+}
+
+// A cycle of boundary points of a face (CCW about +axis) and the slot of
+// each side (point i to point i + 1).
+struct Ring {
+  int n = 0;
+  std::array<std::uint8_t, 8> points{}, slots{};
+};
+// Per face: the ring of its whole boundary, by which of its four edges are
+// halved (bit i: the edge from corner i to corner i + 1 of the ring), its
+// four quarters' rings, and those four edges. Tabulated once: a cell's
+// contour is then a few table reads per face (the build counts the triangles
+// of thousands of split cells).
+struct FaceRings {
+  std::array<Ring, 16> whole;
+  std::array<Ring, 4> quarters;
+  std::array<int, 4> edges{};
+};
+
+std::array<FaceRings, 6> make_face_rings() {
+  std::array<FaceRings, 6> out{};
+  for (int f = 0; f < 6; ++f) {
+    int a = f / 2, ca = 2 * (f % 2);
+    FaceRings& fr = out[f];
+    for (int qv = 0; qv < 2; ++qv)
+      for (int qu = 0; qu < 2; ++qu) {
+        Ring& r = fr.quarters[2 * qv + qu];
+        int pts[4] = {point_at(a, ca, qu, qv), point_at(a, ca, qu + 1, qv),
+                      point_at(a, ca, qu + 1, qv + 1), point_at(a, ca, qu, qv + 1)};
+        r.n = 4;
+        for (int i = 0; i < 4; ++i) {
+          r.points[i] = static_cast<std::uint8_t>(pts[i]);
+          r.slots[i] = slot_of(pts[i], pts[(i + 1) % 4], false, 0);
+        }
+      }
+    const int corners[4][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+    for (int i = 0; i < 4; ++i) {
+      int p = point_at(a, ca, corners[i][0], corners[i][1]);
+      int q = point_at(a, ca, corners[(i + 1) % 4][0], corners[(i + 1) % 4][1]);
+      // The cell edge between corners p and q.
+      int lo = p < q ? p : q, hi = p < q ? q : p;
+      int d = hi - lo;
+      int ax = d == 2 ? 0 : d == 6 ? 1 : 2;
+      int b = (coord(lo, (ax + 1) % 3) / 2) | ((coord(lo, (ax + 2) % 3) / 2) << 1);
+      fr.edges[i] = 4 * ax + b;
+    }
+    for (int halved = 0; halved < 16; ++halved) {
+      int pts[8];
+      bool whole[8];
+      int edge[8];
+      int n = 0;
+      for (int i = 0; i < 4; ++i) {
+        int u0 = corners[i][0], v0 = corners[i][1];
+        int u1 = corners[(i + 1) % 4][0], v1 = corners[(i + 1) % 4][1];
+        int p = point_at(a, ca, u0, v0), e = fr.edges[i];
+        if (halved >> i & 1) {
+          pts[n] = p, whole[n] = false, edge[n++] = e;
+          pts[n] = point_at(a, ca, (u0 + u1) / 2, (v0 + v1) / 2), whole[n] = false, edge[n++] = e;
+        } else {
+          pts[n] = p, whole[n] = true, edge[n++] = e;
+        }
+      }
+      Ring& r = fr.whole[halved];
+      r.n = n;
+      for (int i = 0; i < n; ++i) {
+        r.points[i] = static_cast<std::uint8_t>(pts[i]);
+        r.slots[i] = slot_of(pts[i], pts[(i + 1) % n], whole[i], edge[i]);
+      }
+    }
+  }
+  return out;
+}
+const std::array<FaceRings, 6>& face_rings() {
+  static const std::array<FaceRings, 6> t = make_face_rings();
+  return t;
+}
+
+}  // namespace
+
 void polygonize_cell(const CellConfig& config, CellTriangles& out) {
   out.count = 0;
   out.fallback_count = 0;
   auto inside = [&](int p) { return (config.signs27 >> p & 1) != 0; };
 
-  // Segment slot of two adjacent boundary points; the whole edge uses 2e.
-  auto slot_of = [&](int p, int q, bool whole_edge, int edge) -> std::uint8_t {
-    if (whole_edge) return static_cast<std::uint8_t>(2 * edge);
-    int lo = p < q ? p : q, hi = p < q ? q : p;
-    int d = hi - lo;
-    int axis = d == 1 ? 0 : d == 3 ? 1 : 2;
-    int c[3] = {coord(lo, 0), coord(lo, 1), coord(lo, 2)};
-    bool on_edge = (c[(axis + 1) % 3] != 1) && (c[(axis + 2) % 3] != 1);
-    if (on_edge) {
-      int b = (c[(axis + 1) % 3] / 2) | ((c[(axis + 2) % 3] / 2) << 1);
-      return static_cast<std::uint8_t>(2 * (4 * axis + b) + c[axis]);
-    }
-    // Interior half-line of the face: the one coordinate in {0,2} that is not the axis.
-    int fa = c[(axis + 1) % 3] != 1 ? (axis + 1) % 3 : (axis + 2) % 3;
-    int f = 2 * fa + c[fa] / 2;
-    int u = (fa + 1) % 3, v = (fa + 2) % 3;
-    int far = lo == point_at(fa, c[fa], 1, 1) ? hi : lo;
-    int k = coord(far, u) == 0 ? 0 : coord(far, u) == 2 ? 1 : coord(far, v) == 0 ? 2 : 3;
-    (void)v;
-    return static_cast<std::uint8_t>(24 + 4 * f + k);
-  };
-
   std::array<std::int8_t, kSlotCount> next;
   next.fill(-1);
-  // Contours a cycle of boundary points (CCW about +axis a); `whole` marks the
-  // sides that are whole cell edges, with their edge numbers.
-  auto contour = [&](const int* pts, const bool* whole, const int* edge, int n, int side) {
+  // Contours a ring of the face at side `side` of its axis.
+  auto contour = [&](const Ring& ring, int side) {
     std::uint8_t slots[8];
     bool enter[8];
     int m = 0;
-    for (int i = 0; i < n; ++i) {
-      int p = pts[i], q = pts[(i + 1) % n];
-      if (inside(p) == inside(q)) continue;
-      slots[m] = slot_of(p, q, whole[i], edge[i]);
-      enter[m++] = inside(q);
+    for (int i = 0; i < ring.n; ++i) {
+      bool p = inside(ring.points[i]), q = inside(ring.points[(i + 1) % ring.n]);
+      if (p == q) continue;
+      slots[m] = ring.slots[i];
+      enter[m++] = q;
     }
     if (m == 0) return;
     int k0 = enter[0] ? 0 : 1;
@@ -246,42 +323,16 @@ void polygonize_cell(const CellConfig& config, CellTriangles& out) {
     }
   };
 
+  const auto& rings = face_rings();
   for (int f = 0; f < 6; ++f) {
-    int a = f / 2, s = f % 2, ca = 2 * s;
+    const FaceRings& fr = rings[f];
     if (config.split >> f & 1) {
-      for (int qv = 0; qv < 2; ++qv)
-        for (int qu = 0; qu < 2; ++qu) {
-          int pts[4] = {point_at(a, ca, qu, qv), point_at(a, ca, qu + 1, qv),
-                        point_at(a, ca, qu + 1, qv + 1), point_at(a, ca, qu, qv + 1)};
-          bool whole[4] = {false, false, false, false};
-          int edge[4] = {0, 0, 0, 0};
-          contour(pts, whole, edge, 4, s);
-        }
+      for (const Ring& r : fr.quarters) contour(r, f % 2);
       continue;
     }
-    const int corners[4][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
-    int pts[8];
-    bool whole[8];
-    int edge[8];
-    int n = 0;
-    for (int i = 0; i < 4; ++i) {
-      int u0 = corners[i][0], v0 = corners[i][1];
-      int u1 = corners[(i + 1) % 4][0], v1 = corners[(i + 1) % 4][1];
-      int p = point_at(a, ca, u0, v0), q = point_at(a, ca, u1, v1);
-      // The cell edge between corners p and q.
-      int lo = p < q ? p : q, hi = p < q ? q : p;
-      int d = hi - lo;
-      int ax = d == 2 ? 0 : d == 6 ? 1 : 2;
-      int b = (coord(lo, (ax + 1) % 3) / 2) | ((coord(lo, (ax + 2) % 3) / 2) << 1);
-      int e = 4 * ax + b;
-      if (config.halved >> e & 1) {
-        pts[n] = p, whole[n] = false, edge[n++] = e;
-        pts[n] = point_at(a, ca, (u0 + u1) / 2, (v0 + v1) / 2), whole[n] = false, edge[n++] = e;
-      } else {
-        pts[n] = p, whole[n] = true, edge[n++] = e;
-      }
-    }
-    contour(pts, whole, edge, n, s);
+    int halved = 0;
+    for (int i = 0; i < 4; ++i) halved |= (config.halved >> fr.edges[i] & 1) << i;
+    contour(fr.whole[halved], f % 2);
   }
 
   // Trace the loops and triangulate each.

@@ -824,26 +824,50 @@ class ScanField {
 // signs): each scan is resampled as a depth image in its own frame (the
 // sensor looks down -z, lines of sight parallel: the Stanford Cyberware
 // scans and mco scan's are), from its grid triangles without the depth
-// jumps. A point is seen empty, hence outside, when some scan's line of
-// sight through it reaches the surface behind it (by more than `margin`).
-// A line that met nothing carves nothing: the Cyberware scans are partial
-// (a limited window; the chin and ear scans are close-ups), so "no data"
-// may be an unscanned part of the object as well as the background (carving
-// those hollowed the bunny out). Holes (occlusion shadows) say nothing either.
+// jumps. What the scans say of a point (seen_at):
+//
+// | the scans' lines through it                                 | the point is      |
+// |-------------------------------------------------------------|-------------------|
+// | one reaches its surface behind the point (by > `margin`)    | empty (outside)   |
+// | else more meet a surface before it than pass beyond the     | occluded (inside) |
+// |   scan's data (background: farther than `margin` from every |                   |
+// |   pixel with data, or outside the scan's window)            |                   |
+// | else                                                        | unseen (outside)  |
+//
+// Only measured depth carves for sure. A pixel without data inside the
+// silhouette (a gap at a grazing angle) says nothing: carving along those
+// lines made the bunny a shell, an inner wall wherever one scan had a gap.
+// Background lines only vote: the Cyberware scans are partial (a limited
+// window; the chin and ear scans are close-ups), so beyond one scan's data
+// may lie the object that eight others see behind their surfaces, while
+// space that one scan sees behind an ear and the others beyond their data
+// is air (with "occluded" alone, such space made blobs 2 cm across).
 class SightCarver {
  public:
+  enum class Seen { kUnseen, kEmpty, kOccluded };
   SightCarver(const std::vector<RangeScan>& scans, float margin) : margin_(margin) {
     for (const auto& s : scans) add(s);
   }
-  bool empty_at(const Vec3& world) const {
+  Seen seen_at(const Vec3& world) const {
+    int occluded = 0, background = 0;
     for (const auto& im : images_) {
       Vec3 q = im.scan->to_scan(world);
       auto i = static_cast<std::int64_t>(std::floor((q.x - im.x0) / im.s));
       auto j = static_cast<std::int64_t>(std::floor((q.y - im.y0) / im.s));
-      if (i < 0 || j < 0 || i >= im.w || j >= im.h) continue;
-      if (q.z > im.depth[static_cast<std::size_t>(j) * im.w + i] + margin_) return true;
+      if (i < 0 || j < 0 || i >= im.w || j >= im.h) {
+        ++background;  // beyond the scan's window
+        continue;
+      }
+      const std::size_t px = static_cast<std::size_t>(j) * im.w + i;
+      const float depth = im.depth[px];
+      if (!std::isfinite(depth)) {
+        background += im.background[px];
+        continue;
+      }
+      if (q.z > depth + margin_) return Seen::kEmpty;
+      occluded += q.z < depth - margin_;
     }
-    return false;
+    return occluded > background ? Seen::kOccluded : Seen::kUnseen;
   }
 
  private:
@@ -851,7 +875,8 @@ class SightCarver {
     const RangeScan* scan;
     float x0, y0, s;
     int w, h;
-    std::vector<float> depth;  // nearest surface (largest z); -inf: none
+    std::vector<float> depth;              // nearest surface (largest z); -inf: none
+    std::vector<std::uint8_t> background;  // no data within margin of the line
   };
   void add(const RangeScan& scan) {
     float s = scan.spacing();
@@ -862,7 +887,7 @@ class SightCarver {
     Vec3 size = box.size();
     // At most 4096 pixels a side: coarser pixels for a very wide scan.
     s = std::max(s, std::max(size.x, size.y) / 4090.0f);
-    Image im{&scan, box.lo.x - 2 * s, box.lo.y - 2 * s, s, 0, 0, {}};
+    Image im{&scan, box.lo.x - 2 * s, box.lo.y - 2 * s, s, 0, 0, {}, {}};
     im.w = static_cast<int>(std::ceil(size.x / s)) + 5;
     im.h = static_cast<int>(std::ceil(size.y / s)) + 5;
     im.depth.assign(static_cast<std::size_t>(im.w) * im.h, -INFINITY);
@@ -901,6 +926,35 @@ class SightCarver {
         raster(at(r, c), at(r, c + 1), at(r + 1, c + 1));
         raster(at(r, c), at(r + 1, c + 1), at(r + 1, c));
       }
+    // Background: pixels farther than the margin from every pixel with
+    // data (chamfer distance, two passes), the outside of the silhouette;
+    // nearer ones may be a gap in the object's surface.
+    const int reach = std::max(1, static_cast<int>(std::ceil(margin_ / im.s)));
+    std::vector<int> dist(im.depth.size());
+    for (std::size_t k = 0; k < dist.size(); ++k)
+      dist[k] = std::isfinite(im.depth[k]) ? 0 : reach + 1;
+    auto relax = [&](int r, int c, int dr, int dc) {
+      const int rr = r + dr, cc = c + dc;
+      if (rr < 0 || cc < 0 || rr >= im.h || cc >= im.w) return;
+      int& d = dist[static_cast<std::size_t>(r) * im.w + c];
+      d = std::min(d, dist[static_cast<std::size_t>(rr) * im.w + cc] + 1);
+    };
+    for (int r = 0; r < im.h; ++r)
+      for (int c = 0; c < im.w; ++c) {
+        relax(r, c, -1, -1);
+        relax(r, c, -1, 0);
+        relax(r, c, -1, 1);
+        relax(r, c, 0, -1);
+      }
+    for (int r = im.h - 1; r >= 0; --r)
+      for (int c = im.w - 1; c >= 0; --c) {
+        relax(r, c, 1, 1);
+        relax(r, c, 1, 0);
+        relax(r, c, 1, -1);
+        relax(r, c, 0, 1);
+      }
+    im.background.resize(dist.size());
+    for (std::size_t k = 0; k < dist.size(); ++k) im.background[k] = dist[k] > reach;
     images_.push_back(std::move(im));
   }
   float margin_;
@@ -910,11 +964,11 @@ class SightCarver {
 // The sign lattice of range scans. Band: the lattice points within two cells
 // of a range point get the weighted tangent-plane distance. Outside: the
 // box's outer faces (the root cube has a free cell all round) and every point
-// a line of sight shows empty (SightCarver, 2 cells of margin).
-// Every other point (inside the object, or seen by no scan: under the
-// Stanford bunny, which stood on the turntable) takes the sign of the
-// nearest band or carved point by flood fill, which closes the unseen
-// region with a cap within a few cells of the carved space.
+// a line of sight shows empty (SightCarver, 2 cells of margin). Every other
+// point (inside the object, in a gap of the data, or seen by no scan: under
+// the Stanford bunny, which stood on the turntable) by the scans' vote
+// (SightCarver::seen_at), which closes the unseen region with a cap where
+// the vote changes.
 Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans, int resolution,
                           McBuildStats& stats) {
   Lattice lat = empty_lattice(field.bounds(), resolution);
@@ -940,7 +994,7 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
                         est[i] = field.estimate(lat.point(band[i]), 2);
                     });
-  std::vector<std::int64_t> seeds;
+  std::size_t measured = 0;
   for (std::size_t i = 0; i < band.size(); ++i) {
     if (!est[i].found) {
       lat.state[band[i]] = 0;
@@ -953,34 +1007,32 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
     if (lat.on_border(band[i])) d = std::abs(d);
     lat.state[band[i]] = kExact | kAssigned | (d < 0 ? kInside : 0);
     lat.distance.push_back({band[i], d, ClosestPoint::kNone});
-    seeds.push_back(band[i]);
+    ++measured;
   }
-  stats.band_points = seeds.size();
+  stats.band_points = measured;
+  // Every other point from what the lines of sight say (SightCarver):
+  // empty or unseen is outside, occluded inside. No flood fill: a flood from
+  // the carved space under the unseen bottom rose into the body (nearer to
+  // it than the walls' band), hollowing it from below.
   SightCarver carver(scans, 2 * lat.h);
-  std::vector<std::uint8_t> carved(lat.state.size(), 0);
+  std::vector<std::uint8_t> seen(lat.state.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, lat.dim[2]), [&](const auto& r) {
     for (std::int64_t k = r.begin(); k != r.end(); ++k)
       for (std::int64_t j = 0; j < lat.dim[1]; ++j)
         for (std::int64_t i = 0; i < lat.dim[0]; ++i) {
           auto idx = lat.index(i, j, k);
-          bool border = lat.on_border(idx);
-          if (!(lat.state[idx] & kAssigned) && (border || carver.empty_at(lat.point(idx))))
-            carved[idx] = 1;
+          if (lat.state[idx] & kAssigned) continue;
+          seen[idx] = static_cast<std::uint8_t>(
+              lat.on_border(idx) ? SightCarver::Seen::kEmpty : carver.seen_at(lat.point(idx)));
         }
   });
-  for (std::size_t idx = 0; idx < carved.size(); ++idx)
-    if (carved[idx]) {
-      lat.state[idx] = kAssigned;
-      ++stats.carved_points;
-    }
-  // Seeds: the band and the carved points next to an unassigned one.
-  for (std::int64_t idx = 0; idx < static_cast<std::int64_t>(carved.size()); ++idx) {
-    if (!carved[idx]) continue;
-    bool frontier = false;
-    lattice_neighbours(lat, idx, [&](std::int64_t q) { frontier |= !(lat.state[q] & kAssigned); });
-    if (frontier) seeds.push_back(idx);
+  for (std::size_t idx = 0; idx < seen.size(); ++idx) {
+    if (lat.state[idx] & kAssigned) continue;
+    const auto how = static_cast<SightCarver::Seen>(seen[idx]);
+    lat.state[idx] = kAssigned | (how == SightCarver::Seen::kOccluded ? kInside : 0);
+    stats.carved_points += how == SightCarver::Seen::kEmpty;
+    stats.flooded_points += how != SightCarver::Seen::kEmpty;
   }
-  flood_fill(lat, seeds, stats);
   // Voids inside the object and bubbles around stray points (sign_components.h).
   const detail::SignCleanup cleanup =
       detail::clean_scan_signs(lat.state, lat.dim, kInside, kMinScanPart, kMinScanPartFraction);

@@ -52,7 +52,7 @@ struct McBuildOptions {
 
 struct McBuildStats {
   std::size_t band_points = 0;      ///< lattice points with an exact signed distance
-  std::size_t flooded_points = 0;   ///< lattice points whose sign came from the flood fill
+  std::size_t flooded_points = 0;   ///< signs from the flood fill (range scans: from the vote)
   std::size_t sign_repairs = 0;     ///< flooded points later given an exact distance
   std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
   std::size_t filled_voids = 0;     ///< range scans: enclosed outside regions made inside
@@ -105,12 +105,14 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// points of the same sheet so that overlapping scans out of register by a
 /// fraction of a cell agree; outside wherever a line of sight shows the
 /// space empty (in front of the surface a scan measured: space carving) and
-/// on the root cube's faces;
-/// everywhere else the sign of the nearest measured or carved lattice point
-/// (flood fill). Where no scan saw the surface, the model is closed by a cap
-/// where the inside and outside floods meet, between the unseen region's rim
-/// and the carved space or the box. Normals and colours: the same
-/// weighted average of the nearby points' normals and colours.
+/// on the root cube's faces; everywhere else a vote of the scans: inside
+/// where more scans see the point behind a measured surface than see it
+/// beyond their data (outside the silhouette or the window), else outside
+/// (a line through a gap in a scan's data says nothing). Where no scan saw
+/// the surface (under the Stanford bunny, which stood on the turntable) the
+/// model is closed by a cap where the vote changes, near the rim of the
+/// unseen region. Normals and colours: the same weighted average of the
+/// nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
 /// size, a non-finite coordinate; std::invalid_argument for a resolution out

@@ -22,7 +22,7 @@ namespace {
 
 TEST(BuildMcOctree, SphereLeavesLieOnTheSurface) {
   auto sphere = test::make_icosphere(3);
-  auto r = build_mc_octree(sphere, {.resolution = 16});
+  auto r = build_mc_octree(sphere, {.resolution = 16, .place_coarse_vertices = false});
   const McOctree& t = r.tree;
   ASSERT_FALSE(t.nodes.empty());
   EXPECT_EQ(t.depth, 5);                // 16 + 2 cells -> 32
@@ -42,6 +42,48 @@ TEST(BuildMcOctree, SphereLeavesLieOnTheSurface) {
     for (int o = 0; o < 8; ++o)
       if (auto c = n.child(o); c != McNode::kNone && !t.nodes[c].leaf())
         EXPECT_GT(t.nodes[c].priority, n.priority);
+}
+
+// Coarse levels' own vertices (McBuildOptions::place_coarse_vertices): the
+// leaves keep the finest crossings, on the surface; a coarser level's vertex
+// lies along its crossing's normal, within a quarter of its cell; every level
+// edge has one vertex; on the sphere, whose
+// coarse chords all cut inside, the coarse vertices move outwards.
+TEST(BuildMcOctree, CoarseVerticesStraddleTheSurface) {
+  auto sphere = test::make_icosphere(4);
+  const McOctree on = build_mc_octree(sphere, {.resolution = 24}).tree;
+  const McOctree off =
+      build_mc_octree(sphere, {.resolution = 24, .place_coarse_vertices = false}).tree;
+  ASSERT_EQ(on.nodes.size(), off.nodes.size());
+  EXPECT_GT(on.positions.size(), off.positions.size());
+  std::vector<int> level(on.positions.size(), -1);
+  std::size_t outwards = 0, moved = 0;
+  for (std::size_t i = 0; i < on.nodes.size(); ++i) {
+    const McNode &a = on.nodes[i], &b = off.nodes[i];
+    const float limit = 0.25f * on.cell_size * static_cast<float>(1u << (on.depth - a.level));
+    for (int e = 0; e < 12; ++e) {
+      ASSERT_EQ(a.edge_vertex[e] == McNode::kNone, b.edge_vertex[e] == McNode::kNone);
+      if (a.edge_vertex[e] == McNode::kNone) continue;
+      const std::uint32_t v = a.edge_vertex[e];
+      // One level per vertex: no two levels share one.
+      EXPECT_TRUE(level[v] == -1 || level[v] == a.level) << "vertex " << v;
+      level[v] = a.level;
+      const Vec3 p = on.positions[v], q = off.positions[b.edge_vertex[e]];
+      if (a.leaf()) {
+        EXPECT_EQ(p, q);
+        continue;
+      }
+      const Vec3 d = p - q;
+      EXPECT_LE(length(d), limit * 1.0001f);
+      EXPECT_LE(length(cross(d, on.normals[v])), 1e-4f * on.cell_size);  // along the normal
+      moved += length(d) > 0;
+      outwards += length(p) > length(q);
+    }
+  }
+  EXPECT_GT(moved, 100u);
+  EXPECT_GT(outwards, 0.95 * moved);
+  // (Crack-free where levels meet: ExtractMcMesh.*IsCrackFreeAtEveryPriority
+  // with the default options.)
 }
 
 TEST(BuildMcOctree, FourCaseRuleMatchesChildren) {

@@ -1,5 +1,5 @@
 // `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--close-holes]
-//                    [--metric area|distance] [--threads T]`
+//                    [--metric area|distance] [--surface-vertices] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco scan MESH --views K -o DIR [--resolution N]`
@@ -56,6 +56,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
     int resolution = 0;
     int threads = 0;
     bool close_holes = false;
+    bool surface_vertices = false;
     std::string metric = "area";
   };
   auto b = std::make_shared<Build>();
@@ -84,16 +85,21 @@ void add_mco_command(CLI::App& app, Runner& run) {
                    "(how far the finer surface lies from a coarse cell: lower error at every "
                    "level, about 10 % more build time)")
       ->check(CLI::IsMember({"area", "distance"}));
+  build->add_flag("--surface-vertices", b->surface_vertices,
+                  "Keep every vertex of every level on the input surface (default: coarse "
+                  "levels' vertices move off it to where their triangles straddle the surface, "
+                  "for a lower deviation)");
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
       auto t0 = std::chrono::steady_clock::now();
-      McBuildOptions options{.resolution = b->resolution,
-                             .threads = b->threads,
-                             .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
-                             .metric = b->metric == "distance" ? McPriorityMetric::kDistance
-                                                               : McPriorityMetric::kArea};
+      McBuildOptions options{
+          .resolution = b->resolution,
+          .threads = b->threads,
+          .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
+          .metric = b->metric == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea,
+          .place_coarse_vertices = !b->surface_vertices};
       McBuildResult r;
       std::string what;
       if (is_range_input(b->input)) {

@@ -1148,7 +1148,8 @@ class NodeIndex {
 
 class Builder {
  public:
-  Builder(McOctree& t, McBuildStats& stats) : t_(t), stats_(stats) {}
+  Builder(McOctree& t, McBuildStats& stats, bool place_coarse)
+      : t_(t), stats_(stats), place_coarse_(place_coarse) {}
 
   // attr(x, hint, near, normal, colour) gives the normal (and the colour when
   // `colored`) of the surface point x and returns how far x is from the
@@ -1194,6 +1195,7 @@ class Builder {
     t_.normals.resize(edge_keys.size());
     if (colored) t_.colors.resize(edge_keys.size());
     gap_.assign(edge_keys.size(), Gap{});
+    finest_count_ = edge_keys.size();
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
         [&](const tbb::blocked_range<std::size_t>& r) {
@@ -1275,9 +1277,114 @@ class Builder {
             t_.nodes[find(D, x, y, z)].edge_vertex[edge] = static_cast<std::uint32_t>(v);
           });
     });
-    for (int l = D - 1; l >= 0; --l)
+    if (place_coarse_) surface_quadrics(D);
+    for (int l = D - 1; l >= 0; --l) {
       tbb::parallel_for(level_offset_[l], level_offset_[l + 1],
                         [&](std::size_t i) { make_parent(t_.nodes[i]); });
+      if (place_coarse_) level_vertices(l);
+    }
+  }
+
+  // Coarse levels' own vertices. A coarse cell's edge point is a finest
+  // crossing, on the surface, so its triangles are chords on one side of a
+  // curved surface; quadric collapse would place the point off the surface
+  // so that the triangles straddle it. Each level's edge points therefore
+  // are vertices of their own (a copy of the finest crossing the rescaled
+  // ratio picks, one per level and edge: every cell that uses a level-l
+  // edge uses the same copy, and a split face or halved edge uses the
+  // children's, so no crack opens), moved along their normal to the
+  // minimum of the quadric of the finest surface in the cells around the
+  // edge, at most a quarter of the level's cell size. The finest level's
+  // points stay where they are.
+  struct SurfaceQuadric {
+    double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0, b0 = 0, b1 = 0, b2 = 0;
+    void add(const SurfaceQuadric& o) {
+      a00 += o.a00, a01 += o.a01, a02 += o.a02, a11 += o.a11, a12 += o.a12, a22 += o.a22;
+      b0 += o.b0, b1 += o.b1, b2 += o.b2;
+    }
+  };
+  // Per node: the area-weighted plane quadric of the finest triangles in it.
+  void surface_quadrics(int D) {
+    node_q_.assign(t_.nodes.size(), SurfaceQuadric{});
+    tbb::parallel_for(level_offset_[D], level_offset_[D + 1], [&](std::size_t i) {
+      SurfaceQuadric& q = node_q_[i];
+      detail::triangulate_node(
+          t_, t_.nodes[i], 0, 0,
+          [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+            if (a == McNode::kNone || b == McNode::kNone || c == McNode::kNone) return;
+            const Vec3 &pa = t_.positions[a], &pb = t_.positions[b], &pc = t_.positions[c];
+            Vec3 n = cross(pb - pa, pc - pa);
+            double len = length(n);
+            if (!(len > 0)) return;
+            double nx = n.x / len, ny = n.y / len, nz = n.z / len, w = 0.5 * len;
+            double d = -(nx * pa.x + ny * pa.y + nz * pa.z);
+            q.a00 += w * nx * nx, q.a01 += w * nx * ny, q.a02 += w * nx * nz;
+            q.a11 += w * ny * ny, q.a12 += w * ny * nz, q.a22 += w * nz * nz;
+            q.b0 += w * nx * d, q.b1 += w * ny * d, q.b2 += w * nz * d;
+          },
+          [](const std::uint8_t*, int, std::uint16_t) { return McNode::kNone; });
+    });
+    for (int l = D - 1; l >= 0; --l)
+      tbb::parallel_for(level_offset_[l], level_offset_[l + 1], [&](std::size_t i) {
+        for (int o = 0; o < 8; ++o)
+          if (std::uint32_t ci = t_.nodes[i].child(o); ci != McNode::kNone)
+            node_q_[i].add(node_q_[ci]);
+      });
+  }
+  // Level l's nodes take level copies of the edge points make_parent gave
+  // them (serial, in node order: the copies' numbering and quadric sums do
+  // not depend on the threads).
+  static constexpr double kMinMove = 0.05;
+  void level_vertices(int l) {
+    // The quadric around each level edge: the sum over the nodes sharing it.
+    std::vector<std::uint32_t> entry(t_.positions.size(), McNode::kNone);
+    std::vector<std::uint32_t> sources;
+    std::vector<SurfaceQuadric> around;
+    for (std::size_t i = level_offset_[l]; i < level_offset_[l + 1]; ++i)
+      for (auto v : t_.nodes[i].edge_vertex) {
+        if (v == McNode::kNone) continue;
+        if (entry[v] == McNode::kNone) {
+          entry[v] = static_cast<std::uint32_t>(sources.size());
+          sources.push_back(v);
+          around.emplace_back();
+        }
+        around[entry[v]].add(node_q_[i]);
+      }
+    // Where the placement moves a point by less than kMinMove finest cells,
+    // the level keeps the finer level's vertex: a split next to it then
+    // changes none of the cell's triangles (no new interval in the run-time
+    // model) and the vertex table does not grow.
+    const double limit = 0.25 * t_.cell_size * static_cast<double>(1u << (t_.depth - l));
+    // Moves from the finest crossing (a finer level's vertex may have moved).
+    std::vector<float> move(sources.size(), 0);
+    tbb::parallel_for(std::size_t{0}, sources.size(), [&](std::size_t k) {
+      const SurfaceQuadric& q = around[k];
+      const Vec3 p = t_.positions[finest_of(sources[k])], n = t_.normals[sources[k]];
+      const double an0 = q.a00 * n.x + q.a01 * n.y + q.a02 * n.z;
+      const double an1 = q.a01 * n.x + q.a11 * n.y + q.a12 * n.z;
+      const double an2 = q.a02 * n.x + q.a12 * n.y + q.a22 * n.z;
+      const double nan = n.x * an0 + n.y * an1 + n.z * an2;
+      if (!(nan > 0)) return;
+      // d/dt Q(p + t n) = 2 (n.(A p + b) + t n.A n) = 0.
+      const double slope = an0 * p.x + an1 * p.y + an2 * p.z + q.b0 * n.x + q.b1 * n.y + q.b2 * n.z;
+      move[k] = static_cast<float>(std::clamp(-slope / nan, -limit, limit));
+    });
+    std::vector<std::uint32_t> target(sources);
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+      const std::uint32_t v = sources[k], f = finest_of(v);
+      const Vec3 x = t_.positions[f] + t_.normals[v] * move[k];
+      if (!(length(x - t_.positions[v]) >= kMinMove * t_.cell_size)) continue;
+      target[k] = static_cast<std::uint32_t>(t_.positions.size());
+      t_.positions.push_back(x);
+      t_.normals.push_back(t_.normals[v]);
+      if (!t_.colors.empty()) t_.colors.push_back(t_.colors[v]);
+      gap_.push_back(gap_[v]);
+      finest_.push_back(f);
+    }
+    for (std::size_t i = level_offset_[l]; i < level_offset_[l + 1]; ++i)
+      for (auto& v : t_.nodes[i].edge_vertex)
+        if (v != McNode::kNone) v = target[entry[v]];
+    if (l == 0) node_q_ = {};
   }
 
   // Holes of an open input. A node with a surface point (its own or, where
@@ -1697,14 +1804,24 @@ class Builder {
  private:
   McOctree& t_;
   McBuildStats& stats_;
+  bool place_coarse_;
   std::vector<std::size_t> level_offset_;
   NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
   NodeIndex counts_;  // see count_now
   std::vector<std::uint32_t> parent_;
-  std::vector<Gap> gap_;             // per vertex
-  std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
-  std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours
+  std::vector<Gap> gap_;                // per vertex
+  std::vector<SurfaceQuadric> node_q_;  // per node, while the tree is built
+  std::size_t finest_count_ = 0;        // vertices [0, finest_count_) are finest crossings
+  std::vector<std::uint32_t> finest_;   // per later (level) vertex: its finest crossing
+  std::uint32_t finest_of(std::uint32_t v) const {
+    return v < finest_count_ ? v : finest_[v - finest_count_];
+  }
+  std::size_t first_copy_ = 0;              // the first level copy (vertices before: finest)
+  std::vector<SurfaceQuadric> vertex_q_;    // per level copy: the quadric around its edge
+  std::vector<std::uint8_t> vertex_level_;  // per level copy: its level
+  std::uint32_t internal_ = 0;              // nodes [0, internal_) are internal, the rest leaves
+  std::vector<std::uint32_t> near_;         // 27 per internal node: its same-level neighbours
 };
 
 // The resolution at which the full-resolution model has about as many
@@ -1786,7 +1903,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   hierarchy.wait();
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
-  Builder builder(result.tree, result.stats);
+  Builder builder(result.tree, result.stats, options.place_coarse_vertices);
   // Closed inputs invent nothing (every sign change is a crossing of the
   // surface); not testing them keeps them closed whatever the rounding.
   const bool holes = options.holes == McHoles::kOpen && sd.has_rims();
@@ -1844,7 +1961,7 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   Lattice lat = make_scan_lattice(field, scans, result.stats.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
-  Builder builder(result.tree, result.stats);
+  Builder builder(result.tree, result.stats, options.place_coarse_vertices);
   builder.build_tree(lat, field.colored(),
                      [&](const Vec3& x, std::uint32_t&, const std::array<std::uint32_t, 2>&,
                          Vec3& normal, Rgb8* color) {

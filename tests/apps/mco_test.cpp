@@ -95,6 +95,22 @@ TEST_F(McoCli, PriorityMetricChoice) {
   EXPECT_FALSE(fs::exists(path("v.mco")));
 }
 
+// --surface-vertices keeps every level's vertices on the surface: the same
+// model but for the coarse levels' own, placed vertices (fewer vertices).
+TEST_F(McoCli, SurfaceVerticesChoice) {
+  std::string placed = model(), surface = path("surface.mco");
+  auto r = run_lodforge("mco build " + mesh_ + " -o " + surface +
+                        " --resolution 20 --threads 2 --surface-vertices");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto info = [&](const std::string& m) {
+    return nlohmann::json::parse(run_lodforge("mco info " + m + " --json").out);
+  };
+  EXPECT_EQ(info(placed)["full_triangles"], info(surface)["full_triangles"]);
+  EXPECT_EQ(info(placed)["cells"], info(surface)["cells"]);
+  EXPECT_GT(info(placed)["vertices"].get<std::uint64_t>(),
+            info(surface)["vertices"].get<std::uint64_t>());
+}
+
 TEST_F(McoCli, ExtractFromATruncatedFileUpToWhatItHolds) {
   std::string m = model();
   std::string data = read_text(m);

@@ -1304,12 +1304,13 @@ class Builder {
     }
   };
   // Per node: the area-weighted plane quadric of the finest triangles in it.
+  // Leaves' quadrics are summed into their parents as they are made, and
+  // only internal nodes keep one (a quarter of the nodes).
   void surface_quadrics(int D) {
-    node_q_.assign(t_.nodes.size(), SurfaceQuadric{});
-    tbb::parallel_for(level_offset_[D], level_offset_[D + 1], [&](std::size_t i) {
-      SurfaceQuadric& q = node_q_[i];
+    node_q_.assign(level_offset_[D], SurfaceQuadric{});
+    auto leaf_quadric = [&](const McNode& leaf, SurfaceQuadric& q) {
       detail::triangulate_node(
-          t_, t_.nodes[i], 0, 0,
+          t_, leaf, 0, 0,
           [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
             if (a == McNode::kNone || b == McNode::kNone || c == McNode::kNone) return;
             const Vec3 &pa = t_.positions[a], &pb = t_.positions[b], &pc = t_.positions[c];
@@ -1323,12 +1324,16 @@ class Builder {
             q.b0 += w * nx * d, q.b1 += w * ny * d, q.b2 += w * nz * d;
           },
           [](const std::uint8_t*, int, std::uint16_t) { return McNode::kNone; });
-    });
+    };
     for (int l = D - 1; l >= 0; --l)
       tbb::parallel_for(level_offset_[l], level_offset_[l + 1], [&](std::size_t i) {
         for (int o = 0; o < 8; ++o)
-          if (std::uint32_t ci = t_.nodes[i].child(o); ci != McNode::kNone)
-            node_q_[i].add(node_q_[ci]);
+          if (std::uint32_t ci = t_.nodes[i].child(o); ci != McNode::kNone) {
+            if (ci >= level_offset_[D])
+              leaf_quadric(t_.nodes[ci], node_q_[i]);
+            else
+              node_q_[i].add(node_q_[ci]);
+          }
       });
   }
   // Level l's nodes take level copies of the edge points make_parent gave

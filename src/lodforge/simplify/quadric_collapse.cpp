@@ -651,10 +651,39 @@ void Collapser::compute_kinds() {
   nbs.reserve(64);
   std::vector<std::uint32_t> slot_of(np);  // large fans: o -> index in nbs
   const bool materials = mesh_.has_materials();
+  // No seams anywhere (one wedge per position) and no materials: a fan that
+  // is one closed ring, each neighbour once after p and once before it, has
+  // no feature edge and is free; that common case is told apart without the
+  // neighbour bookkeeping below (which decides the same for it).
+  const bool plain = !materials && wedge_origin_.size() == np;
   for (std::uint32_t p = 0; p < np; ++p) {
-    if (vx_[p].ref_count == 0) {
+    const std::uint32_t valence = vx_[p].ref_count;
+    if (valence == 0) {
       vx_[p].kind = kLocked;
       continue;
+    }
+    if (plain && valence <= 16) {
+      std::uint32_t nx[16], pv[16];
+      const std::uint32_t* ts = tris_begin(p);
+      for (std::uint32_t i = 0; i < valence; ++i) {
+        const Tri& t = tri_[ts[i]];
+        const int k = corner_of(t.v, p);
+        nx[i] = t.v[kNext[k]];
+        pv[i] = t.v[kPrev[k]];
+      }
+      // A ring: the nexts distinct, the prevs distinct, and each next a prev.
+      bool ring = true;
+      for (std::uint32_t i = 1; i < valence; ++i)
+        for (std::uint32_t j = 0; j < i; ++j) ring &= (nx[j] != nx[i]) & (pv[j] != pv[i]);
+      for (std::uint32_t i = 0; i < valence && ring; ++i) {
+        bool found = false;
+        for (std::uint32_t j = 0; j < valence; ++j) found |= pv[j] == nx[i];
+        ring = found;
+      }
+      if (ring) {
+        vx_[p].kind = kFree;  // one wedge: plain
+        continue;
+      }
     }
     fan.clear();
     const std::uint32_t* ts = tris_begin(p);

@@ -47,6 +47,8 @@ inline CommandResult run_lodforge(const std::string& args, const std::string& st
   r.err = read_text(err);
   fs::remove(out);
   fs::remove(err);
+  std::error_code ignored;
+  fs::remove(dir, ignored);  // only when empty: a run of each test leaves nothing
   return r;
 }
 

@@ -36,6 +36,10 @@ class McoCli : public ::testing::Test {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return m;
   }
+  // `mco info MODEL --json`, parsed.
+  static nlohmann::json info_json(const std::string& m) {
+    return nlohmann::json::parse(run_lodforge("mco info " + m + " --json").out);
+  }
   fs::path dir_;
   std::string mesh_;
 };
@@ -84,10 +88,7 @@ TEST_F(McoCli, PriorityMetricChoice) {
   auto r = run_lodforge("mco build " + mesh_ + " -o " + distance +
                         " --resolution 20 --threads 2 --metric distance");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  auto info = [&](const std::string& m) {
-    return nlohmann::json::parse(run_lodforge("mco info " + m + " --json").out);
-  };
-  EXPECT_EQ(info(area)["full_triangles"], info(distance)["full_triangles"]);
+  EXPECT_EQ(info_json(area)["full_triangles"], info_json(distance)["full_triangles"]);
   EXPECT_NE(read_text(area), read_text(distance));
   r = run_lodforge("mco build " + mesh_ + " -o " + path("v.mco") + " --metric volume");
   EXPECT_EQ(r.exit_code, 2);
@@ -102,13 +103,10 @@ TEST_F(McoCli, SurfaceVerticesChoice) {
   auto r = run_lodforge("mco build " + mesh_ + " -o " + surface +
                         " --resolution 20 --threads 2 --surface-vertices");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  auto info = [&](const std::string& m) {
-    return nlohmann::json::parse(run_lodforge("mco info " + m + " --json").out);
-  };
-  EXPECT_EQ(info(placed)["full_triangles"], info(surface)["full_triangles"]);
-  EXPECT_EQ(info(placed)["cells"], info(surface)["cells"]);
-  EXPECT_GT(info(placed)["vertices"].get<std::uint64_t>(),
-            info(surface)["vertices"].get<std::uint64_t>());
+  EXPECT_EQ(info_json(placed)["full_triangles"], info_json(surface)["full_triangles"]);
+  EXPECT_EQ(info_json(placed)["cells"], info_json(surface)["cells"]);
+  EXPECT_GT(info_json(placed)["vertices"].get<std::uint64_t>(),
+            info_json(surface)["vertices"].get<std::uint64_t>());
 }
 
 TEST_F(McoCli, ExtractFromATruncatedFileUpToWhatItHolds) {

@@ -1822,11 +1822,8 @@ class Builder {
   std::uint32_t finest_of(std::uint32_t v) const {
     return v < finest_count_ ? v : finest_[v - finest_count_];
   }
-  std::size_t first_copy_ = 0;              // the first level copy (vertices before: finest)
-  std::vector<SurfaceQuadric> vertex_q_;    // per level copy: the quadric around its edge
-  std::vector<std::uint8_t> vertex_level_;  // per level copy: its level
-  std::uint32_t internal_ = 0;              // nodes [0, internal_) are internal, the rest leaves
-  std::vector<std::uint32_t> near_;         // 27 per internal node: its same-level neighbours
+  std::uint32_t internal_ = 0;       // nodes [0, internal_) are internal, the rest leaves
+  std::vector<std::uint32_t> near_;  // 27 per internal node: its same-level neighbours
 };
 
 // The resolution at which the full-resolution model has about as many

@@ -54,7 +54,7 @@ struct McBuildOptions {
   /// in the cells around the edge is least, so that coarse triangles straddle
   /// the surface instead of cutting chords on one side of it (bunny, the
   /// larger one-sided mean deviation at 60 / 40 / 20 / 5 %: -9 / -16 / -20 /
-  /// -18 %, Hausdorff at 20 % 1.18 -> 0.77 % of the diagonal; docs/RESULTS.md),
+  /// -18 %, Hausdorff at 20 % 1.18 -> 0.73 % of the diagonal; docs/RESULTS.md),
   /// unless the move is under 5 % of a finest cell (then the finer level's
   /// vertex serves). Costs a fifth more vertices and 6 bytes per
   /// full-resolution triangle at run time. false: every vertex of every level

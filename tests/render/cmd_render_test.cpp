@@ -20,7 +20,10 @@ class CmdRender : public ::testing::Test {
   void SetUp() override {
     exe_ = std::string(LODFORGE_BINARY_DIR) + "/lodforge";
     ASSERT_TRUE(fs::exists(exe_)) << exe_ << " not built";
-    dir_ = test::output_dir() + "/cmd";
+    // One folder per test: ctest runs the tests as parallel processes, and a
+    // shared folder was wiped by one test's SetUp under another's feet.
+    dir_ = test::output_dir() + "/cmd_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -12,7 +12,8 @@
 //      recursive loop splitting, and queue the vertex by its priority (the
 //      volume between its fan and the planned triangles, or d itself);
 //   3. remove the vertex with the smallest priority, re-triangulate its hole,
-//      and re-evaluate its former neighbours.
+//      and re-evaluate its former neighbours (when their queue entries come
+//      up: see Decimator::run).
 //
 // The state is a "vertex -> triangles" ring structure over a triangle array
 // (thesis §4.1.2): removal keeps everything local, a new hole never has more
@@ -162,6 +163,7 @@ struct alignas(64) VertexState {
   Vec3 pos;                      // in normalised units (normalise_to_unit_box)
   Keep keep = Keep::kCandidate;  // why it is still there
   std::uint8_t locked = 0;       // used by a line segment
+  std::uint8_t dirty = 0;        // queued under a priority its fan has outgrown (see run())
   CachedTriangulation cache;     // valid while queued (count() 0: none)
 };
 static_assert(sizeof(VertexState) == 64);
@@ -192,13 +194,10 @@ class VertexHeap {
   static constexpr std::uint32_t kArity = 4;  // 8 was slower (more compares, no fewer misses)
   void init(std::size_t vertices) { pos_.assign(vertices, kNone); }
   bool empty() const { return heap_.empty(); }
+  bool contains(std::uint32_t v) const { return pos_[v] != kNone; }
   std::uint32_t top() const { return heap_[0].v; }
-  /// Start fetching what set(v, ...) or erase(v) reads first: v's position,
-  /// then (once that has arrived) its entry.
+  /// Start fetching what set(v, ...) or erase(v) reads first: v's position.
   void prefetch_position(std::uint32_t v) const { __builtin_prefetch(&pos_[v]); }
-  void prefetch_entry(std::uint32_t v) const {
-    if (pos_[v] != kNone) __builtin_prefetch(&heap_[pos_[v]]);
-  }
   void set(std::uint32_t v, float d) {
     std::uint32_t i = pos_[v];
     if (i == kNone) {
@@ -988,14 +987,36 @@ void Decimator::apply(std::uint32_t v, const Plan& plan) {
   // Copy the loop: evaluate() reuses plan_.
   std::array<std::uint32_t, kMaxLoop> loop = fan.loop;
   int loop_size = fan.loop_size;
-  for (int k = 0; k < loop_size; ++k) heap_.prefetch_entry(loop[k]);
-  for (int k = 0; k < loop_size; ++k) evaluate(loop[k]);
+  // Queued neighbours keep their entry and are re-evaluated when it comes up
+  // (see run()); the others may have become removable and are evaluated now.
+  for (int k = 0; k < loop_size; ++k) {
+    const std::uint32_t x = loop[k];
+    if (heap_.contains(x))
+      vertices_[x].dirty = 1;
+    else
+      evaluate(x);
+  }
 }
 
 bool Decimator::run(std::size_t triangles, std::size_t vertices) {
   while (live_triangles_ > triangles && live_vertices_ > vertices) {
     if (heap_.empty()) return false;
     std::uint32_t v = heap_.top();
+    if (vertices_[v].dirty) {
+      // Lazy re-evaluation: v's fan changed since it was queued (a neighbour
+      // went). Its fresh priority puts it back in order, or out of the queue;
+      // it is removed only when it comes up clean. Re-evaluating every
+      // neighbour at once instead (as Schroeder does) plans ~5.3 fans per
+      // removal rather than 1.6-2; the order differs only where a
+      // neighbour's priority fell, and its entry comes up later than it
+      // would have. Measured against that eager order (bun_zipper and igea
+      // at 50 and 99 % reduction): 1.25-1.7x faster, mean deviation 6-11 %
+      // higher, Hausdorff equal but for the bunny at 99 % (6.4e-3 instead
+      // of 4.1e-3).
+      vertices_[v].dirty = 0;
+      evaluate(v);
+      continue;
+    }
     heap_.erase(v);
     // The next vertex out is likely the one below v now: start fetching its
     // corner list (header now, records after the plan), used by its plan.

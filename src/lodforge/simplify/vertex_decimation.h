@@ -114,8 +114,9 @@ struct VertexDecimationOptions {
 /// Largest fan (triangles around a vertex) considered for removal.
 inline constexpr std::size_t kMaxDecimationValence = 64;
 
-/// Removes vertices in order of their criterion d (smallest first, the
-/// neighbours' d updated after each removal) until the triangle target
+/// Removes vertices in order of their priority (smallest first, see
+/// DecimationPriority; the neighbours of a removal are re-evaluated when
+/// their queue entry comes up) until the triangle target
 /// (options.target.triangle_target(#F of `mesh`)) is met, or no vertex can be
 /// removed within the error budget or at all.
 ///

@@ -96,22 +96,37 @@ struct CodedVertex {
   std::uint32_t vertex;
 };
 
-/// Sorts by code, stably: LSD radix sort, 11 bits a pass (63-bit codes).
+/// Sorts by code, stably. An LSD radix sort of the codes' top 32 bits (bits
+/// 31-62: the octree down to depth 10 and a bit; three passes of 11, 11 and
+/// 10 bits), then each run of equal top bits sorted by the whole code:
+/// such runs are vertices in one cell of side 1/1024 of the bounding cube's
+/// or less, rarely more than one, so this gives the order of a sort by the
+/// whole code (six passes) at half the passes.
 void radix_sort(std::vector<CodedVertex>& items) {
-  constexpr int kBits = 11, kPasses = 6;
-  constexpr std::size_t kBuckets = std::size_t(1) << kBits;
+  constexpr int kShift = 31, kPasses = 3, kBits[kPasses] = {11, 11, 10};
+  constexpr std::size_t kBuckets = std::size_t(1) << 11;
+  auto digit = [&](const CodedVertex& it, int p) {
+    return static_cast<std::size_t>((it.code >> (kShift + 11 * p)) & ((1u << kBits[p]) - 1));
+  };
   std::vector<std::array<std::uint32_t, kBuckets>> count(kPasses);
   for (auto& c : count) c.fill(0);
   for (const CodedVertex& it : items)
-    for (int p = 0; p < kPasses; ++p) ++count[p][(it.code >> (p * kBits)) & (kBuckets - 1)];
+    for (int p = 0; p < kPasses; ++p) ++count[p][digit(it, p)];
   std::vector<CodedVertex> tmp(items.size());
   for (int p = 0; p < kPasses; ++p) {
     auto& c = count[p];
     if (std::find(c.begin(), c.end(), items.size()) != c.end()) continue;  // one digit: no-op
     std::uint32_t sum = 0;
     for (auto& n : c) sum += std::exchange(n, sum);
-    for (const CodedVertex& it : items) tmp[c[(it.code >> (p * kBits)) & (kBuckets - 1)]++] = it;
+    for (const CodedVertex& it : items) tmp[c[digit(it, p)]++] = it;
     items.swap(tmp);
+  }
+  auto by_code = [](const CodedVertex& a, const CodedVertex& b) { return a.code < b.code; };
+  for (std::size_t i = 0; i < items.size();) {
+    std::size_t j = i + 1;
+    while (j < items.size() && items[j].code >> kShift == items[i].code >> kShift) ++j;
+    if (j - i > 1) std::stable_sort(items.begin() + i, items.begin() + j, by_code);
+    i = j;
   }
 }
 
@@ -1193,39 +1208,54 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
     mapped.resize(nf);
+    // The mapped triangles in parallel (a gather each); a degenerate one is
+    // marked by kNone in its first corner and keeps its mapped corners after.
+    for_chunks(nf, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t f = lo; f < hi; ++f) {
+        const Triangle& input = mesh.triangles[f];
+        const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
+        mapped[f] = t[0] != t[1] && t[1] != t[2] && t[2] != t[0] ? t : Triangle{kNone, t[1], t[2]};
+      }
+    });
     std::vector<std::uint32_t> start(count + 1, 0);
     for (std::size_t f = 0; f < nf; ++f) {
-      const Triangle& input = mesh.triangles[f];
-      const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
-      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
+      const Triangle& t = mapped[f];
+      if (t[0] != kNone) {
         ++start[std::min({t[0], t[1], t[2]}) + 1];
-        mapped[f] = t;
         continue;
       }
-      mapped[f][0] = kNone;
-      if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
-        std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
-        line_candidates.push_back({std::min(t[0], other), std::max(t[0], other)});
+      const Triangle& input = mesh.triangles[f];
+      const std::uint32_t a = node_of[input[0]], b = t[1], c = t[2];
+      if (!options.no_lines && (a != b || b != c)) {
+        std::uint32_t other = a != b ? b : c;
+        line_candidates.push_back({std::min(a, other), std::max(a, other)});
       }
     }
     for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
-    // Straight into the level's arrays; each vertex's run (the triangles
-    // whose smallest corner it is) is known from the counts, so the doublets
-    // are squeezed out run by run, in place, without looking for the runs.
+    // Straight into the level's arrays, each thread the triangles of one
+    // half of the vertices (both read all of `mapped`; the scattered writes
+    // are the cost). Each vertex's run (the triangles whose smallest corner
+    // it is) is known from the counts, so the doublets are then squeezed out
+    // run by run, in place, without looking for the runs.
     cut.tris.resize(start[count]);
     cut.tri_origin.resize(start[count]);
-    for (std::size_t f = 0; f < nf; ++f) {
-      const Triangle& t = mapped[f];
-      if (t[0] == kNone) continue;
-      const std::uint32_t at = start[std::min({t[0], t[1], t[2]})]++;
-      cut.tris[at] = t;
-      cut.tri_origin[at] = static_cast<std::uint32_t>(f);
-    }
-    // start[v] is now the end of v's run. The runs of vertices [v0, v1) are
+    auto scatter = [&](std::uint32_t v0, std::uint32_t v1) {
+      for (std::size_t f = 0; f < nf; ++f) {
+        const Triangle& t = mapped[f];
+        if (t[0] == kNone) continue;
+        const std::uint32_t lo = std::min({t[0], t[1], t[2]});
+        if (lo < v0 || lo >= v1) continue;
+        const std::uint32_t at = start[lo]++;
+        cut.tris[at] = t;
+        cut.tri_origin[at] = static_cast<std::uint32_t>(f);
+      }
+    };
+    // start[v] is then the end of v's run. The runs of vertices [v0, v1) are
     // squeezed to the front of their part; two halves side by side (one
     // thread runs both), the second then moved up if the first lost doublets.
-    auto squeeze = [&](std::size_t v0, std::size_t v1, RemapScratch& scratch) {
-      std::size_t begin = v0 == 0 ? 0 : start[v0 - 1], out = begin;
+    // `begin`: where the runs of v0 begin.
+    auto squeeze = [&](std::size_t v0, std::size_t v1, std::size_t begin, RemapScratch& scratch) {
+      std::size_t out = begin;
       for (std::size_t v = v0; v < v1; ++v) {
         const std::size_t end = start[v];
         const std::size_t n = end - begin;
@@ -1246,11 +1276,18 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       return out;
     };
     const std::size_t half = count / 2;
-    const std::size_t second = half == 0 ? 0 : start[half - 1];
+    const std::size_t second = start[half];  // where the second half's runs begin
     std::size_t first_end = 0, second_end = 0;
     RemapScratch second_scratch;
-    tbb::parallel_invoke([&] { first_end = squeeze(0, half, remap_scratch); },
-                         [&] { second_end = squeeze(half, count, second_scratch); });
+    tbb::parallel_invoke(
+        [&] {
+          scatter(0, static_cast<std::uint32_t>(half));
+          first_end = squeeze(0, half, 0, remap_scratch);
+        },
+        [&] {
+          scatter(static_cast<std::uint32_t>(half), static_cast<std::uint32_t>(count));
+          second_end = squeeze(half, count, second, second_scratch);
+        });
     if (first_end != second) {  // the first half lost doublets
       std::copy(cut.tris.begin() + second, cut.tris.begin() + second_end,
                 cut.tris.begin() + first_end);

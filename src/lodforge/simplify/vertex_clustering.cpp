@@ -349,27 +349,33 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     return 2;
   }
   constexpr std::size_t kSmall = 16;
-  if (n <= kSmall) {  // on the stack: no vector bookkeeping
-    std::uint64_t keys[kSmall];
-    std::uint8_t index[kSmall];
-    Triangle t[kSmall];
-    std::uint32_t o[kSmall];
+  if (n <= kSmall) {
+    // On the stack, each triangle as its key, origin and rotation (which
+    // corner is `vertex`): the kept ones are rebuilt from these. (Copying
+    // the triangles aside instead compiles to a block copy whose start-up
+    // cost exceeds the copy: the largest single cost of the first level.)
+    struct Item {
+      std::uint64_t key;
+      std::uint32_t origin;
+      std::uint32_t rotation;
+    };
+    Item e[kSmall];
     for (std::size_t i = 0; i < n; ++i) {
-      t[i] = tris[i];
-      o[i] = origin[i];
-      keys[i] = key(t[i]);
-      index[i] = static_cast<std::uint8_t>(i);
+      const Triangle& t = tris[i];
+      const std::uint32_t rotation = t[0] == vertex ? 0 : t[1] == vertex ? 1 : 2;
+      e[i] = {key(t), origin[i], rotation};
     }
     for (std::size_t i = 1; i < n; ++i)  // insertion sort, stable
-      for (std::size_t j = i; j > 0 && keys[j] < keys[j - 1]; --j) {
-        std::swap(keys[j], keys[j - 1]);
-        std::swap(index[j], index[j - 1]);
-      }
+      for (std::size_t j = i; j > 0 && e[j].key < e[j - 1].key; --j) std::swap(e[j], e[j - 1]);
     std::size_t out = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      if (i > 0 && keys[i] == keys[i - 1]) continue;
-      tris[out] = t[index[i]];
-      origin[out] = o[index[i]];
+      if (i > 0 && e[i].key == e[i - 1].key) continue;
+      const auto k1 = static_cast<std::uint32_t>(e[i].key >> 32);
+      const auto k2 = static_cast<std::uint32_t>(e[i].key);
+      tris[out] = e[i].rotation == 0   ? Triangle{vertex, k1, k2}
+                  : e[i].rotation == 1 ? Triangle{k2, vertex, k1}
+                                       : Triangle{k1, k2, vertex};
+      origin[out] = e[i].origin;
       ++out;
     }
     return out;

@@ -126,7 +126,8 @@ using Tri8 = std::array<std::uint8_t, 3>;
 
 /// The new triangles of a queued vertex's plan (small holes only), so that
 /// its removal need not re-triangulate: the fan has not changed since (else
-/// the vertex would have been re-evaluated), and the queue's triangulation is
+/// the vertex would be dirty and re-evaluated first: see Decimator::run),
+/// and the queue's triangulation is
 /// a function of the fan alone. Only existing edges can have appeared since.
 /// At most kMax triangles: each side has at most kMax + 2 < 16 vertices, so a
 /// triangle takes 12 bits (4 per polygon index), five of them a word, whose

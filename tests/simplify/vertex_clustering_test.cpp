@@ -196,6 +196,19 @@ TEST(VertexClustering, NonManifoldFanAndDegenerateInput) {
   EXPECT_EQ(chain[0].mesh.triangle_count(), 32u + 1u);
 }
 
+TEST(VertexClustering, UnusedVertexBesideTheFarCorner) {
+  // The used corner (1, 1, 1) quantises to the bounding cube's far corner,
+  // whose Morton code shares its top bits with an unused vertex's marker:
+  // the unused vertex (listed first) must still sort last and be cut off.
+  TriangleMesh m;
+  m.positions = {{5, 5, 5}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1}, {0, 0, 1}};
+  m.triangles = {{1, 2, 3}, {1, 3, 4}, {1, 4, 2}, {2, 4, 3}, {1, 5, 2}};
+  std::vector<SimplifyResult> chain = vertex_clustering(m);
+  expect_valid_chain(m, chain);
+  ASSERT_EQ(chain[0].mesh.vertex_count(), 5u);
+  for (std::uint32_t v : chain[0].vertex_map) EXPECT_NE(v, 0u);
+}
+
 TEST(VertexClustering, CollapsedTrianglesBecomeLines) {
   // A sliver: corners 1 and 2 share the deepest cell and merge first.
   TriangleMesh sliver;

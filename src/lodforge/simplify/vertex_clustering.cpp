@@ -121,10 +121,13 @@ void radix_sort(std::vector<CodedVertex>& items) {
     for (const CodedVertex& it : items) tmp[c[digit(it, p)]++] = it;
     items.swap(tmp);
   }
+  // The runs are those of equal sorted bits exactly: a code with bit 63 set
+  // (an unused vertex's ~0) shares its top 32 bits with the cube's far corner.
+  auto top = [](const CodedVertex& it) { return static_cast<std::uint32_t>(it.code >> kShift); };
   auto by_code = [](const CodedVertex& a, const CodedVertex& b) { return a.code < b.code; };
   for (std::size_t i = 0; i < items.size();) {
     std::size_t j = i + 1;
-    while (j < items.size() && items[j].code >> kShift == items[i].code >> kShift) ++j;
+    while (j < items.size() && top(items[j]) == top(items[i])) ++j;
     if (j - i > 1) std::stable_sort(items.begin() + i, items.begin() + j, by_code);
     i = j;
   }

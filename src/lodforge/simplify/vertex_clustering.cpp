@@ -1217,27 +1217,23 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
     mapped.resize(nf);
-    // The mapped triangles in parallel (a gather each); a degenerate one is
-    // marked by kNone in its first corner and keeps its mapped corners after.
+    // The mapped triangles in parallel (a gather each).
     for_chunks(nf, [&](std::size_t lo, std::size_t hi) {
       for (std::size_t f = lo; f < hi; ++f) {
         const Triangle& input = mesh.triangles[f];
-        const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
-        mapped[f] = t[0] != t[1] && t[1] != t[2] && t[2] != t[0] ? t : Triangle{kNone, t[1], t[2]};
+        mapped[f] = {node_of[input[0]], node_of[input[1]], node_of[input[2]]};
       }
     });
+    auto distinct = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
     std::vector<std::uint32_t> start(count + 1, 0);
-    for (std::size_t f = 0; f < nf; ++f) {
-      const Triangle& t = mapped[f];
-      if (t[0] != kNone) {
+    for (const Triangle& t : mapped) {
+      if (distinct(t)) {
         ++start[std::min({t[0], t[1], t[2]}) + 1];
         continue;
       }
-      const Triangle& input = mesh.triangles[f];
-      const std::uint32_t a = node_of[input[0]], b = t[1], c = t[2];
-      if (!options.no_lines && (a != b || b != c)) {
-        std::uint32_t other = a != b ? b : c;
-        line_candidates.push_back({std::min(a, other), std::max(a, other)});
+      if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
+        std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
+        line_candidates.push_back({std::min(t[0], other), std::max(t[0], other)});
       }
     }
     for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
@@ -1251,7 +1247,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     auto scatter = [&](std::uint32_t v0, std::uint32_t v1) {
       for (std::size_t f = 0; f < nf; ++f) {
         const Triangle& t = mapped[f];
-        if (t[0] == kNone) continue;
+        if (!distinct(t)) continue;
         const std::uint32_t lo = std::min({t[0], t[1], t[2]});
         if (lo < v0 || lo >= v1) continue;
         const std::uint32_t at = start[lo]++;

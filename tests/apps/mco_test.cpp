@@ -29,10 +29,11 @@ class McoCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  // Builds the torus model once per test.
-  std::string model() {
-    std::string m = path("torus.mco");
-    auto r = run_lodforge("mco build " + mesh_ + " -o " + m + " --resolution 20 --threads 2");
+  // Builds the torus model (once per test, or with further `flags` into `name`).
+  std::string model(const std::string& name = "torus.mco", const std::string& flags = "") {
+    std::string m = path(name);
+    auto r =
+        run_lodforge("mco build " + mesh_ + " -o " + m + " --resolution 20 --threads 2" + flags);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return m;
   }
@@ -84,13 +85,11 @@ TEST_F(McoCli, BuildInfoExtract) {
 // --metric distance orders the expansions by the distance metric: a model of
 // the same full resolution, numbered differently; an unknown metric is a usage error.
 TEST_F(McoCli, PriorityMetricChoice) {
-  std::string area = model(), distance = path("distance.mco");
-  auto r = run_lodforge("mco build " + mesh_ + " -o " + distance +
-                        " --resolution 20 --threads 2 --metric distance");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string area = model(), distance = model("distance.mco", " --metric distance");
+  ASSERT_TRUE(fs::exists(distance));
   EXPECT_EQ(info_json(area)["full_triangles"], info_json(distance)["full_triangles"]);
   EXPECT_NE(read_text(area), read_text(distance));
-  r = run_lodforge("mco build " + mesh_ + " -o " + path("v.mco") + " --metric volume");
+  auto r = run_lodforge("mco build " + mesh_ + " -o " + path("v.mco") + " --metric volume");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("volume"));
   EXPECT_FALSE(fs::exists(path("v.mco")));
@@ -99,10 +98,8 @@ TEST_F(McoCli, PriorityMetricChoice) {
 // --surface-vertices keeps every level's vertices on the surface: the same
 // model but for the coarse levels' own, placed vertices (fewer vertices).
 TEST_F(McoCli, SurfaceVerticesChoice) {
-  std::string placed = model(), surface = path("surface.mco");
-  auto r = run_lodforge("mco build " + mesh_ + " -o " + surface +
-                        " --resolution 20 --threads 2 --surface-vertices");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string placed = model(), surface = model("surface.mco", " --surface-vertices");
+  ASSERT_TRUE(fs::exists(surface));
   EXPECT_EQ(info_json(placed)["full_triangles"], info_json(surface)["full_triangles"]);
   EXPECT_EQ(info_json(placed)["cells"], info_json(surface)["cells"]);
   EXPECT_GT(info_json(placed)["vertices"].get<std::uint64_t>(),

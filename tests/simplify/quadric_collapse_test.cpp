@@ -1,6 +1,7 @@
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -327,6 +328,32 @@ TEST(QuadricCollapse, SameResultAtAnyScale) {
         quadric_collapse(scaled, {.target = {.max_error = 0.05f * s}});
     EXPECT_EQ(scaled_budget.mesh.triangles, budget.mesh.triangles);
     EXPECT_EQ(scaled_budget.error, budget.error * s);
+  }
+}
+
+TEST(QuadricCollapse, ResultDoesNotDependOnTheThreadCount) {
+  // Large enough for the parallel set-up (several chunks of edges, vertex
+  // ranges for the quadrics), with normals and texcoords (wedges, seams).
+  const TriangleMesh m = test::make_uv_sphere(200, 100);
+  ASSERT_GT(m.triangles.size(), 30000u);
+  const QuadricCollapseOptions options{.target = {.ratio = 0.05f}};
+  auto run_in_arena = [&](int threads) {
+    SimplifyResult r;
+    tbb::task_arena(threads).execute([&] { r = quadric_collapse(m, options); });
+    return r;
+  };
+  const SimplifyResult one = run_in_arena(1);
+  EXPECT_EQ(one.mesh.triangles.size(), m.triangles.size() / 20);
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(threads);
+    const SimplifyResult r = run_in_arena(threads);
+    EXPECT_EQ(r.mesh.triangles, one.mesh.triangles);
+    EXPECT_EQ(r.mesh.positions, one.mesh.positions);
+    EXPECT_EQ(r.mesh.normals, one.mesh.normals);
+    EXPECT_EQ(r.mesh.texcoords, one.mesh.texcoords);
+    EXPECT_EQ(r.vertex_map, one.vertex_map);
+    EXPECT_EQ(r.face_map, one.face_map);
+    EXPECT_EQ(r.error, one.error);
   }
 }
 

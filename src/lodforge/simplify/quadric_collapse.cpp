@@ -46,6 +46,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "lodforge/core/error.h"
 
@@ -379,6 +380,7 @@ class Collapser {
   void compute_kinds();
   bool is_ring(std::uint32_t p) const;
   void compute_quadrics();
+  void add_quadrics(std::uint32_t lo, std::uint32_t hi);
   void fill_heap();
   void push_edges(std::uint32_t a, bool collect_rejected = false);
   bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
@@ -780,12 +782,35 @@ void Collapser::compute_kinds() {
     }
 }
 
+// The vertices are cut into a few ranges, one task each: a task goes through
+// all triangles and adds what a triangle gives to the vertices (and their
+// wedges) of its range only, so every sum is added up in triangle order, as
+// one pass would (the result does not depend on the thread count). Vertex
+// numbers follow the mesh, so few triangles reach into two ranges and are
+// worked out twice.
 void Collapser::compute_quadrics() {
-  const std::size_t nf = tri_.size();
   if (attr_stride_ > 0) wedge_quadric_.assign(wedge_origin_.size() * attr_stride_, 0.0);
+  const auto np = static_cast<std::uint32_t>(vx_.size());
+  const std::uint32_t parts =
+      tri_.size() < 16384
+          ? 1u
+          : static_cast<std::uint32_t>(std::clamp(tbb::this_task_arena::max_concurrency(), 1, 8));
+  tbb::parallel_for(std::uint32_t{0}, parts, [&](std::uint32_t i) {
+    add_quadrics(static_cast<std::uint32_t>(std::uint64_t{np} * i / parts),
+                 static_cast<std::uint32_t>(std::uint64_t{np} * (i + 1) / parts));
+  });
+}
+
+/// The quadrics of the triangles at the vertices in [lo, hi) (see
+/// compute_quadrics()).
+void Collapser::add_quadrics(std::uint32_t lo, std::uint32_t hi) {
+  const std::size_t nf = tri_.size();
   const double border_weight = options_.border_weight;
+  auto mine = [&](std::uint32_t v) { return v >= lo && v < hi; };
   for (std::size_t t = 0; t < nf; ++t) {
     if (!tri_[t].alive) continue;
+    const std::uint32_t* c = tri_[t].v;
+    if (!mine(c[0]) && !mine(c[1]) && !mine(c[2])) continue;
     D3 p[3] = {position_of_corner(t, 0), position_of_corner(t, 1), position_of_corner(t, 2)};
     D3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     D3 n = cross(e1, e2);
@@ -795,12 +820,14 @@ void Collapser::compute_quadrics() {
     n = n * (1 / len);
     Quadric q;
     q.add_plane(n, -dot(n, p[0]), area);
-    for (int k = 0; k < 3; ++k) vx_[tri_[t].v[k]].q.add(q);
+    for (int k = 0; k < 3; ++k)
+      if (mine(c[k])) vx_[c[k]].q.add(q);
 
     // Penalty planes through feature edges, perpendicular to the face.
     if (border_weight > 0) {
       for (int k = 0; k < 3; ++k) {
         std::uint32_t a = tri_[t].v[k], b = tri_[t].v[(k + 1) % 3];
+        if (!mine(a) && !mine(b)) continue;
         if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool movable = false;
         if (!is_feature_edge(a, b, movable)) continue;
@@ -813,8 +840,8 @@ void Collapser::compute_quadrics() {
         m = m * (1 / ml);
         Quadric pq;
         pq.add_plane(m, -dot(m, vx_[a].pos), border_weight * l2);
-        vx_[a].q.add(pq);
-        vx_[b].q.add(pq);
+        if (mine(a)) vx_[a].q.add(pq);
+        if (mine(b)) vx_[b].q.add(pq);
       }
     }
 
@@ -837,6 +864,7 @@ void Collapser::compute_quadrics() {
         off[c] = s0 - dot(grad[c], p[0]);
       }
       for (int k = 0; k < 3; ++k) {
+        if (!mine(c[k])) continue;
         double* wq = &wedge_quadric_[std::size_t{tri_[t].w[k]} * attr_stride_];
         Quadric* qp = reinterpret_cast<Quadric*>(wq);
         static_assert(sizeof(Quadric) == 10 * sizeof(double));

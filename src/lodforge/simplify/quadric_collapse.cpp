@@ -23,14 +23,13 @@
 // queue of 16-byte edge entries with lazy deletion (an entry carries the sum
 // of the version stamps of its two vertices; stale entries are dropped in bulk
 // when their bucket comes up and when they outnumber the live edges); set-up
-// in a few linear passes without maps or sorting (the kinds of the vertices
-// and the first plans of the edges in parallel, the queue then filled in
-// triangle order, so the result does not depend on the thread count); no
-// allocation per collapse beyond amortised vector growth; coordinates in
-// power-of-two normalised units, so results do not depend on the model's
-// unit. Per collapse the work
-// is: one valid pop, the checks over the two fans, and one evaluation and
-// push per edge of the merged vertex.
+// in a few linear passes without maps or sorting (the vertex kinds, the
+// quadrics and the first plans of the edges in parallel, each summed or
+// queued in triangle order, so the result does not depend on the thread
+// count); no allocation per collapse beyond amortised vector growth;
+// coordinates in power-of-two normalised units, so results do not depend on
+// the model's unit. Per collapse the work is: one valid pop, the checks over
+// the two fans, and one evaluation and push per edge of the merged vertex.
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <algorithm>
@@ -809,8 +808,8 @@ void Collapser::add_quadrics(std::uint32_t lo, std::uint32_t hi) {
   auto mine = [&](std::uint32_t v) { return v >= lo && v < hi; };
   for (std::size_t t = 0; t < nf; ++t) {
     if (!tri_[t].alive) continue;
-    const std::uint32_t* c = tri_[t].v;
-    if (!mine(c[0]) && !mine(c[1]) && !mine(c[2])) continue;
+    const std::uint32_t* corners = tri_[t].v;
+    if (!mine(corners[0]) && !mine(corners[1]) && !mine(corners[2])) continue;
     D3 p[3] = {position_of_corner(t, 0), position_of_corner(t, 1), position_of_corner(t, 2)};
     D3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     D3 n = cross(e1, e2);
@@ -821,12 +820,12 @@ void Collapser::add_quadrics(std::uint32_t lo, std::uint32_t hi) {
     Quadric q;
     q.add_plane(n, -dot(n, p[0]), area);
     for (int k = 0; k < 3; ++k)
-      if (mine(c[k])) vx_[c[k]].q.add(q);
+      if (mine(corners[k])) vx_[corners[k]].q.add(q);
 
     // Penalty planes through feature edges, perpendicular to the face.
     if (border_weight > 0) {
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t a = tri_[t].v[k], b = tri_[t].v[(k + 1) % 3];
+        const std::uint32_t a = corners[k], b = corners[(k + 1) % 3];
         if (!mine(a) && !mine(b)) continue;
         if (vx_[a].kind == kFree || vx_[b].kind == kFree) continue;
         bool movable = false;
@@ -864,7 +863,7 @@ void Collapser::add_quadrics(std::uint32_t lo, std::uint32_t hi) {
         off[c] = s0 - dot(grad[c], p[0]);
       }
       for (int k = 0; k < 3; ++k) {
-        if (!mine(c[k])) continue;
+        if (!mine(corners[k])) continue;
         double* wq = &wedge_quadric_[std::size_t{tri_[t].w[k]} * attr_stride_];
         Quadric* qp = reinterpret_cast<Quadric*>(wq);
         static_assert(sizeof(Quadric) == 10 * sizeof(double));

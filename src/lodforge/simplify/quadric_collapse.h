@@ -49,14 +49,14 @@
 /// Costs: O((V + F) log F) time, about ten edge evaluations and queue entries
 /// per collapse (each collapse re-evaluates the edges of the merged vertex),
 /// O(V + F) memory (plus O(F) per chain level for its output). The collapse
-/// loop runs on the calling thread; two set-up passes (the vertex kinds and
-/// the first plan of every edge) run on TBB's threads, with the same result
-/// as on one. On the bunny and igea 0.9-1.4x the wall time of
+/// loop runs on the calling thread; three set-up passes (the vertex kinds,
+/// the quadrics and the first plan of every edge) run on TBB's threads, with
+/// the same result as on one. On the bunny and igea 0.9-1.4x the wall time of
 /// meshopt_simplify at 50 % reduction and 1.55-1.85x at 99 % (meshopt places
 /// vertices at edge ends and has no attribute quadrics; figures in
-/// docs/RESULTS.md). The result
-/// does not depend on the model's unit: a copy scaled by a power of two
-/// gives the same triangles, with positions and error scaled exactly.
+/// docs/RESULTS.md). The result does not depend on the model's unit: a copy
+/// scaled by a power of two gives the same triangles, with positions and
+/// error scaled exactly.
 #include <cstddef>
 #include <vector>
 

@@ -36,14 +36,17 @@
 #include <array>
 #include <bit>
 #include <cassert>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -274,10 +277,10 @@ class EdgeHeap {
 /// stays exact: a push into the current bucket or below goes into the heap.
 class CollapseQueue {
  public:
-  static constexpr int kShift = 18;  // key bits below the bucket index
-  static constexpr std::size_t kBuckets = std::size_t{1} << (32 - kShift);
-
-  CollapseQueue() : buckets_(kBuckets), used_(kBuckets / 64) {}
+  /// `shift`: key bits below the bucket index (18 for a whole mesh; the
+  /// small queues of the regions use fewer, wider buckets).
+  explicit CollapseQueue(int shift = 18)
+      : shift_(shift), buckets_(std::size_t{1} << (32 - shift)), used_(buckets_.size() / 64) {}
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
   void clear() {
@@ -291,7 +294,7 @@ class CollapseQueue {
   }
   void push(const HeapEntry& e) {
     ++size_;
-    std::size_t b = e.key >> kShift;
+    std::size_t b = e.key >> shift_;
     if (b <= current_) {
       heap_.push(e);
     } else {
@@ -299,20 +302,23 @@ class CollapseQueue {
       used_[b / 64] |= std::uint64_t{1} << (b % 64);
     }
   }
-  /// Removes the smallest entry into `out`; false if there is none. Entries
+  /// Removes the smallest entry into `out`; false if there is none or its key
+  /// is above `limit` (then it stays). Entries
   /// for which `stale` holds are dropped in bulk when their bucket becomes
   /// the heap (most entries are stale by then: they were pushed long before
   /// their cost came up, and their vertices changed since), so they cost a
   /// scan instead of a pop.
   template <class Stale>
-  bool pop(HeapEntry& out, Stale stale) {
+  bool pop(HeapEntry& out, Stale stale, std::uint32_t limit = 0xffffffffu) {
     while (heap_.empty()) {
       if (size_ == 0) return false;
       // The next bucket in use becomes the heap.
       std::size_t w = (current_ + 1) / 64;
       std::uint64_t bits = used_[w] & (~std::uint64_t{0} << ((current_ + 1) % 64));
       while (bits == 0) bits = used_[++w];
-      current_ = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+      const std::size_t next = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+      if (next > limit >> shift_) return false;
+      current_ = next;
       used_[w] &= ~(std::uint64_t{1} << (current_ % 64));
       std::vector<HeapEntry>& bucket = buckets_[current_];
       const std::size_t before = bucket.size();
@@ -320,6 +326,7 @@ class CollapseQueue {
       size_ -= before - bucket.size();
       heap_.take(bucket);
     }
+    if (heap_.top().key > limit) return false;
     --size_;
     out = heap_.pop();
     return true;
@@ -341,6 +348,7 @@ class CollapseQueue {
   }
 
  private:
+  int shift_;
   std::vector<std::vector<HeapEntry>> buckets_;
   std::vector<std::uint64_t> used_;  // bit b: bucket b is not empty
   EdgeHeap heap_;                    // the current bucket and anything below it
@@ -351,8 +359,48 @@ class CollapseQueue {
 /// The wedge merges of a collapse: (wedge of u, wedge of v) per edge triangle.
 using WedgePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
-/// What try_collapse decided.
-enum class Outcome { kDone, kRejected, kSliver, kOverBudget };
+/// What try_collapse decided (kNoRoom: a region's stretch of triangle lists
+/// is full, see Lane).
+enum class Outcome { kDone, kRejected, kSliver, kOverBudget, kNoRoom };
+
+/// Why Collapser::drain stopped.
+enum class Halt { kFloor, kEmpty, kLimit, kNoRoom };
+
+/// Scratch stamps per position (a vertex is marked when its mark equals the
+/// current stamp): one set per thread, since marks are written for the
+/// neighbours of a collapse, which regions may share.
+/// (The calling thread keeps its marks in the vertex records, which a
+/// collapse reads anyway, and leaves `mark` empty; see Collapser::mark().)
+struct Marks {
+  std::vector<std::uint32_t> mark;
+  std::uint32_t stamp = 0;
+};
+
+/// One collapse loop's state: its queue, counts and scratch. The whole mesh
+/// has one; in the first phase of a large reduction (Collapser::run_regions)
+/// every region has its own and touches only the vertices it owns.
+struct Lane {
+  explicit Lane(int shift = 18) : queue(shift) {}
+  CollapseQueue queue;
+  std::size_t live = 0;  // live triangles (of the region)
+  // A region: its live triangles without a seam corner, which its floor and
+  // the goal of the rounds count (the seams stay as they are, so the
+  // triangles around them would never get down to a share of the target).
+  std::size_t inner = 0;
+  std::size_t collapses_since_fill = 0;
+  std::size_t budget_rejections = 0;
+  // A region: the id its vertices carry in owner_, and its own stretch
+  // [refs_next, refs_end) of refs_ for the triangle lists that grow (the
+  // whole mesh appends at the end of refs_ instead).
+  std::uint8_t id = 0;
+  std::size_t refs_next = 0, refs_end = 0;
+  std::size_t floor = 0;  // its share of the target (of inner for a region)
+  bool done = false;
+  WedgePairs wedge_pairs;
+  std::vector<std::pair<std::uint32_t, float>> new_errors;
+  std::vector<std::uint32_t> new_list;
+  std::vector<std::uint32_t> requeue;
+};
 
 // At most 3 + 2 + 3 attribute channels; a wedge's attribute quadric holds the
 // summed p-part (10), the area (1) and per channel G (3) and D (1).
@@ -366,7 +414,7 @@ class Collapser {
     build();
   }
 
-  std::size_t live_triangles() const { return live_triangles_; }
+  std::size_t live_triangles() const { return seq_.live; }
   std::size_t input_triangles() const { return mesh_.triangles.size(); }
 
   /// Collapses until at most `target` triangles are live or nothing is
@@ -380,14 +428,30 @@ class Collapser {
   bool is_ring(std::uint32_t p) const;
   void compute_quadrics();
   void add_quadrics(std::uint32_t lo, std::uint32_t hi);
+  template <class Emit>
+  void plan_edges(Emit emit);
   void fill_heap();
-  void push_edges(std::uint32_t a, bool collect_rejected = false);
-  bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out) {
-    return evaluate(a, b, out, wedge_pairs_);
+  void run_regions(std::size_t target);
+  void partition(int parts, std::vector<std::uint8_t>& tri_region);
+  // The collapse loop, for the whole mesh (kRegional false) or a region.
+  template <bool kRegional>
+  Halt drain(Lane& lane, Marks& marks, std::uint32_t limit);
+  template <bool kRegional>
+  void push_edges(std::uint32_t a, Lane& lane, Marks& marks, bool collect_rejected = false);
+  template <bool kRegional>
+  Outcome try_collapse(const Collapse& c, bool allow_slivers, Lane& lane, Marks& marks);
+  /// The mark of position x: in its record for the calling thread (the
+  /// whole mesh), in the thread's own array for a region (regions share
+  /// the records of the seam vertices).
+  template <bool kRegional>
+  std::uint32_t& mark(Marks& marks, std::uint32_t x) {
+    if constexpr (kRegional)
+      return marks.mark[x];
+    else
+      return vx_[x].mark;
   }
   /// Reads the state only (`pairs` is scratch): safe on several threads.
   bool evaluate(std::uint32_t a, std::uint32_t b, Collapse& out, WedgePairs& pairs) const;
-  Outcome try_collapse(const Collapse& c, bool allow_slivers);
   int edge_triangles(std::uint32_t a, std::uint32_t b, std::uint32_t* tris) const;
   bool is_feature_edge(std::uint32_t a, std::uint32_t b, bool& movable) const;
   void collect_wedge_pairs(std::uint32_t u, std::uint32_t v, WedgePairs& pairs) const;
@@ -410,7 +474,7 @@ class Collapser {
     Quadric q;
     D3 pos;
     std::uint32_t ref_start = 0, ref_count = 0;  // its live triangles in refs_
-    std::uint32_t mark = 0;                      // scratch stamp
+    std::uint32_t mark = 0;                      // the calling thread's scratch stamp (Marks)
     std::uint32_t first_wedge = kNone;
     Kind kind = kFree;
     // Set on both ends of a rejected collapse; a change next to such a vertex
@@ -426,7 +490,12 @@ class Collapser {
   // one reads two versions, which should stay in cache.
   std::vector<std::uint32_t> version_;
   std::vector<std::uint32_t> refs_;
-  std::uint32_t stamp_ = 0;
+  Marks marks_;  // the calling thread's stamp (its marks are in vx_)
+  // Regions of the first phase (run_regions): the region owning each
+  // position (all its triangles are in it), kSeam for the others.
+  static constexpr std::uint8_t kSeam = 0xff;
+  std::vector<std::uint8_t> owner_;
+  std::vector<std::uint8_t> seam_tri_;  // per triangle: it has a seam corner
 
   // Wedges (distinct position + attribute sets).
   std::vector<std::uint32_t> wedge_origin_;  // first input vertex of the wedge
@@ -450,21 +519,25 @@ class Collapser {
     std::uint32_t alive;
   };
   std::vector<Tri> tri_;
-  std::size_t live_triangles_ = 0;
 
-  CollapseQueue heap_;
-  std::size_t collapses_since_fill_ = 0;
-  std::size_t budget_rejections_ = 0;
+  Lane seq_;  // the whole mesh's queue and counts
   // Rejected collapses are retried when their neighbourhood changes; a full
   // refill of the heap is only the safety net, tried a few times.
   static constexpr int kMaxRefills = 4;
   int refills_ = 0;
 
-  // Scratch, reused by every collapse.
-  WedgePairs wedge_pairs_;
-  std::vector<std::pair<std::uint32_t, float>> new_errors_;
-  std::vector<std::uint32_t> new_list_;
-  std::vector<std::uint32_t> requeue_;
+  // The regional first phase (run_regions), from this many triangles on, in
+  // regions of about kRegionTriangles (at most kMaxRegions: every cut
+  // leaves a seam that waits for the second phase).
+  static constexpr std::size_t kRegionalMinTriangles = 32768;
+  static constexpr std::size_t kRegionTriangles = 16384;
+  static constexpr std::size_t kMaxRegions = 4;
+  /// Where the first phase stops for `target` (of seq_.live triangles): at
+  /// twice the target, but leaving at least a tenth of the collapses to the
+  /// second phase.
+  std::size_t regional_goal(std::size_t target) const {
+    return std::min(2 * target, target + (seq_.live - target) / 10);
+  }
 };
 
 void Collapser::build() {
@@ -556,7 +629,7 @@ void Collapser::build() {
     std::uint32_t a = tri_[t].v[0], b = tri_[t].v[1], c = tri_[t].v[2];
     if (a != b && b != c && c != a) {
       tri_[t].alive = 1;
-      ++live_triangles_;
+      ++seq_.live;
       for (int k = 0; k < 3; ++k) used[tri_[t].v[k]] = 1;
     }
   }
@@ -641,9 +714,9 @@ void Collapser::build() {
 
   compute_kinds();
   compute_quadrics();
-  wedge_pairs_.reserve(16);
-  new_errors_.reserve(64);
-  new_list_.reserve(64);
+  seq_.wedge_pairs.reserve(16);
+  seq_.new_errors.reserve(64);
+  seq_.new_list.resize(64);
 }
 
 /// Whether p's fan (at most 16 triangles) is one closed ring: the corners
@@ -727,7 +800,7 @@ void Collapser::compute_kinds() {
     // search in nbs, which stays in cache; a large fan marks its neighbours.
     nbs.clear();
     const bool small = fan.size() <= 16;
-    const std::uint32_t counted = ++stamp_;
+    const std::uint32_t counted = ++marks_.stamp;
     auto slot = [&](std::uint32_t o) -> Neighbour& {
       if (small) {
         for (Neighbour& n : nbs)
@@ -1077,43 +1150,45 @@ bool Collapser::evaluate(std::uint32_t a, std::uint32_t b, Collapse& out, WedgeP
   return true;
 }
 
-/// Queues the edges of `a`; `collect_rejected` notes neighbours flagged in
-/// Vertex::rejected.
-void Collapser::push_edges(std::uint32_t a, bool collect_rejected) {
+/// Queues the edges of `a` in `lane`; `collect_rejected` notes neighbours
+/// flagged in Vertex::rejected. A region queues only edges between vertices
+/// it owns.
+template <bool kRegional>
+void Collapser::push_edges(std::uint32_t a, Lane& lane, Marks& marks, bool collect_rejected) {
   // In a manifold fan every neighbour follows `a` in exactly one triangle, so
   // the corners after `a` are the neighbours; a corner before `a` is one too
   // only where the fan is open (a border), which the marks find.
-  const std::uint32_t s = ++stamp_;
+  const std::uint32_t s = ++marks.stamp;
   const std::uint32_t* ts = tris_begin(a);
   const std::uint32_t n = vx_[a].ref_count;
   auto push = [&](std::uint32_t b) {
-    if (collect_rejected && vx_[b].rejected) requeue_.push_back(b);
+    std::uint32_t& m = mark<kRegional>(marks, b);
+    if (m == s) return;  // only in non-manifold or inconsistent fans
+    m = s;
+    if (kRegional && owner_[b] != lane.id) return;
+    if (collect_rejected && vx_[b].rejected) lane.requeue.push_back(b);
     Collapse c;
-    if (evaluate(a, b, c)) heap_.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
+    if (evaluate(a, b, c, lane.wedge_pairs))
+      lane.queue.push({heap_key(c.cost, false), a, b, version_[a] + version_[b]});
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t* c = tri_[ts[i]].v;
-    std::uint32_t b = c[kNext[corner_of(c, a)]];
-    if (vx_[b].mark == s) continue;  // only in non-manifold or inconsistent fans
-    vx_[b].mark = s;
-    push(b);
+    push(c[kNext[corner_of(c, a)]]);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t* c = tri_[ts[i]].v;
-    std::uint32_t b = c[kPrev[corner_of(c, a)]];
-    if (vx_[b].mark == s) continue;
-    vx_[b].mark = s;
-    push(b);
+    push(c[kPrev[corner_of(c, a)]]);
   }
 }
 
-void Collapser::fill_heap() {
-  heap_.clear();
+/// Plans every edge once and hands the plans to `emit` in triangle order
+/// (so that queues filled from them do not depend on the thread count).
+template <class Emit>
+void Collapser::plan_edges(Emit emit) {
   // Every edge once, from the triangles: a half-edge a -> b stands for its
   // edge when a < b, or when there is no b -> a (an open border, which only
   // joins vertices that are not free). The edges are planned in parallel,
-  // in chunks of triangles, and queued in triangle order afterwards: the
-  // queue is the same as one thread would build.
+  // in chunks of triangles, and handed over in triangle order afterwards.
   const std::size_t nf = tri_.size();
   constexpr std::size_t kChunk = 8192;
   std::vector<std::vector<HeapEntry>> planned((nf + kChunk - 1) / kChunk);
@@ -1147,22 +1222,28 @@ void Collapser::fill_heap() {
                         plan_chunk(chunk, pairs);
                     });
   for (const std::vector<HeapEntry>& entries : planned)
-    for (const HeapEntry& e : entries) heap_.push(e);
-  collapses_since_fill_ = 0;
-  budget_rejections_ = 0;
+    for (const HeapEntry& e : entries) emit(e);
+}
+
+void Collapser::fill_heap() {
+  seq_.queue.clear();
+  plan_edges([&](const HeapEntry& e) { seq_.queue.push(e); });
+  seq_.collapses_since_fill = 0;
+  seq_.budget_rejections = 0;
 }
 
 /// Checks the collapse (link condition, duplicate triangles, flips, slivers,
 /// error budget) and performs it if allowed. A collapse that fails only the
 /// sliver test is reported as such: the caller defers it (see run()).
-Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
+template <bool kRegional>
+Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers, Lane& lane, Marks& marks) {
   const std::uint32_t u = c.u, v = c.v;
   const D3 w = c.w;
 
   // Link condition: the vertices adjacent to both u and v must be exactly the
   // third corners of the triangles on the edge.
-  const std::uint32_t s_u = ++stamp_;
-  const std::uint32_t s_common = ++stamp_;
+  const std::uint32_t s_u = ++marks.stamp;
+  const std::uint32_t s_common = ++marks.stamp;
   const std::uint32_t* tu = tris_begin(u);
   const std::uint32_t* tvv = tris_begin(v);
   const std::uint32_t nu = vx_[u].ref_count, nv = vx_[v].ref_count;
@@ -1176,7 +1257,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       std::uint32_t x = tri_[t].v[k];
       has_v |= x == v;
       __builtin_prefetch(&vx_[x].q);
-      vx_[x].mark = s_u;  // u too: it is skipped below
+      mark<kRegional>(marks, x) = s_u;  // u too: it is skipped below
     }
     edge_tris += has_v;
     // An edge triangle leaves the list of its third corner if the collapse
@@ -1192,15 +1273,17 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       // Branch-free: which corners match depends on the data.
       std::uint32_t x = tri_[t].v[k];
       __builtin_prefetch(&vx_[x].q);
-      bool hit = (vx_[x].mark == s_u) & (x != v) & (x != u);
+      std::uint32_t& m = mark<kRegional>(marks, x);
+      bool hit = (m == s_u) & (x != v) & (x != u);
       common += hit;
-      vx_[x].mark = hit ? s_common : vx_[x].mark;
+      m = hit ? s_common : m;
     }
   }
   if (edge_tris == 0 || common != edge_tris) return Outcome::kRejected;
 
   // Geometry of the triangles that stay: flips, slivers, duplicates, bound.
-  new_errors_.clear();
+  std::vector<std::pair<std::uint32_t, float>>& new_errors = lane.new_errors;
+  new_errors.clear();
   const double min_q = allow_slivers ? 0.0 : double(options_.min_triangle_quality);
   bool sliver = false;
   const double max_error = options_.target.max_error * scale_;
@@ -1238,7 +1321,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
       over_budget = true;
       return false;
     }
-    new_errors_.push_back({t, ef});
+    new_errors.push_back({t, ef});
     return true;
   };
   for (std::uint32_t i = 0; i < nu; ++i) {
@@ -1248,7 +1331,7 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     const std::uint32_t x = c[kNext[k]], y = c[kPrev[k]];
     if (x == v || y == v) continue;
     // (u, x, y) becomes (v, x, y): a duplicate if v already has a triangle on x and y.
-    if (vx_[x].mark == s_common && vx_[y].mark == s_common)
+    if (mark<kRegional>(marks, x) == s_common && mark<kRegional>(marks, y) == s_common)
       for (std::uint32_t j = 0; j < nv; ++j) {
         std::uint32_t t2 = tvv[j];
         int hits = 0;
@@ -1263,6 +1346,8 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     if (!check(t, v, pv, move_v)) return over_budget ? Outcome::kOverBudget : Outcome::kRejected;
   }
   if (sliver) return Outcome::kSliver;
+  // v's list may grow to nu + nv - 2 (see below); a region must have room.
+  if (kRegional && nu + nv > lane.refs_end - lane.refs_next) return Outcome::kNoRoom;
 
   // Allowed: perform it. Wedges of u merge into the wedges of v they meet on
   // the edge triangles; others move to v as they are.
@@ -1271,11 +1356,11 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
     // One wedge on each side (no attribute seams here): they merge.
     wedge_parent_[fu] = fv;
   } else {
-    collect_wedge_pairs(u, v, wedge_pairs_);
+    collect_wedge_pairs(u, v, lane.wedge_pairs);
     for (std::uint32_t wu = fu; wu != kNone;) {
       std::uint32_t next = next_wedge_[wu];
       std::uint32_t target = kNone;
-      for (auto& pr : wedge_pairs_)
+      for (auto& pr : lane.wedge_pairs)
         if (pr.first == wu) target = pr.second;
       if (target != kNone) {
         wedge_parent_[wu] = target;
@@ -1295,22 +1380,31 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
   }
   vx_[u].first_wedge = kNone;
 
-  for (auto& [t, e] : new_errors_) tri_[t].error = e;
+  for (auto& [t, e] : new_errors) tri_[t].error = e;
   // v's new list: its own triangles but the edge ones, then u's that stay.
   // The edge triangles die and leave the lists of their third corners too,
   // so that every list holds live triangles only.
-  new_list_.clear();
+  // (Written through a pointer into scratch of room nu + nv: push_back
+  // here stopped being inlined, 8 % of a call.)
+  if (lane.new_list.size() < nu + nv) lane.new_list.resize(nu + nv);
+  std::uint32_t* const new_list = lane.new_list.data();
+  std::uint32_t new_count = 0;
   for (std::uint32_t i = 0; i < nv; ++i) {
     std::uint32_t t = tvv[i];
-    if (tri_[t].v[0] != u && tri_[t].v[1] != u && tri_[t].v[2] != u) new_list_.push_back(t);
+    if (tri_[t].v[0] != u && tri_[t].v[1] != u && tri_[t].v[2] != u) new_list[new_count++] = t;
   }
   for (std::uint32_t i = 0; i < nu; ++i) {
     std::uint32_t t = tu[i];
     std::uint32_t* c = tri_[t].v;
     if (c[0] == v || c[1] == v || c[2] == v) {
       tri_[t].alive = 0;
-      --live_triangles_;
+      --lane.live;
+      if constexpr (kRegional) lane.inner -= seam_tri_[t] == 0;
       std::uint32_t x = c[0] != u && c[0] != v ? c[0] : c[1] != u && c[1] != v ? c[1] : c[2];
+      // A region leaves the lists of the seam vertices it does not own
+      // alone (other regions may change them); run_regions() drops their
+      // dead triangles afterwards.
+      if (kRegional && owner_[x] != lane.id) continue;
       std::uint32_t* xs = tris_begin(x);
       std::uint32_t nx = vx_[x].ref_count;
       for (std::uint32_t j = 0; j < nx; ++j)
@@ -1327,15 +1421,19 @@ Outcome Collapser::try_collapse(const Collapse& c, bool allow_slivers) {
         std::uint32_t wu = tri_[t].w[k];
         tri_[t].w[k] = wedge_parent_[wu] != wu ? wedge_parent_[wu] : wu;
       }
-    new_list_.push_back(t);
+    new_list[new_count++] = t;
   }
-  if (new_list_.size() <= vx_[v].ref_count) {
-    std::copy(new_list_.begin(), new_list_.end(), refs_.begin() + vx_[v].ref_start);
+  if (new_count <= vx_[v].ref_count) {
+    std::copy(new_list, new_list + new_count, refs_.begin() + vx_[v].ref_start);
+  } else if (kRegional) {
+    vx_[v].ref_start = static_cast<std::uint32_t>(lane.refs_next);
+    std::copy(new_list, new_list + new_count, refs_.begin() + lane.refs_next);
+    lane.refs_next += new_count;
   } else {
     vx_[v].ref_start = static_cast<std::uint32_t>(refs_.size());
-    refs_.insert(refs_.end(), new_list_.begin(), new_list_.end());
+    refs_.insert(refs_.end(), new_list, new_list + new_count);
   }
-  vx_[v].ref_count = static_cast<std::uint32_t>(new_list_.size());
+  vx_[v].ref_count = new_count;
   vx_[u].ref_count = 0;
 
   vx_[v].q.add(vx_[u].q);
@@ -1372,28 +1470,21 @@ void Collapser::update_wedge_attributes(std::uint32_t v) {
   }
 }
 
-StopReason Collapser::run(std::size_t target, std::string& detail) {
-  if (live_triangles_ <= target) {
-    detail = "reached " + std::to_string(live_triangles_) + " triangles (target " +
-             std::to_string(target) + ")";
-    return StopReason::kTargetReached;
-  }
-  if (heap_.empty() && collapses_since_fill_ == 0) fill_heap();
+/// Pops and performs the collapses of `lane` until it counts at most
+/// `lane.floor` live triangles, its queue is empty, the next key is above
+/// `limit`, or (a region) its list stretch is full.
+template <bool kRegional>
+Halt Collapser::drain(Lane& lane, Marks& marks, std::uint32_t limit) {
   auto stale = [&](const HeapEntry& x) { return version_[x.a] + version_[x.b] != x.stamp; };
-  while (live_triangles_ > target) {
-    if (heap_.size() > 8 * live_triangles_ + 1024) {
+  CollapseQueue& queue = lane.queue;
+  while ((kRegional ? lane.inner : lane.live) > lane.floor) {
+    if (queue.size() > 8 * lane.live + 1024) {
       // Mostly stale entries (a closed mesh has 1.5 edges per triangle):
       // dropping them keeps the heap shallow and in cache as the mesh shrinks.
-      heap_.drop_if(stale);
+      queue.drop_if(stale);
     }
     HeapEntry e;
-    if (!heap_.pop(e, stale)) {
-      // Collapses rejected earlier may be allowed now that their
-      // neighbourhood changed: try every edge again while that still helps.
-      if (collapses_since_fill_ == 0 || ++refills_ > kMaxRefills) break;
-      fill_heap();
-      continue;
-    }
+    if (!queue.pop(e, stale, limit)) return queue.empty() ? Halt::kEmpty : Halt::kLimit;
     const bool deferred = is_deferred(e);
     if (stale(e)) continue;
     // The two fans are usually cold (the last collapse was elsewhere): ask
@@ -1403,7 +1494,7 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       const std::uint32_t* ts = tris_begin(x);
       for (std::uint32_t i = 0; i < vx_[x].ref_count; ++i) __builtin_prefetch(&tri_[ts[i]]);
     }
-    if (const HeapEntry* next = heap_.peek()) {
+    if (const HeapEntry* next = queue.peek()) {
       // Likely the next collapse: its ends' records arrive while this one is
       // checked and done.
       for (std::uint32_t x : {next->a, next->b}) {
@@ -1412,57 +1503,264 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
       }
     }
     Collapse c;
-    if (!evaluate(e.a, e.b, c)) continue;
+    if (!evaluate(e.a, e.b, c, lane.wedge_pairs)) continue;
     // A collapse that would create a sliver waits until nothing cheaper than
     // twice its cost is left (ties: after the others); then it is taken, since
     // the alternative is a worse shape.
-    Outcome outcome = try_collapse(c, deferred);
+    Outcome outcome = try_collapse<kRegional>(c, deferred, lane, marks);
     if (outcome == Outcome::kSliver) {
-      heap_.push({heap_key(2 * c.cost, true), e.a, e.b, e.stamp});
+      queue.push({heap_key(2 * c.cost, true), e.a, e.b, e.stamp});
       continue;
     }
     if (outcome == Outcome::kOverBudget) {
       // Bounds only grow: this collapse stays over budget unless u or v
       // change, which re-queues it anyway.
-      ++budget_rejections_;
+      ++lane.budget_rejections;
       continue;
     }
     if (outcome == Outcome::kRejected) {
       vx_[e.a].rejected = vx_[e.b].rejected = 1;
       continue;
     }
-    ++collapses_since_fill_;
-    if (const HeapEntry* next = heap_.peek()) {
+    if (outcome == Outcome::kNoRoom) return Halt::kNoRoom;
+    ++lane.collapses_since_fill;
+    if (const HeapEntry* next = queue.peek()) {
       // The records of the next collapse's ends were asked for above and
       // have arrived by now: ask for their triangle lists, which arrive while
       // the edges of the merged vertex are queued.
       __builtin_prefetch(tris_begin(next->a));
       __builtin_prefetch(tris_begin(next->b));
     }
-    requeue_.clear();
-    push_edges(c.v, true);
-    for (std::size_t i = 0; i < requeue_.size(); ++i) {
-      std::uint32_t n = requeue_[i];
+    lane.requeue.clear();
+    push_edges<kRegional>(c.v, lane, marks, true);
+    for (std::size_t i = 0; i < lane.requeue.size(); ++i) {
+      std::uint32_t n = lane.requeue[i];
       vx_[n].rejected = 0;
-      push_edges(n);
+      push_edges<kRegional>(n, lane, marks);
     }
   }
-  if (live_triangles_ <= target) {
-    detail = "reached " + std::to_string(live_triangles_) + " triangles (target " +
+  return Halt::kFloor;
+}
+
+StopReason Collapser::run(std::size_t target, std::string& detail) {
+  if (seq_.live <= target) {
+    detail = "reached " + std::to_string(seq_.live) + " triangles (target " +
              std::to_string(target) + ")";
     return StopReason::kTargetReached;
   }
-  if (budget_rejections_ > 0) {
+  if (seq_.queue.empty() && seq_.collapses_since_fill == 0) {
+    if (seq_.live >= kRegionalMinTriangles && 4 * regional_goal(target) <= 3 * seq_.live)
+      run_regions(target);
+    fill_heap();
+  }
+  seq_.floor = target;
+  while (seq_.live > target) {
+    if (drain<false>(seq_, marks_, 0xffffffffu) != Halt::kEmpty) break;
+    // Collapses rejected earlier may be allowed now that their
+    // neighbourhood changed: try every edge again while that still helps.
+    if (seq_.collapses_since_fill == 0 || ++refills_ > kMaxRefills) break;
+    fill_heap();
+  }
+  if (seq_.live <= target) {
+    detail = "reached " + std::to_string(seq_.live) + " triangles (target " +
+             std::to_string(target) + ")";
+    return StopReason::kTargetReached;
+  }
+  if (seq_.budget_rejections > 0) {
     detail = "every remaining collapse would raise the error bound above the budget of " +
-             std::to_string(options_.target.max_error) + "; " + std::to_string(live_triangles_) +
+             std::to_string(options_.target.max_error) + "; " + std::to_string(seq_.live) +
              " triangles remain (target " + std::to_string(target) + ")";
     return StopReason::kErrorBudgetReached;
   }
   detail =
       "no edge can collapse without flipping or degenerating a triangle, changing the "
       "topology (link condition) or moving a locked border/feature vertex; " +
-      std::to_string(live_triangles_) + " triangles remain (target " + std::to_string(target) + ")";
+      std::to_string(seq_.live) + " triangles remain (target " + std::to_string(target) + ")";
   return StopReason::kCannotSimplify;
+}
+
+/// Splits the live triangles into `parts` (a power of two) regions of about
+/// equal size: a kd-tree on their centroids, each cell cut across its longest
+/// side at the median, found with a histogram of 1024 bins.
+void Collapser::partition(int parts, std::vector<std::uint8_t>& tri_region) {
+  const std::size_t nf = tri_.size();
+  std::vector<std::array<float, 3>> centre(nf);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, nf, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+          const D3 c =
+              position_of_corner(t, 0) + position_of_corner(t, 1) + position_of_corner(t, 2);
+          centre[t] = {float(c.x), float(c.y), float(c.z)};
+        }
+      });
+  tri_region.assign(nf, 0);
+  constexpr int kBins = 1024;
+  for (int cells = 1; cells < parts; cells *= 2) {
+    // Per cell: its box, then a histogram along its longest side.
+    std::vector<std::array<float, 6>> box(
+        cells, {FLT_MAX, FLT_MAX, FLT_MAX, -FLT_MAX, -FLT_MAX, -FLT_MAX});
+    for (std::size_t t = 0; t < nf; ++t)
+      if (tri_[t].alive) {
+        auto& b = box[tri_region[t]];
+        for (int k = 0; k < 3; ++k) {
+          b[k] = std::min(b[k], centre[t][k]);
+          b[3 + k] = std::max(b[3 + k], centre[t][k]);
+        }
+      }
+    std::vector<int> axis(cells);
+    std::vector<float> lo(cells), to_bin(cells);
+    for (int c = 0; c < cells; ++c) {
+      const auto& b = box[c];
+      int ax = 0;
+      for (int k = 1; k < 3; ++k)
+        if (b[3 + k] - b[k] > b[3 + ax] - b[ax]) ax = k;
+      axis[c] = ax;
+      lo[c] = b[ax];
+      const float extent = b[3 + ax] - b[ax];
+      to_bin[c] = extent > 0 ? (kBins - 1) / extent : 0.0f;
+    }
+    auto bin_of = [&](std::size_t t) {
+      const int c = tri_region[t];
+      return std::clamp(int((centre[t][axis[c]] - lo[c]) * to_bin[c]), 0, kBins - 1);
+    };
+    std::vector<std::size_t> hist(std::size_t(cells) * kBins, 0), total(cells, 0);
+    for (std::size_t t = 0; t < nf; ++t)
+      if (tri_[t].alive) {
+        ++hist[std::size_t(tri_region[t]) * kBins + bin_of(t)];
+        ++total[tri_region[t]];
+      }
+    std::vector<int> cut(cells, kBins);
+    for (int c = 0; c < cells; ++c) {
+      std::size_t sum = 0;
+      for (int i = 0; i < kBins; ++i) {
+        sum += hist[std::size_t(c) * kBins + i];
+        if (2 * sum >= total[c]) {
+          cut[c] = i;
+          break;
+        }
+      }
+    }
+    // Cell c splits into 2c (bins up to the cut) and 2c + 1.
+    for (std::size_t t = 0; t < nf; ++t)
+      if (tri_[t].alive) {
+        const int c = tri_region[t];
+        tri_region[t] = static_cast<std::uint8_t>(2 * c + int{bin_of(t) > cut[c]});
+      }
+  }
+}
+
+/// The first phase of a large reduction: the mesh is cut into regions (see
+/// partition()), and each region collapses its own edges, those between
+/// vertices all of whose triangles lie in it, with its own queue, on TBB's
+/// threads. The vertices on the cuts (seams) stay as they are, so regions
+/// share nothing they write. To stay close to the order of one queue over the
+/// whole mesh, the regions advance together in rounds, each round up to a
+/// common cost limit that grows from round to round, until the mesh is down
+/// to kRegionalSlack x the target; a region never goes below its share of
+/// the target. run() then continues on the whole mesh (seams included) from
+/// a new queue. The regions and rounds depend on the mesh and target only,
+/// so the result does not depend on the thread count.
+void Collapser::run_regions(std::size_t target) {
+  const std::size_t np = vx_.size();
+  const int parts = static_cast<int>(
+      std::clamp<std::size_t>(std::bit_floor(seq_.live / kRegionTriangles), 2, kMaxRegions));
+  std::vector<std::uint8_t> tri_region;
+  partition(parts, tri_region);
+
+  // Owners: the region of all of a position's triangles, if it is one.
+  owner_.assign(np, kSeam);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+                        const std::uint32_t n = vx_[p].ref_count;
+                        if (n == 0) continue;
+                        const std::uint32_t* ts = tris_begin(static_cast<std::uint32_t>(p));
+                        const std::uint8_t region = tri_region[ts[0]];
+                        bool one = true;
+                        for (std::uint32_t i = 1; i < n; ++i) one &= tri_region[ts[i]] == region;
+                        if (one) owner_[p] = region;
+                      }
+                    });
+
+  // Lanes: a share of the target, and a stretch of refs_ for growing lists
+  // (room for 4 entries per triangle; a 99 % reduction of the bunny appends
+  // about 3.3; a lane that runs out stops, see drain()).
+  std::vector<std::unique_ptr<Lane>> lanes;
+  for (int r = 0; r < parts; ++r) {
+    lanes.push_back(std::make_unique<Lane>(20));
+    lanes.back()->id = static_cast<std::uint8_t>(r);
+  }
+  seam_tri_.assign(tri_.size(), 0);
+  std::size_t inner = 0;
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_[t].alive) {
+      Lane& lane = *lanes[tri_region[t]];
+      ++lane.live;
+      const std::uint32_t* c = tri_[t].v;
+      seam_tri_[t] = owner_[c[0]] == kSeam || owner_[c[1]] == kSeam || owner_[c[2]] == kSeam;
+      lane.inner += seam_tri_[t] == 0;
+      inner += seam_tri_[t] == 0;
+    }
+  std::size_t next = refs_.size();
+  for (auto& lane : lanes) {
+    lane->floor = (lane->inner * target + seq_.live - 1) / seq_.live;
+    lane->refs_next = next;
+    next += 4 * lane->live;
+    lane->refs_end = next;
+  }
+  refs_.resize(next);
+
+  std::uint32_t limit = 0xffffffffu;
+  plan_edges([&](const HeapEntry& e) {
+    const std::uint8_t region = owner_[e.a];
+    if (region == kSeam || owner_[e.b] != region) return;
+    lanes[region]->queue.push(e);
+    limit = std::min(limit, e.key);
+  });
+
+  tbb::enumerable_thread_specific<Marks> marks([&] {
+    Marks m;
+    m.mark.assign(np, 0);
+    return m;
+  });
+  // The goal, for the inner triangles: their share of regional_goal().
+  const std::size_t goal = regional_goal(target) * inner / seq_.live;
+  for (;;) {
+    std::size_t live = 0;
+    bool all_done = true;
+    for (auto& lane : lanes) {
+      live += lane->inner;
+      all_done &= lane->done;
+    }
+    if (live <= goal || all_done || limit == 0xffffffffu) break;
+    // Far from the goal the limit grows faster (x16 or x4 in cost per
+    // round, x2 near the goal).
+    const std::uint32_t step = (live > 8 * goal ? 4u : live > 2 * goal ? 2u : 1u) << 24;
+    limit = limit > 0xffffffffu - step ? 0xffffffffu : limit + step;
+    tbb::parallel_for(0, parts, [&](int r) {
+      Lane& lane = *lanes[r];
+      if (!lane.done) lane.done = drain<true>(lane, marks.local(), limit) != Halt::kLimit;
+    });
+  }
+
+  // Back to one mesh: the seams' lists lose the triangles that died in
+  // regions, and the counts add up.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+                        if (owner_[p] != kSeam) continue;
+                        std::uint32_t* ts = refs_.data() + vx_[p].ref_start;
+                        std::uint32_t kept = 0;
+                        for (std::uint32_t i = 0; i < vx_[p].ref_count; ++i)
+                          if (tri_[ts[i]].alive) ts[kept++] = ts[i];
+                        vx_[p].ref_count = kept;
+                      }
+                    });
+  std::size_t live = 0;
+  for (auto& lane : lanes) live += lane->live;
+  seq_.live = live;
+  owner_.clear();
+  seam_tri_.clear();
 }
 
 SimplifyResult Collapser::snapshot() const {
@@ -1511,8 +1809,8 @@ SimplifyResult Collapser::snapshot() const {
     }
     if (mesh_.has_colors()) m.colors[o] = {a[c], a[c + 1], a[c + 2]};
   }
-  m.triangles.reserve(live_triangles_);
-  r.face_map.reserve(live_triangles_);
+  m.triangles.reserve(seq_.live);
+  r.face_map.reserve(seq_.live);
   float error = 0;
   for (std::size_t t = 0; t < nf; ++t) {
     if (!tri_[t].alive) continue;

@@ -30,6 +30,14 @@
 // coordinates in power-of-two normalised units, so results do not depend on
 // the model's unit. Per collapse the work is: one valid pop, the checks over
 // the two fans, and one evaluation and push per edge of the merged vertex.
+//
+// The collapse loop is inherently sequential, so a large reduction starts
+// with a regional phase (run_regions): the mesh is cut into a few regions,
+// which collapse their own edges side by side on TBB's threads, each with its
+// own queue, in rounds up to a common cost limit, so the order stays close to
+// one queue's; the vertices on the cuts wait, and the whole mesh then goes on
+// from one queue. On the bunny at 80-99 % reduction this changes the mean
+// deviation by under 1 % against one queue throughout (a test checks 5 %).
 #include "lodforge/simplify/quadric_collapse.h"
 
 #include <algorithm>
@@ -1549,6 +1557,8 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
     return StopReason::kTargetReached;
   }
   if (seq_.queue.empty() && seq_.collapses_since_fill == 0) {
+    // The regional phase when it removes at least a quarter of the
+    // triangles (the target keeps at most 72 %).
     if (seq_.live >= kRegionalMinTriangles && 4 * regional_goal(target) <= 3 * seq_.live)
       run_regions(target);
     fill_heap();
@@ -1655,9 +1665,11 @@ void Collapser::partition(int parts, std::vector<std::uint8_t>& tri_region) {
 /// threads. The vertices on the cuts (seams) stay as they are, so regions
 /// share nothing they write. To stay close to the order of one queue over the
 /// whole mesh, the regions advance together in rounds, each round up to a
-/// common cost limit that grows from round to round, until the mesh is down
-/// to kRegionalSlack x the target; a region never goes below its share of
-/// the target. run() then continues on the whole mesh (seams included) from
+/// common cost limit that grows from round to round, until the triangles
+/// without a seam corner are down to their share of regional_goal(); a region
+/// never goes below its share of the target. (Counting the seams' triangles
+/// too would drive the interiors far below the target, since the seams stay:
+/// on the bunny that cost 10x in mean deviation.) run() then continues on the whole mesh (seams included) from
 /// a new queue. The regions and rounds depend on the mesh and target only,
 /// so the result does not depend on the thread count.
 void Collapser::run_regions(std::size_t target) {

@@ -33,6 +33,9 @@
 #include <emmintrin.h>
 #endif
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "lodforge/mesh/weld.h"
 
 namespace lodforge {
@@ -400,10 +403,26 @@ Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& op
     link(t, 0);
   }
   live_triangles_ = triangles_.size();
+  // The first plan of every vertex reads the mesh only and writes the
+  // vertex's own state: in parallel (a third of all plans of a long run),
+  // queued in vertex order afterwards, as one thread would.
+  std::vector<float> priority(nv, 0.0f);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(nv), 2048),
+                    [&](const tbb::blocked_range<std::uint32_t>& r) {
+                      Plan local;
+                      for (std::uint32_t v = r.begin(); v != r.end(); ++v) {
+                        if (vertices_[v].corners.empty()) continue;
+                        Keep k = plan(v, local, false);
+                        vertices_[v].keep = k;
+                        if (k != Keep::kCandidate) continue;
+                        priority[v] = local.priority;
+                        vertices_[v].cache.store(local.tris, local.side_end[0]);
+                      }
+                    });
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (vertices_[v].corners.empty()) continue;
     ++live_vertices_;
-    evaluate(v);
+    if (vertices_[v].keep == Keep::kCandidate) heap_.set(v, priority[v]);
   }
 }
 

@@ -59,6 +59,7 @@
 #include <tbb/task_arena.h>
 
 #include "lodforge/core/error.h"
+#include "lodforge/simplify/regions.h"
 
 namespace lodforge {
 namespace {
@@ -440,7 +441,7 @@ class Collapser {
   void plan_edges(Emit emit);
   void fill_heap();
   void run_regions(std::size_t target);
-  void partition(int parts, std::vector<std::uint8_t>& tri_region);
+  std::vector<std::uint8_t> partition(int parts) const;
   // The collapse loop, for the whole mesh (kRegional false) or a region.
   template <bool kRegional>
   Halt drain(Lane& lane, Marks& marks, std::uint32_t limit);
@@ -501,7 +502,7 @@ class Collapser {
   Marks marks_;  // the calling thread's stamp (its marks are in vx_)
   // Regions of the first phase (run_regions): the region owning each
   // position (all its triangles are in it), kSeam for the others.
-  static constexpr std::uint8_t kSeam = 0xff;
+  static constexpr std::uint8_t kSeam = regions::kSeam;
   std::vector<std::uint8_t> owner_;
   std::vector<std::uint8_t> seam_tri_;  // per triangle: it has a seam corner
 
@@ -533,19 +534,6 @@ class Collapser {
   // refill of the heap is only the safety net, tried a few times.
   static constexpr int kMaxRefills = 4;
   int refills_ = 0;
-
-  // The regional first phase (run_regions), from this many triangles on, in
-  // regions of about kRegionTriangles (at most kMaxRegions: every cut
-  // leaves a seam that waits for the second phase).
-  static constexpr std::size_t kRegionalMinTriangles = 32768;
-  static constexpr std::size_t kRegionTriangles = 16384;
-  static constexpr std::size_t kMaxRegions = 4;
-  /// Where the first phase stops for `target` (of seq_.live triangles): at
-  /// twice the target, but leaving at least a tenth of the collapses to the
-  /// second phase.
-  std::size_t regional_goal(std::size_t target) const {
-    return std::min(2 * target, target + (seq_.live - target) / 10);
-  }
 };
 
 void Collapser::build() {
@@ -1558,9 +1546,8 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
   }
   if (seq_.queue.empty() && seq_.collapses_since_fill == 0) {
     // The regional phase when it removes at least a quarter of the
-    // triangles (the target keeps at most 72 %).
-    if (seq_.live >= kRegionalMinTriangles && 4 * regional_goal(target) <= 3 * seq_.live)
-      run_regions(target);
+    // triangles (regions::worthwhile).
+    if (regions::worthwhile(target, seq_.live)) run_regions(target);
     fill_heap();
   }
   seq_.floor = target;
@@ -1589,74 +1576,24 @@ StopReason Collapser::run(std::size_t target, std::string& detail) {
   return StopReason::kCannotSimplify;
 }
 
-/// Splits the live triangles into `parts` (a power of two) regions of about
-/// equal size: a kd-tree on their centroids, each cell cut across its longest
-/// side at the median, found with a histogram of 1024 bins.
-void Collapser::partition(int parts, std::vector<std::uint8_t>& tri_region) {
+/// The region of every triangle (see regions::kd_partition).
+std::vector<std::uint8_t> Collapser::partition(int parts) const {
   const std::size_t nf = tri_.size();
-  std::vector<std::array<float, 3>> centre(nf);
+  std::vector<float> centre(3 * nf);
+  std::vector<std::uint8_t> use(nf);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, nf, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t t = r.begin(); t != r.end(); ++t) {
+          const auto i = static_cast<std::uint32_t>(t);
           const D3 c =
-              position_of_corner(t, 0) + position_of_corner(t, 1) + position_of_corner(t, 2);
-          centre[t] = {float(c.x), float(c.y), float(c.z)};
+              position_of_corner(i, 0) + position_of_corner(i, 1) + position_of_corner(i, 2);
+          centre[3 * t] = float(c.x);
+          centre[3 * t + 1] = float(c.y);
+          centre[3 * t + 2] = float(c.z);
+          use[t] = tri_[t].alive != 0;
         }
       });
-  tri_region.assign(nf, 0);
-  constexpr int kBins = 1024;
-  for (int cells = 1; cells < parts; cells *= 2) {
-    // Per cell: its box, then a histogram along its longest side.
-    std::vector<std::array<float, 6>> box(
-        cells, {FLT_MAX, FLT_MAX, FLT_MAX, -FLT_MAX, -FLT_MAX, -FLT_MAX});
-    for (std::size_t t = 0; t < nf; ++t)
-      if (tri_[t].alive) {
-        auto& b = box[tri_region[t]];
-        for (int k = 0; k < 3; ++k) {
-          b[k] = std::min(b[k], centre[t][k]);
-          b[3 + k] = std::max(b[3 + k], centre[t][k]);
-        }
-      }
-    std::vector<int> axis(cells);
-    std::vector<float> lo(cells), to_bin(cells);
-    for (int c = 0; c < cells; ++c) {
-      const auto& b = box[c];
-      int ax = 0;
-      for (int k = 1; k < 3; ++k)
-        if (b[3 + k] - b[k] > b[3 + ax] - b[ax]) ax = k;
-      axis[c] = ax;
-      lo[c] = b[ax];
-      const float extent = b[3 + ax] - b[ax];
-      to_bin[c] = extent > 0 ? (kBins - 1) / extent : 0.0f;
-    }
-    auto bin_of = [&](std::size_t t) {
-      const int c = tri_region[t];
-      return std::clamp(int((centre[t][axis[c]] - lo[c]) * to_bin[c]), 0, kBins - 1);
-    };
-    std::vector<std::size_t> hist(std::size_t(cells) * kBins, 0), total(cells, 0);
-    for (std::size_t t = 0; t < nf; ++t)
-      if (tri_[t].alive) {
-        ++hist[std::size_t(tri_region[t]) * kBins + bin_of(t)];
-        ++total[tri_region[t]];
-      }
-    std::vector<int> cut(cells, kBins);
-    for (int c = 0; c < cells; ++c) {
-      std::size_t sum = 0;
-      for (int i = 0; i < kBins; ++i) {
-        sum += hist[std::size_t(c) * kBins + i];
-        if (2 * sum >= total[c]) {
-          cut[c] = i;
-          break;
-        }
-      }
-    }
-    // Cell c splits into 2c (bins up to the cut) and 2c + 1.
-    for (std::size_t t = 0; t < nf; ++t)
-      if (tri_[t].alive) {
-        const int c = tri_region[t];
-        tri_region[t] = static_cast<std::uint8_t>(2 * c + int{bin_of(t) > cut[c]});
-      }
-  }
+  return regions::kd_partition(centre, use, parts);
 }
 
 /// The first phase of a large reduction: the mesh is cut into regions (see
@@ -1666,18 +1603,16 @@ void Collapser::partition(int parts, std::vector<std::uint8_t>& tri_region) {
 /// share nothing they write. To stay close to the order of one queue over the
 /// whole mesh, the regions advance together in rounds, each round up to a
 /// common cost limit that grows from round to round, until the triangles
-/// without a seam corner are down to their share of regional_goal(); a region
+/// without a seam corner are down to their share of regions::goal(); a region
 /// never goes below its share of the target. (Counting the seams' triangles
 /// too would drive the interiors far below the target, since the seams stay:
-/// on the bunny that cost 10x in mean deviation.) run() then continues on the whole mesh (seams included) from
-/// a new queue. The regions and rounds depend on the mesh and target only,
-/// so the result does not depend on the thread count.
+/// on the bunny that cost 10x in mean deviation.) run() then continues on the whole mesh (seams
+/// included) from a new queue. The regions and rounds depend on the mesh and target only, so the
+/// result does not depend on the thread count.
 void Collapser::run_regions(std::size_t target) {
   const std::size_t np = vx_.size();
-  const int parts = static_cast<int>(
-      std::clamp<std::size_t>(std::bit_floor(seq_.live / kRegionTriangles), 2, kMaxRegions));
-  std::vector<std::uint8_t> tri_region;
-  partition(parts, tri_region);
+  const int parts = regions::part_count(seq_.live);
+  const std::vector<std::uint8_t> tri_region = partition(parts);
 
   // Owners: the region of all of a position's triangles, if it is one.
   owner_.assign(np, kSeam);
@@ -1735,8 +1670,8 @@ void Collapser::run_regions(std::size_t target) {
     m.mark.assign(np, 0);
     return m;
   });
-  // The goal, for the inner triangles: their share of regional_goal().
-  const std::size_t goal = regional_goal(target) * inner / seq_.live;
+  // The goal, for the inner triangles: their share of regions::goal().
+  const std::size_t goal = regions::goal(target, seq_.live) * inner / seq_.live;
   for (;;) {
     std::size_t live = 0;
     bool all_done = true;
@@ -1745,10 +1680,7 @@ void Collapser::run_regions(std::size_t target) {
       all_done &= lane->done;
     }
     if (live <= goal || all_done || limit == 0xffffffffu) break;
-    // Far from the goal the limit grows faster (x16 or x4 in cost per
-    // round, x2 near the goal).
-    const std::uint32_t step = (live > 8 * goal ? 4u : live > 2 * goal ? 2u : 1u) << 24;
-    limit = limit > 0xffffffffu - step ? 0xffffffffu : limit + step;
+    limit = regions::next_limit(limit, live, goal, 1);
     tbb::parallel_for(0, parts, [&](int r) {
       Lane& lane = *lanes[r];
       if (!lane.done) lane.done = drain<true>(lane, marks.local(), limit) != Halt::kLimit;

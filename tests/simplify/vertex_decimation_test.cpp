@@ -1,6 +1,7 @@
 #include "lodforge/simplify/vertex_decimation.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -469,6 +470,63 @@ TEST(VertexDecimation, TriangleSoupOfOneSphere) {
 // (max of the two one-sided means, compare_meshes defaults) than the original
 // tool's vertex decimation: 1.45e-5 m, 1.09e-4 m, 7.20e-4 m. No folded
 // triangles at 99 %.
+TEST(VertexDecimation, ResultDoesNotDependOnTheThreadCount) {
+  // Large enough for the parallel first plans and for the regional first
+  // phase (two regions at this size), with normals and texcoords (seams).
+  const TriangleMesh m = make_uv_sphere(200, 100);
+  ASSERT_GT(m.triangles.size(), 32768u);
+  VertexDecimationOptions options;
+  options.target.ratio = 0.05f;
+  auto run_in_arena = [&](int threads) {
+    SimplifyResult r;
+    tbb::task_arena(threads).execute([&] { r = vertex_decimation(m, options); });
+    return r;
+  };
+  const SimplifyResult one = run_in_arena(1);
+  EXPECT_EQ(one.stop_reason, StopReason::kTargetReached);
+  EXPECT_LE(one.mesh.triangles.size(), m.triangles.size() / 20);
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(threads);
+    const SimplifyResult r = run_in_arena(threads);
+    EXPECT_EQ(r.mesh.triangles, one.mesh.triangles);
+    EXPECT_EQ(r.mesh.positions, one.mesh.positions);
+    EXPECT_EQ(r.vertex_map, one.vertex_map);
+    EXPECT_EQ(r.face_map, one.face_map);
+    EXPECT_EQ(r.error, one.error);
+  }
+}
+
+// A large reduction starts with the regional phase (regions remove their own
+// vertices in parallel, the seams and the rings beside them wait); the chain
+// runs everything on one queue, and its last level stops at the same count.
+// The regional result must differ (it did run) and lose next to nothing.
+TEST(VertexDecimation, BunnyRegionalFirstPhaseCostsLittleQuality) {
+  std::filesystem::path path =
+      std::filesystem::path(LODFORGE_SHARED_DATA) / "meshes/bun_zipper.ply";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
+  TriangleMesh bunny = read_mesh(path.string());
+  for (double keep : {0.5, 0.1, 0.01}) {
+    SCOPED_TRACE(keep);
+    VertexDecimationOptions options;
+    options.target.triangles = static_cast<std::size_t>(double(bunny.triangle_count()) * keep);
+    const SimplifyResult regional = vertex_decimation(bunny, options);
+    const SimplifyResult one_queue = vertex_decimation_chain(bunny, options).back();
+    EXPECT_EQ(regional.stop_reason, StopReason::kTargetReached);
+    EXPECT_LE(one_queue.mesh.triangle_count(), options.target.triangles);
+    EXPECT_LE(regional.mesh.triangle_count(), options.target.triangles);
+    EXPECT_GE(regional.mesh.triangle_count() + 2, options.target.triangles);
+    EXPECT_NE(regional.mesh.triangles, one_queue.mesh.triangles);
+    expect_clean(regional.mesh);
+    CompareResult a = compare_meshes(bunny, regional.mesh),
+                  b = compare_meshes(bunny, one_queue.mesh);
+    const double ours = std::max(a.a_to_b.mean, a.b_to_a.mean);
+    const double reference = std::max(b.a_to_b.mean, b.b_to_a.mean);
+    std::printf("keep %.2f: regional mean %.4g, one queue %.4g (%+.1f %%)\n", keep, ours, reference,
+                100 * (ours / reference - 1));
+    EXPECT_LE(ours, 1.05 * reference);
+  }
+}
+
 TEST(VertexDecimation, BunnyBeatsTheThesis) {
   std::filesystem::path path =
       std::filesystem::path(LODFORGE_SHARED_DATA) / "meshes/bun_zipper.ply";

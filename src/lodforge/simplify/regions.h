@@ -27,18 +27,19 @@ inline constexpr std::uint8_t kSeam = 0xff;
 /// How many regions for `triangles` live triangles (a power of two, >= 2).
 int part_count(std::size_t triangles);
 
-/// Where the first phase stops for `target` of `live` triangles: at twice the
-/// target, but leaving at least a tenth of the collapses to the second phase.
-inline std::size_t goal(std::size_t target, std::size_t live) {
+/// Where the first phase stops for `target` of `live` triangles: at `slack`
+/// times the target, but leaving at least a tenth of the collapses to the
+/// second phase.
+inline std::size_t goal(std::size_t target, std::size_t live, std::size_t slack = 2) {
   const std::size_t rest = target + (live - target) / 10;
-  return 2 * target < rest ? 2 * target : rest;
+  return slack * target < rest ? slack * target : rest;
 }
 
 /// Whether the phase runs for a reduction of `live` triangles to `target`:
-/// from kMinTriangles on, when it removes at least a quarter of them (the
-/// target keeps at most 72 %).
-inline bool worthwhile(std::size_t target, std::size_t live) {
-  return live >= kMinTriangles && target < live && 4 * goal(target, live) <= 3 * live;
+/// from kMinTriangles on, when it removes at least a quarter of them (with
+/// the default slack: when the target keeps at most 72 %).
+inline bool worthwhile(std::size_t target, std::size_t live, std::size_t slack = 2) {
+  return live >= kMinTriangles && target < live && 4 * goal(target, live, slack) <= 3 * live;
 }
 
 /// Cuts the triangles with use[t] != 0 into `parts` (a power of two, <= 64)

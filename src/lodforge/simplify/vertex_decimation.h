@@ -120,6 +120,17 @@ inline constexpr std::size_t kMaxDecimationValence = 64;
 /// (options.target.triangle_target(#F of `mesh`)) is met, or no vertex can be
 /// removed within the error budget or at all.
 ///
+/// Threads: the first plan of every vertex runs on TBB's threads. From 32 768
+/// triangles on, when the target keeps at most 72 % of them, a
+/// regional first phase (simplify/regions.h) removes vertices in up to four kd
+/// regions side by side on TBB's threads, each region only the vertices whose
+/// whole ring it owns, with its own queue, in rounds up to a common priority
+/// limit, down to 4x the target; then every vertex left is planned again and
+/// one queue over the whole mesh goes on. Against one queue on the bunny: mean
+/// deviation +2 % at 50 %, -0.7 % at 90 %, -5 % at 99 % reduction. The
+/// result is the same on any number of threads. vertex_decimation_chain
+/// (below) always runs one queue.
+///
 /// Result (see SimplifyResult): `mesh` holds the used input vertices (in input
 /// order) with all their attributes, the remaining and new triangles,
 /// per-face materials if the input had them, and the input's line segments.

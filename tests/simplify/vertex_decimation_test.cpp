@@ -15,6 +15,7 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
 #include "mesh/test_meshes.h"
+#include "simplify/same_result.h"
 
 namespace lodforge {
 namespace {
@@ -487,12 +488,7 @@ TEST(VertexDecimation, ResultDoesNotDependOnTheThreadCount) {
   EXPECT_LE(one.mesh.triangles.size(), m.triangles.size() / 20);
   for (int threads : {2, 3}) {
     SCOPED_TRACE(threads);
-    const SimplifyResult r = run_in_arena(threads);
-    EXPECT_EQ(r.mesh.triangles, one.mesh.triangles);
-    EXPECT_EQ(r.mesh.positions, one.mesh.positions);
-    EXPECT_EQ(r.vertex_map, one.vertex_map);
-    EXPECT_EQ(r.face_map, one.face_map);
-    EXPECT_EQ(r.error, one.error);
+    test::expect_same_result(run_in_arena(threads), one);
   }
 }
 

@@ -1672,20 +1672,9 @@ void Collapser::run_regions(std::size_t target) {
   });
   // The goal, for the inner triangles: their share of regions::goal().
   const std::size_t goal = regions::goal(target, seq_.live) * inner / seq_.live;
-  for (;;) {
-    std::size_t live = 0;
-    bool all_done = true;
-    for (auto& lane : lanes) {
-      live += lane->inner;
-      all_done &= lane->done;
-    }
-    if (live <= goal || all_done || limit == 0xffffffffu) break;
-    limit = regions::next_limit(limit, live, goal, 1);
-    tbb::parallel_for(0, parts, [&](int r) {
-      Lane& lane = *lanes[r];
-      if (!lane.done) lane.done = drain<true>(lane, marks.local(), limit) != Halt::kLimit;
-    });
-  }
+  regions::run_rounds(lanes, goal, limit, 1, [&](Lane& lane, std::uint32_t round_limit) {
+    return drain<true>(lane, marks.local(), round_limit) != Halt::kLimit;
+  });
 
   // Back to one mesh: the seams' lists lose the triangles that died in
   // regions, and the counts add up.

@@ -58,7 +58,7 @@
 /// thread. On the bunny this changes the mean deviation by under 1 % at
 /// 80-99 % reduction. The regions and rounds depend on the mesh and target
 /// only: the result is the same on any number of threads. On the bunny and
-/// igea 0.97-1.44x the wall time of meshopt_simplify at 50 % and 1.2-1.4x at
+/// igea 1.0-1.45x the wall time of meshopt_simplify at 50 % and 1.2-1.45x at
 /// 99 % reduction (meshopt places vertices at edge ends and has no attribute
 /// quadrics; figures in docs/RESULTS.md). The result does not depend on the
 /// model's unit: a copy scaled by a power of two gives the same triangles,

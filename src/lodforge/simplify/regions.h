@@ -10,7 +10,10 @@
 /// result does not depend on the thread count.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 namespace lodforge::regions {
 
@@ -56,5 +59,30 @@ std::vector<std::uint8_t> kd_partition(const std::vector<float>& centre,
 /// `remaining` is above 8x `goal`, x4 above 2x, x2 near it; saturates at the
 /// largest key.
 std::uint32_t next_limit(std::uint32_t limit, std::size_t remaining, std::size_t goal, int shift);
+
+/// The rounds of the phase. `lanes` are the regions' states, each with
+/// `inner` (its triangles without a seam corner) and `done`; `limit` starts
+/// at the smallest queued priority (as a key, see next_limit). While the
+/// inner triangles add up to more than `goal` and some region is not done,
+/// the limit grows and `step(lane, limit)` runs for every region not done,
+/// side by side on TBB's threads; it works up to the limit and returns
+/// whether the region is done.
+template <class Lane, class Step>
+void run_rounds(std::vector<std::unique_ptr<Lane>>& lanes, std::size_t goal, std::uint32_t limit,
+                int shift, Step step) {
+  for (;;) {
+    std::size_t remaining = 0;
+    bool all_done = true;
+    for (auto& lane : lanes) {
+      remaining += lane->inner;
+      all_done &= lane->done;
+    }
+    if (remaining <= goal || all_done || limit == 0xffffffffu) return;
+    limit = next_limit(limit, remaining, goal, shift);
+    tbb::parallel_for(std::size_t{0}, lanes.size(), [&](std::size_t r) {
+      if (!lanes[r]->done) lanes[r]->done = step(*lanes[r], limit);
+    });
+  }
+}
 
 }  // namespace lodforge::regions

@@ -1201,21 +1201,9 @@ void Decimator::run_regions(std::size_t target) {
   // the seams, and the rings beside them, to where the coarse interiors
   // need them); at 4x it is 5 % below one queue's.
   const std::size_t goal = regions::goal(target, live, 4) * inner / live;
-  for (;;) {
-    std::size_t remaining = 0;
-    bool all_done = true;
-    for (auto& lane : lanes) {
-      remaining += lane->inner;
-      all_done &= lane->done;
-    }
-    if (remaining <= goal || all_done || limit == 0xffffffffu) break;
-    limit = regions::next_limit(limit, remaining, goal, 0);
-    tbb::parallel_for(0, parts, [&](int r) {
-      Lane& lane = *lanes[r];
-      if (lane.done) return;
-      lane.done = !drain<true>(lane, lane.floor, 0, limit) || lane.inner <= lane.floor;
-    });
-  }
+  regions::run_rounds(lanes, goal, limit, 0, [&](Lane& lane, std::uint32_t round_limit) {
+    return !drain<true>(lane, lane.floor, 0, round_limit) || lane.inner <= lane.floor;
+  });
 
   // Back to one mesh: the counts, then fresh plans of every vertex left.
   for (int r = 0; r < parts; ++r) {

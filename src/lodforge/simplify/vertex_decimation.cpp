@@ -309,14 +309,13 @@ struct Plan {
 /// removes only vertices whose whole ring it owns.
 struct Lane {
   VertexHeap heap;
-  Plan plan;  // scratch
-  std::size_t live_triangles = 0;
-  std::size_t live_vertices = 0;
+  Plan plan;                       // scratch
+  std::size_t live_triangles = 0;  // the whole mesh's only
+  std::size_t live_vertices = 0;   // the whole mesh's only
   float max_error = 0;
-  // A region: its id in owner_, its triangles without a seam corner (the
-  // ones it can remove; its floor and the rounds' goal count them), its
-  // share of the target, and whether it has stopped.
-  std::uint8_t id = 0;
+  // A region: its triangles without a seam corner (the ones it can remove;
+  // its floor and the rounds' goal count them), its share of the target,
+  // and whether it has stopped.
   std::size_t inner = 0, floor = 0;
   bool done = false;
 };
@@ -357,8 +356,8 @@ class Decimator {
   template <bool kRegional>
   void apply(std::uint32_t v, const Plan& plan, Lane& lane);
   /// Removes vertices until `lane` has at most `triangles` triangles (a
-  /// region: inner ones) or `vertices` vertices, its queue is empty (false)
-  /// or the next priority's bits are above `limit`.
+  /// region: inner ones) or (the whole mesh) `vertices` vertices, its queue
+  /// is empty (false) or the next priority's bits are above `limit`.
   template <bool kRegional>
   bool drain(Lane& lane, std::size_t triangles, std::size_t vertices,
              std::uint32_t limit = 0xffffffffu);
@@ -368,8 +367,10 @@ class Decimator {
   /// Plans the removal of v. `final`: also make sure that no split line is
   /// an existing edge (costly, as it reads the neighbours' corner lists; a
   /// plan for the queue skips it, as such lines are rare, and the removal
-  /// itself re-plans with it).
-  Keep plan(std::uint32_t v, Plan& plan, bool final, bool cached = false) const;
+  /// itself re-plans with it). `queue`: the queue the removal will update
+  /// (a final plan fetches its entries for the neighbours).
+  Keep plan(std::uint32_t v, Plan& plan, bool final, bool cached = false,
+            const VertexHeap* queue = nullptr) const;
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
   Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const;
   bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
@@ -876,7 +877,8 @@ Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final)
 // | simple, corner      | 1     | loop[0 .. n)  (ring)           | - (3-ring: the triangle)|
 // | boundary            | 1     | loop[0 .. n]                   | loop[n]-loop[0]         |
 // | interior edge p < q | 2     | loop[p .. q], loop[q .. p+n]   | loop[p]-loop[q]         |
-Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const {
+Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached,
+                     const VertexHeap* queue) const {
   Fan& fan = plan.fan;
   if (!criterion(v, fan)) return fan.why;
   if (final) {
@@ -885,7 +887,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached) const
     // at once instead of one miss after the other.
     for (int k = 0; k < fan.loop_size; ++k) {
       __builtin_prefetch(&vertices_[fan.loop[k]]);
-      seq_.heap.prefetch_position(fan.loop[k]);
+      if (queue) queue->prefetch_position(fan.loop[k]);
     }
     for (int k = 0; k < fan.n; ++k) {
       __builtin_prefetch(&triangles_[fan.tris[k]]);
@@ -1058,9 +1060,14 @@ void Decimator::apply(std::uint32_t v, const Plan& plan, Lane& lane) {
     }
   }
   lane.max_error = std::max(lane.max_error, accumulated);
-  lane.live_triangles -= static_cast<std::size_t>(n) - slot;
-  if constexpr (kRegional) lane.inner -= static_cast<std::size_t>(n) - slot;
-  --lane.live_vertices;
+  // A region counts its inner triangles only (all it removes are inner);
+  // the whole mesh's counts are made up after the phase.
+  if constexpr (kRegional) {
+    lane.inner -= static_cast<std::size_t>(n) - slot;
+  } else {
+    lane.live_triangles -= static_cast<std::size_t>(n) - slot;
+    --lane.live_vertices;
+  }
   // Copy the loop: evaluate() reuses the lane's plan.
   std::array<std::uint32_t, kMaxLoop> loop = fan.loop;
   int loop_size = fan.loop_size;
@@ -1081,7 +1088,7 @@ bool Decimator::drain(Lane& lane, std::size_t triangles, std::size_t vertices,
   VertexHeap& heap = lane.heap;
   Plan& scratch = lane.plan;
   while ((kRegional ? lane.inner : lane.live_triangles) > triangles &&
-         lane.live_vertices > vertices) {
+         (kRegional || lane.live_vertices > vertices)) {
     if (heap.empty()) return false;
     // (+ 0.0f: a -0 priority is 0; non-negative floats order like their bits.)
     if (std::bit_cast<std::uint32_t>(heap.top_priority() + 0.0f) > limit) return true;
@@ -1106,7 +1113,7 @@ bool Decimator::drain(Lane& lane, std::size_t triangles, std::size_t vertices,
     // corner list (header now, records after the plan), used by its plan.
     std::uint32_t next = heap.empty() ? v : heap.top();
     __builtin_prefetch(&vertices_[next]);
-    Keep k = plan(v, scratch, true, true);
+    Keep k = plan(v, scratch, true, true, &heap);
     const Corner* nc = vertices_[next].corners.data();
     __builtin_prefetch(nc);
     __builtin_prefetch(nc + 3);
@@ -1167,9 +1174,7 @@ void Decimator::run_regions(std::size_t target) {
   std::vector<std::unique_ptr<Lane>> lanes;
   for (int r = 0; r < parts; ++r) {
     lanes.push_back(std::make_unique<Lane>());
-    lanes.back()->id = static_cast<std::uint8_t>(r);
     lanes.back()->heap.init(nv);
-    lanes.back()->live_vertices = nv;  // no vertex target
   }
   // Inner triangles: no seam corner (only those can go in this phase).
   std::size_t inner = 0;

@@ -46,6 +46,7 @@
 #include "lodforge/simplify/vertex_clustering.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <cmath>
@@ -53,6 +54,7 @@
 #include <numeric>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include <fmt/core.h>
@@ -63,6 +65,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/scalable_allocator.h>
 #include <tbb/task_group.h>
 
 #include "lodforge/core/error.h"
@@ -70,6 +73,39 @@
 
 namespace lodforge {
 namespace {
+
+/// The allocator of the call's working arrays: TBB's scalable allocator,
+/// which keeps freed large blocks for the next call where glibc's malloc
+/// hands them back to the system, so that every call faulted their pages in
+/// again (igea: ~5 000 page faults a call, a sixth of its time); and resize()
+/// leaves elements without a default member initialiser (indices, codes)
+/// uninitialised: every array resized here is written in full before it is
+/// read, and zeroing it first was a serial pass over memory.
+template <class T>
+struct BufferAllocator : tbb::scalable_allocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = BufferAllocator<U>;
+  };
+  BufferAllocator() = default;
+  template <class U>
+  BufferAllocator(const BufferAllocator<U>& /*other*/) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  bool operator==(const BufferAllocator<U>& /*other*/) const noexcept {
+    return true;
+  }
+};
+template <class T>
+using Buffer = std::vector<T, BufferAllocator<T>>;
 
 constexpr int kMaxDepth = 21;  // bits per axis of the Morton code (3 x 21 = 63)
 constexpr std::uint32_t kNone = 0xffffffffu;
@@ -102,17 +138,17 @@ struct CodedVertex {
 /// such runs are vertices in one cell of side 1/1024 of the bounding cube's
 /// or less, rarely more than one, so this gives the order of a sort by the
 /// whole code (six passes) at half the passes.
-void radix_sort(std::vector<CodedVertex>& items) {
+void radix_sort(Buffer<CodedVertex>& items) {
   constexpr int kShift = 31, kPasses = 3, kBits[kPasses] = {11, 11, 10};
   constexpr std::size_t kBuckets = std::size_t(1) << 11;
   auto digit = [&](const CodedVertex& it, int p) {
     return static_cast<std::size_t>((it.code >> (kShift + 11 * p)) & ((1u << kBits[p]) - 1));
   };
-  std::vector<std::array<std::uint32_t, kBuckets>> count(kPasses);
+  Buffer<std::array<std::uint32_t, kBuckets>> count(kPasses);
   for (auto& c : count) c.fill(0);
   for (const CodedVertex& it : items)
     for (int p = 0; p < kPasses; ++p) ++count[p][digit(it, p)];
-  std::vector<CodedVertex> tmp(items.size());
+  Buffer<CodedVertex> tmp(items.size());
   for (int p = 0; p < kPasses; ++p) {
     auto& c = count[p];
     if (std::find(c.begin(), c.end(), items.size()) != c.end()) continue;  // one digit: no-op
@@ -197,7 +233,7 @@ inline float sqrt_nonnegative(float x) {
 /// square root, division, the sums into its cells) no longer holds the next
 /// triangle back (~7 % of the bunny chain).
 void add_plane_quadrics(std::span<const Vec3> pos, std::span<const Triangle> tris,
-                        std::span<const Triangle> mapped, std::vector<Quadric>& quadric) {
+                        std::span<const Triangle> mapped, Buffer<Quadric>& quadric) {
   constexpr std::size_t kBlock = 64;
   alignas(16) double nx[kBlock], ny[kBlock], nz[kBlock], len2[kBlock], d[kBlock], s[kBlock];
   for (std::size_t f0 = 0; f0 < tris.size(); f0 += kBlock) {
@@ -266,14 +302,14 @@ std::array<double, 3> quadric_minimum(const Quadric& q, const std::array<double,
 /// One cut of the octree: the vertices of a level (in Morton order) and the
 /// triangles and lines over them.
 struct Cut {
-  std::vector<Vec3> pos;
-  std::vector<std::uint32_t> weight;  ///< distinct input coordinates represented
-  std::vector<std::uint32_t> orig;    ///< input vertex giving attributes / vertex_map
-  std::vector<std::uint64_t> code;    ///< Morton code of an input coordinate in the cell
-  std::vector<Quadric> quadric;       ///< empty unless the quadric heuristic is on
-  std::vector<Triangle> tris;
-  std::vector<std::uint32_t> tri_origin;  ///< input triangle of each triangle
-  std::vector<Segment> lines;
+  Buffer<Vec3> pos;
+  Buffer<std::uint32_t> weight;  ///< distinct input coordinates represented
+  Buffer<std::uint32_t> orig;    ///< input vertex giving attributes / vertex_map
+  Buffer<std::uint64_t> code;    ///< Morton code of an input coordinate in the cell
+  Buffer<Quadric> quadric;       ///< empty unless the quadric heuristic is on
+  Buffer<Triangle> tris;
+  Buffer<std::uint32_t> tri_origin;  ///< input triangle of each triangle
+  Buffer<Segment> lines;
   int depth = kMaxDepth + 1;  ///< cut depth (level 0: below the finest cell)
 
   std::size_t size() const { return pos.size(); }
@@ -306,7 +342,7 @@ class SegmentSet {
   }
 
  private:
-  std::vector<Segment> slots_;
+  Buffer<Segment> slots_;
   std::size_t mask_ = 0;
 };
 
@@ -317,13 +353,13 @@ struct RemapScratch {
   struct Entry {
     std::uint32_t k1, k2, index;  // the canonical rotation's last corners; position in the run
   };
-  std::vector<Entry> run;
-  std::vector<Triangle> run_tris;
-  std::vector<std::uint32_t> run_origin;
-  std::vector<std::uint32_t> off, upper;  // vertex -> larger neighbours (when there are lines)
-  std::vector<Segment> not_edges;
+  Buffer<Entry> run;
+  Buffer<Triangle> run_tris;
+  Buffer<std::uint32_t> run_origin;
+  Buffer<std::uint32_t> off, upper;  // vertex -> larger neighbours (when there are lines)
+  Buffer<Segment> not_edges;
   SegmentSet seen_lines;
-  std::vector<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
+  Buffer<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
 };
 
 /// Sorts the run [tris, tris + n) of triangles whose smallest corner is
@@ -407,7 +443,7 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
 }
 
 void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
-                  std::size_t new_count, std::vector<Segment>& line_candidates, Cut& to,
+                  std::size_t new_count, Buffer<Segment>& line_candidates, Cut& to,
                   RemapScratch& scratch);
 
 /// Builds the faces of `to` (which holds the new vertices, new_count of them)
@@ -438,8 +474,8 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
 template <class Mapped, class Origin>
 void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
                  std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
-                 std::size_t new_count, bool no_lines, std::vector<Segment>& line_candidates,
-                 Cut& to, RemapScratch& scratch) {
+                 std::size_t new_count, bool no_lines, Buffer<Segment>& line_candidates, Cut& to,
+                 RemapScratch& scratch) {
   // Triangles go straight to the output; a run of more than one (same
   // smallest corner) is then sorted in place by its canonical rotation and
   // the doublets squeezed out.
@@ -486,7 +522,7 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
 /// keeps in `to.lines` those that are neither an edge of a kept triangle nor
 /// a line seen before.
 void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
-                  std::size_t new_count, std::vector<Segment>& line_candidates, Cut& to,
+                  std::size_t new_count, Buffer<Segment>& line_candidates, Cut& to,
                   RemapScratch& scratch) {
   for (const Segment& s : lines) {
     std::uint32_t a = vertex_map[s[0]], b = vertex_map[s[1]];
@@ -572,8 +608,8 @@ struct Weights {
 /// corners are inside (it collapses). One pass over the triangles, in
 /// triangle order, so each cell's list is sorted.
 struct CellFaces {
-  std::vector<std::uint32_t> start;
-  std::vector<std::uint32_t> entry;
+  Buffer<std::uint32_t> start;
+  Buffer<std::uint32_t> entry;
 
   /// `mapped`: the triangles with their corners replaced by their cells.
   /// Lists only the cells with `wanted[cell]` (the others get empty lists).
@@ -763,7 +799,7 @@ constexpr std::size_t kLanes = 4;
 /// structure-of-arrays layout, single precision, relative to the cell's
 /// weighted mean (small numbers).
 struct Scratch {
-  std::vector<std::uint32_t> order;  ///< a large cell's vertices, nearest the mean first
+  Buffer<std::uint32_t> order;  ///< a large cell's vertices, nearest the mean first
   /// The candidates (the cell's vertices, then Lindstrom's point), their
   /// input vertices and scores (area, volume, mean, quadric); fixed arrays:
   /// no allocation or size bookkeeping per cell.
@@ -1056,9 +1092,9 @@ struct Octree {
 /// vertex and face maps. Reads `input` and `cut` only.
 void fill_result(const TriangleMesh& input, const Cut& cut, SimplifyResult& r) {
   TriangleMesh& m = r.mesh;
-  m.positions = cut.pos;
-  m.triangles = cut.tris;
-  m.lines = cut.lines;
+  m.positions.assign(cut.pos.begin(), cut.pos.end());
+  m.triangles.assign(cut.tris.begin(), cut.tris.end());
+  m.lines.assign(cut.lines.begin(), cut.lines.end());
   if (input.has_normals()) {
     m.normals.reserve(cut.size());
     for (std::uint32_t v : cut.orig) m.normals.push_back(input.normals[v]);
@@ -1075,12 +1111,12 @@ void fill_result(const TriangleMesh& input, const Cut& cut, SimplifyResult& r) {
     m.materials.reserve(cut.tris.size());
     for (std::uint32_t f : cut.tri_origin) m.materials.push_back(input.materials[f]);
   }
-  r.vertex_map = cut.orig;
-  r.face_map = cut.tri_origin;
+  r.vertex_map.assign(cut.orig.begin(), cut.orig.end());
+  r.face_map.assign(cut.tri_origin.begin(), cut.tri_origin.end());
 }
 
 /// Checks the input and marks the vertices a triangle or line uses.
-void validate(const TriangleMesh& mesh, std::vector<char>& used) {
+void validate(const TriangleMesh& mesh, Buffer<char>& used) {
   const std::size_t n = mesh.vertex_count();
   used.assign(n, 0);
   auto out_of_range = [&](const char* what, std::size_t i, std::uint32_t v) {
@@ -1115,7 +1151,7 @@ void validate(const TriangleMesh& mesh, std::vector<char>& used) {
 
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options) {
-  std::vector<char> used;
+  Buffer<char> used;
   validate(mesh, used);
   const std::size_t nv = mesh.vertex_count();
   const float min_diff = std::clamp(options.min_diff, 0.0f, 1.0f);
@@ -1139,7 +1175,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   // every 63-bit code), sorts last and is cut off. The order of equal codes
   // is settled below, so the sort's input order does not matter.
   constexpr std::uint64_t kUnused = ~std::uint64_t(0);
-  std::vector<CodedVertex> order(nv);
+  Buffer<CodedVertex> order(nv);
   for_chunks(nv, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t v = lo; v < hi; ++v) {
       if (!used[v]) {  // its coordinates may be anything
@@ -1181,10 +1217,10 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   // level (the two cuts swap): freeing and reallocating them per level would
   // fault their pages in again.
   RemapScratch remap_scratch;
-  std::vector<Segment> line_candidates;
-  std::vector<Triangle> mapped;  ///< a level's triangles, corners mapped to the next
+  Buffer<Segment> line_candidates;
+  Buffer<Triangle> mapped;  ///< a level's triangles, corners mapped to the next
   Cut cut;
-  std::vector<std::uint32_t> node_of(nv, kNone);
+  Buffer<std::uint32_t> node_of(nv, kNone);
   {
     // Equal positions have equal codes: positions are compared only then.
     auto starts_node = [&](std::size_t i) {
@@ -1225,7 +1261,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       }
     });
     auto distinct = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
-    std::vector<std::uint32_t> start(count + 1, 0);
+    Buffer<std::uint32_t> start(count + 1, 0);
     for (const Triangle& t : mapped) {
       if (distinct(t)) {
         ++start[std::min({t[0], t[1], t[2]}) + 1];
@@ -1304,16 +1340,14 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     cut.tri_origin.resize(out);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
     drop_unused_vertices(count, cut, remap_scratch);
-    const std::vector<std::uint32_t>& keep = remap_scratch.keep;
-    for (std::uint32_t& n : node_of)
-      if (n != kNone) n = keep[n];
   }
   // The input vertices still represented, by their level-0 vertex (the
-  // input vertices of one level-0 vertex share its position exactly), with
-  // their positions and current vertex (for the displacement of each level).
-  std::vector<Vec3> input_pos = cut.pos;
-  std::vector<std::uint32_t> input_node(cut.size());
-  std::iota(input_node.begin(), input_node.end(), 0u);
+  // input vertices of one level-0 vertex share its position exactly): their
+  // positions (level 0's, kept when the first level replaces them; until
+  // then cut.pos) and current vertices (until the first level, the identity),
+  // for the displacement of each level.
+  Buffer<Vec3> input_pos;
+  Buffer<std::uint32_t> input_node;
   node_of = {};
   order = {};
   std::vector<SimplifyResult> chain;
@@ -1357,10 +1391,9 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   }
 
   Cut next;
-  std::vector<std::uint32_t> new_node;
-  std::vector<std::uint32_t> cell_of;
-  std::vector<std::uint32_t> cell_begin;
-  std::vector<char> corner, wanted;
+  Buffer<std::uint32_t> cell_of;
+  Buffer<std::uint32_t> cell_begin;
+  Buffer<char> corner, wanted;
   CellFaces cell_faces;
   tbb::enumerable_thread_specific<Scratch> scratches;
   std::array<std::size_t, kMaxDepth + 1> histogram{};
@@ -1415,10 +1448,12 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // The triangles with their corners mapped to the new cells (read three
     // times below).
     mapped.resize(cut.tris.size());
-    for (std::size_t f = 0; f < cut.tris.size(); ++f) {
-      const Triangle& t = cut.tris[f];
-      mapped[f] = {cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
-    }
+    for_chunks(cut.tris.size(), [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t f = lo; f < hi; ++f) {
+        const Triangle& t = cut.tris[f];
+        mapped[f] = {cell_of[t[0]], cell_of[t[1]], cell_of[t[2]]};
+      }
+    });
     // Which vertices are corners of a triangle (all of them unless the level
     // has lines: a vertex nothing uses is never kept).
     corner.clear();
@@ -1491,23 +1526,34 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     });
     remapping.wait();
     drop_unused_vertices(cells, next, remap_scratch);
-    const std::vector<std::uint32_t>& keep = remap_scratch.keep;
+    const Buffer<std::uint32_t>& keep = remap_scratch.keep;
     if (next.tris.empty() && next.lines.empty())
       return finish(StopReason::kCannotSimplify,
                     fmt::format("the level at octree depth {} would be empty", depth));
 
     // The largest displacement of a represented input vertex, in double: a
-    // float square overflows for coordinates beyond ~1.8e19.
-    new_node.resize(input_node.size());
-    double error2 = 0;
-    for (std::size_t i = 0; i < input_node.size(); ++i) {
-      std::uint32_t n = input_node[i] == kNone ? kNone : keep[cell_of[input_node[i]]];
-      new_node[i] = n;
-      if (n == kNone) continue;
-      const Vec3 d = input_pos[i] - next.pos[n];
-      error2 = std::max(error2, double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
-    }
-    const float error = float(std::sqrt(error2));
+    // float square overflows for coordinates beyond ~1.8e19. Each input
+    // vertex moves on to its new vertex in place (on an early return below
+    // the map is not read again).
+    const bool first_level = input_node.empty();
+    if (first_level) input_node.resize(n_prev);
+    const Buffer<Vec3>& level0_pos = first_level ? cut.pos : input_pos;
+    std::atomic<double> largest2{0};
+    for_chunks(input_node.size(), [&](std::size_t lo, std::size_t hi) {
+      double error2 = 0;
+      for (std::size_t i = lo; i < hi; ++i) {
+        const std::uint32_t current = first_level ? static_cast<std::uint32_t>(i) : input_node[i];
+        const std::uint32_t n = current == kNone ? kNone : keep[cell_of[current]];
+        input_node[i] = n;
+        if (n == kNone) continue;
+        const Vec3 d = level0_pos[i] - next.pos[n];
+        error2 = std::max(error2, double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+      }
+      double seen = largest2.load(std::memory_order_relaxed);
+      while (error2 > seen && !largest2.compare_exchange_weak(seen, error2)) {
+      }
+    });
+    const float error = float(std::sqrt(largest2.load()));
     if (error > max_error)
       return finish(
           StopReason::kErrorBudgetReached,
@@ -1522,7 +1568,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         error);
     copying.wait();
     std::swap(cut, next);
-    std::swap(input_node, new_node);
+    if (first_level) input_pos = std::move(next.pos);  // level 0's
     emit(error, StopReason::kTargetReached, std::move(detail));
     if (count_target && cut.tris.size() <= target_tris)
       return finish(StopReason::kTargetReached,

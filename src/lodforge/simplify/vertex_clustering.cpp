@@ -65,6 +65,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/scalable_allocator.h>
 #include <tbb/task_group.h>
 
@@ -1115,28 +1116,91 @@ void fill_result(const TriangleMesh& input, const Cut& cut, SimplifyResult& r) {
   r.face_map.assign(cut.tri_origin.begin(), cut.tri_origin.end());
 }
 
-/// Checks the input and marks the vertices a triangle or line uses.
-void validate(const TriangleMesh& mesh, Buffer<char>& used) {
-  const std::size_t n = mesh.vertex_count();
-  used.assign(n, 0);
+/// One bit per vertex.
+class VertexBits {
+ public:
+  explicit VertexBits(std::size_t n = 0) : words_((n + 63) / 64, 0) {}
+  bool operator[](std::size_t v) const { return (words_[v / 64] >> (v % 64)) & 1; }
+  void set(std::size_t v) { words_[v / 64] |= std::uint64_t(1) << (v % 64); }
+  VertexBits& operator|=(const VertexBits& o) {
+    for (std::size_t i = 0; i < words_.size(); ++i) words_[i] |= o.words_[i];
+    return *this;
+  }
+
+ private:
+  Buffer<std::uint64_t> words_;
+};
+
+/// Checks the input, marks the vertices a triangle or line uses and returns
+/// the box around them. The passes over the triangles and the vertices run
+/// in parallel (the triangles in two halves, each marking a bit set of its
+/// own: one shared array bounced its cache lines between the cores and was
+/// slower than one thread); each error names the first offender, as one
+/// pass in order would.
+Box3 validate(const TriangleMesh& mesh, VertexBits& used) {
+  const std::size_t n = mesh.vertex_count(), nf = mesh.triangles.size();
   auto out_of_range = [&](const char* what, std::size_t i, std::uint32_t v) {
     return DataError(
         fmt::format("vertex clustering: {} {} uses vertex {} of only {}", what, i, v, n));
   };
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    if (std::max({t[0], t[1], t[2]}) >= n)
-      throw out_of_range("triangle", f, std::max({t[0], t[1], t[2]}));
-    used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  // Marks triangles [lo, hi); returns the first out of range, or nf.
+  auto mark = [&](std::size_t lo, std::size_t hi, VertexBits& bits) {
+    for (std::size_t f = lo; f < hi; ++f) {
+      const Triangle& t = mesh.triangles[f];
+      if (std::max({t[0], t[1], t[2]}) >= n) return f;
+      bits.set(t[0]);
+      bits.set(t[1]);
+      bits.set(t[2]);
+    }
+    return nf;
+  };
+  used = VertexBits(n);
+  std::size_t bad = nf;
+  if (nf < 8192) {
+    bad = mark(0, nf, used);
+  } else {
+    VertexBits second(n);
+    std::size_t bad_second = nf;
+    tbb::parallel_invoke([&] { bad = mark(0, nf / 2, used); },
+                         [&] { bad_second = mark(nf / 2, nf, second); });
+    if (bad == nf) bad = bad_second;
+    used |= second;
+  }
+  if (bad < nf) {
+    const Triangle& t = mesh.triangles[bad];
+    throw out_of_range("triangle", bad, std::max({t[0], t[1], t[2]}));
   }
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Segment& s = mesh.lines[l];
     if (std::max(s[0], s[1]) >= n) throw out_of_range("line", l, std::max(s[0], s[1]));
-    used[s[0]] = used[s[1]] = 1;
+    used.set(s[0]);
+    used.set(s[1]);
   }
-  for (std::size_t v = 0; v < n; ++v)
-    if (used[v] && !is_finite(mesh.positions[v]))
-      throw DataError(fmt::format("vertex clustering: vertex {} has a non-finite coordinate", v));
+  struct Bounds {
+    Box3 box;
+    std::size_t non_finite = SIZE_MAX;  ///< the first used vertex with one
+  };
+  const Bounds bounds = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 2048), Bounds{},
+      [&](const tbb::blocked_range<std::size_t>& r, Bounds b) {
+        for (std::size_t v = r.begin(); v < r.end(); ++v) {
+          if (!used[v]) continue;
+          if (!is_finite(mesh.positions[v])) {
+            b.non_finite = std::min(b.non_finite, v);
+            break;
+          }
+          b.box.add(mesh.positions[v]);
+        }
+        return b;
+      },
+      [](Bounds a, const Bounds& b) {
+        a.box.add(b.box);
+        a.non_finite = std::min(a.non_finite, b.non_finite);
+        return a;
+      });
+  if (bounds.non_finite != SIZE_MAX)
+    throw DataError(
+        fmt::format("vertex clustering: vertex {} has a non-finite coordinate", bounds.non_finite));
   auto check_size = [&](std::size_t size, std::size_t want, const char* what) {
     if (size != 0 && size != want)
       throw DataError(fmt::format("vertex clustering: {} {} for {}", size, what, want));
@@ -1145,14 +1209,15 @@ void validate(const TriangleMesh& mesh, Buffer<char>& used) {
   check_size(mesh.texcoords.size(), n, "texcoords");
   check_size(mesh.colors.size(), n, "colors");
   check_size(mesh.materials.size(), mesh.triangles.size(), "materials");
+  return bounds.box;
 }
 
 }  // namespace
 
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options) {
-  Buffer<char> used;
-  validate(mesh, used);
+  VertexBits used;
+  const Box3 box = validate(mesh, used);
   const std::size_t nv = mesh.vertex_count();
   const float min_diff = std::clamp(options.min_diff, 0.0f, 1.0f);
   Weights weights{
@@ -1162,9 +1227,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
 
   // Level 0: the used coordinates, sorted into octree order, equal ones merged.
   Octree octree;
-  Box3 box;
-  for (std::size_t v = 0; v < nv; ++v)
-    if (used[v]) box.add(mesh.positions[v]);
   octree.lo = box.empty() ? Vec3{} : box.lo;
   Vec3 size = box.size();
   octree.side = std::max({double(size.x), double(size.y), double(size.z)});

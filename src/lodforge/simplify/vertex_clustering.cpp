@@ -133,41 +133,88 @@ struct CodedVertex {
   std::uint32_t vertex;
 };
 
-/// Sorts by code, stably. An LSD radix sort of the codes' top 32 bits (bits
-/// 31-62: the octree down to depth 10 and a bit; three passes of 11, 11 and
-/// 10 bits), then each run of equal top bits sorted by the whole code:
-/// such runs are vertices in one cell of side 1/1024 of the bounding cube's
-/// or less, rarely more than one, so this gives the order of a sort by the
-/// whole code (six passes) at half the passes.
-void radix_sort(Buffer<CodedVertex>& items) {
+/// Arrays from this size on are processed in two parts side by side (the
+/// passes of level 0 and the radix sort; below it, a task costs more than
+/// it saves).
+constexpr std::size_t kTwoParts = 16384;
+
+/// Runs body(0) and, when parts is 2, body(1) beside it.
+template <class Body>
+void for_parts(std::size_t parts, const Body& body) {
+  if (parts == 1) return body(std::size_t(0));
+  tbb::parallel_invoke([&] { body(std::size_t(0)); }, [&] { body(std::size_t(1)); });
+}
+
+/// An unused vertex's code: above every 63-bit code, so it sorts last.
+constexpr std::uint64_t kUnused = ~std::uint64_t(0);
+
+/// Sorts the coded vertices by code, then position (so that equal
+/// coordinates are neighbours), then index; unused ones (kUnused) last, by
+/// index, their positions unread. An LSD radix sort of the codes' top 32
+/// bits (bits 31-62: the octree down to depth 10 and a bit; three passes of
+/// 11, 11 and 10 bits), then each run of equal top bits sorted by the whole
+/// comparison: such runs are vertices in one cell of side 1/1024 of the
+/// bounding cube's or less, rarely more than one, so this gives the order of
+/// a sort by the whole code (six passes) at half the passes. From kTwoParts
+/// items on, every pass runs in two parts side by side (each counts and
+/// scatters its half; a bucket takes the first part's items, then the
+/// second's, so each pass stays stable) and the runs are sorted in two
+/// slices cut at a run boundary.
+void sort_vertices(Buffer<CodedVertex>& items, std::span<const Vec3> positions) {
   constexpr int kShift = 31, kPasses = 3, kBits[kPasses] = {11, 11, 10};
   constexpr std::size_t kBuckets = std::size_t(1) << 11;
+  const std::size_t n = items.size();
+  const std::size_t parts = n >= kTwoParts ? 2 : 1;
   auto digit = [&](const CodedVertex& it, int p) {
     return static_cast<std::size_t>((it.code >> (kShift + 11 * p)) & ((1u << kBits[p]) - 1));
   };
-  Buffer<std::array<std::uint32_t, kBuckets>> count(kPasses);
-  for (auto& c : count) c.fill(0);
-  for (const CodedVertex& it : items)
-    for (int p = 0; p < kPasses; ++p) ++count[p][digit(it, p)];
-  Buffer<CodedVertex> tmp(items.size());
+  std::array<std::size_t, 3> bound{0, parts == 2 ? n / 2 : n, n};  // parts [bound[q], bound[q + 1])
+  std::array<std::array<std::uint32_t, kBuckets>, 2> count;
+  Buffer<CodedVertex> tmp(n);
   for (int p = 0; p < kPasses; ++p) {
-    auto& c = count[p];
-    if (std::find(c.begin(), c.end(), items.size()) != c.end()) continue;  // one digit: no-op
+    for_parts(parts, [&](std::size_t q) {
+      count[q].fill(0);
+      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) ++count[q][digit(items[i], p)];
+    });
+    // Each part's start in each bucket; a pass where one bucket holds every
+    // item changes nothing.
+    bool one_digit = false;
     std::uint32_t sum = 0;
-    for (auto& n : c) sum += std::exchange(n, sum);
-    for (const CodedVertex& it : items) tmp[c[digit(it, p)]++] = it;
+    for (std::size_t b = 0; b < kBuckets; ++b) {
+      const std::uint32_t first = sum;
+      for (std::size_t q = 0; q < parts; ++q) sum += std::exchange(count[q][b], sum);
+      one_digit |= sum - first == n;
+    }
+    if (one_digit) continue;
+    for_parts(parts, [&](std::size_t q) {
+      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i)
+        tmp[count[q][digit(items[i], p)]++] = items[i];
+    });
     items.swap(tmp);
   }
   // The runs are those of equal sorted bits exactly: a code with bit 63 set
   // (an unused vertex's ~0) shares its top 32 bits with the cube's far corner.
   auto top = [](const CodedVertex& it) { return static_cast<std::uint32_t>(it.code >> kShift); };
-  auto by_code = [](const CodedVertex& a, const CodedVertex& b) { return a.code < b.code; };
-  for (std::size_t i = 0; i < items.size();) {
-    std::size_t j = i + 1;
-    while (j < items.size() && top(items[j]) == top(items[i])) ++j;
-    if (j - i > 1) std::stable_sort(items.begin() + i, items.begin() + j, by_code);
-    i = j;
-  }
+  auto less = [&](const CodedVertex& a, const CodedVertex& b) {
+    if (a.code != b.code) return a.code < b.code;
+    if (a.code == kUnused) return a.vertex < b.vertex;
+    const Vec3& pa = positions[a.vertex];
+    const Vec3& pb = positions[b.vertex];
+    if (pa.x != pb.x) return pa.x < pb.x;
+    if (pa.y != pb.y) return pa.y < pb.y;
+    if (pa.z != pb.z) return pa.z < pb.z;
+    return a.vertex < b.vertex;
+  };
+  while (bound[1] > 0 && bound[1] < n && top(items[bound[1]]) == top(items[bound[1] - 1]))
+    ++bound[1];
+  for_parts(parts, [&](std::size_t q) {
+    for (std::size_t i = bound[q]; i < bound[q + 1];) {
+      std::size_t j = i + 1;
+      while (j < bound[q + 1] && top(items[j]) == top(items[i])) ++j;
+      if (j - i > 1) std::sort(items.begin() + i, items.begin() + j, less);
+      i = j;
+    }
+  });
 }
 
 /// Depth of the deepest octree cell two codes share (kMaxDepth if equal).
@@ -1236,7 +1283,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   // Codes in parallel, one slot per vertex: an unused vertex gets ~0 (above
   // every 63-bit code), sorts last and is cut off. The order of equal codes
   // is settled below, so the sort's input order does not matter.
-  constexpr std::uint64_t kUnused = ~std::uint64_t(0);
   Buffer<CodedVertex> order(nv);
   for_chunks(nv, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t v = lo; v < hi; ++v) {
@@ -1256,24 +1302,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       order[v] = {c, static_cast<std::uint32_t>(v)};
     }
   });
-  radix_sort(order);
+  sort_vertices(order, mesh.positions);
   while (!order.empty() && order.back().code == kUnused) order.pop_back();
-  // Equal codes (coordinates closer than the finest cell): order by position
-  // so that equal coordinates are neighbours, then by index.
-  for (std::size_t i = 0; i < order.size();) {
-    std::size_t j = i + 1;
-    while (j < order.size() && order[j].code == order[i].code) ++j;
-    if (j - i > 1)
-      std::sort(order.begin() + i, order.begin() + j, [&](CodedVertex a, CodedVertex b) {
-        const Vec3& p = mesh.positions[a.vertex];
-        const Vec3& q = mesh.positions[b.vertex];
-        if (p.x != q.x) return p.x < q.x;
-        if (p.y != q.y) return p.y < q.y;
-        if (p.z != q.z) return p.z < q.z;
-        return a.vertex < b.vertex;
-      });
-    i = j;
-  }
 
   // Every buffer below lives for the whole call and is reused level after
   // level (the two cuts swap): freeing and reallocating them per level would
@@ -1282,30 +1312,41 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   Buffer<Segment> line_candidates;
   Buffer<Triangle> mapped;  ///< a level's triangles, corners mapped to the next
   Cut cut;
-  Buffer<std::uint32_t> node_of(nv, kNone);
+  // Level-0 vertex of each used input vertex (unused ones are never read).
+  Buffer<std::uint32_t> node_of(nv);
   {
     // Equal positions have equal codes: positions are compared only then.
+    // Counted, then numbered, in two parts side by side for large inputs.
     auto starts_node = [&](std::size_t i) {
       return i == 0 || order[i].code != order[i - 1].code ||
              mesh.positions[order[i].vertex] != mesh.positions[order[i - 1].vertex];
     };
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < order.size(); ++i) count += starts_node(i);
+    const std::size_t n = order.size();
+    const std::size_t parts = n >= kTwoParts ? 2 : 1;
+    const std::array<std::size_t, 3> bound{0, parts == 2 ? n / 2 : n, n};
+    std::array<std::size_t, 2> nodes{0, 0};  // starting in each part
+    for_parts(parts, [&](std::size_t q) {
+      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) nodes[q] += starts_node(i);
+    });
+    const std::size_t count = nodes[0] + nodes[1];
     cut.pos.resize(count);
     cut.weight.assign(count, 1);
     cut.orig.resize(count);
     cut.code.resize(count);
-    std::uint32_t node = kNone;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const std::uint32_t v = order[i].vertex;
-      if (starts_node(i)) {
-        ++node;
-        cut.pos[node] = mesh.positions[v];
-        cut.orig[node] = v;
-        cut.code[node] = order[i].code;
+    for_parts(parts, [&](std::size_t q) {
+      // The node before the part's first start (kNone: wraps to 0 at i = 0).
+      auto node = static_cast<std::uint32_t>(q == 0 ? kNone : nodes[0] - 1);
+      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) {
+        const std::uint32_t v = order[i].vertex;
+        if (starts_node(i)) {
+          ++node;
+          cut.pos[node] = mesh.positions[v];
+          cut.orig[node] = v;
+          cut.code[node] = order[i].code;
+        }
+        node_of[v] = node;
       }
-      node_of[v] = node;
-    }
+    });
   }
   {
     // The input's triangles are in any order: sort those with three distinct

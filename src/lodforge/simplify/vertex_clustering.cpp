@@ -1499,18 +1499,27 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   Buffer<char> corner, wanted;
   CellFaces cell_faces;
   tbb::enumerable_thread_specific<Scratch> scratches;
-  std::array<std::size_t, kMaxDepth + 1> histogram{};
+  std::array<std::array<std::size_t, kMaxDepth + 1>, 2> histogram{};
   while (true) {
     const std::size_t n_prev = cut.size();
     // Cells per depth: 1 + the neighbours in octree order that part above it.
-    histogram.fill(0);
-    for (std::size_t i = 1; i < n_prev; ++i)
-      ++histogram[common_depth(cut.code[i - 1], cut.code[i])];
+    // In two parts side by side for large levels; each part's own histogram
+    // also tells where its cells start in the numbering below.
+    const std::size_t parts = n_prev >= kTwoParts ? 2 : 1;
+    const std::array<std::size_t, 3> bound{0, parts == 2 ? n_prev / 2 : n_prev, n_prev};
+    histogram[1].fill(0);
+    for_parts(parts, [&](std::size_t q) {
+      histogram[q].fill(0);
+      for (std::size_t i = std::max<std::size_t>(bound[q], 1); i < bound[q + 1]; ++i)
+        ++histogram[q][common_depth(cut.code[i - 1], cut.code[i])];
+    });
     const auto limit = static_cast<std::size_t>(std::floor((1.0 - min_diff) * double(n_prev)));
     int depth = 0;
     std::size_t cells = 0;
-    std::vector<std::size_t> cells_at(kMaxDepth + 2, 1);
-    for (int c = 1; c <= kMaxDepth + 1; ++c) cells_at[c] = cells_at[c - 1] + histogram[c - 1];
+    std::array<std::size_t, kMaxDepth + 2> cells_at;
+    cells_at[0] = 1;
+    for (int c = 1; c <= kMaxDepth + 1; ++c)
+      cells_at[c] = cells_at[c - 1] + histogram[0][c - 1] + histogram[1][c - 1];
     for (int c = cut.depth - 1; c >= 1; --c) {
       if (cells_at[c] <= limit && cells_at[c] < n_prev) {
         depth = c;
@@ -1525,16 +1534,22 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                 100 - 100 * min_diff, n_prev));
     }
 
-    // The cells at `depth`: runs of vertices in octree order.
+    // The cells at `depth`: runs of vertices in octree order (numbered in
+    // the same parts; the second part's first cell follows the first's).
     cell_of.resize(n_prev);
-    cell_begin.clear();
-    for (std::size_t i = 0; i < n_prev; ++i) {
-      if (i == 0 || common_depth(cut.code[i - 1], cut.code[i]) < depth)
-        cell_begin.push_back(static_cast<std::uint32_t>(i));
-      cell_of[i] = static_cast<std::uint32_t>(cell_begin.size() - 1);
-    }
-    assert(cell_begin.size() == cells);
-    cell_begin.push_back(static_cast<std::uint32_t>(n_prev));
+    cell_begin.resize(cells + 1);
+    std::size_t first_part_cells = 1;
+    for (int c = 0; c < depth; ++c) first_part_cells += histogram[0][c];
+    for_parts(parts, [&](std::size_t q) {
+      // The cell before the part's first start (kNone: wraps to 0 at i = 0).
+      auto cell = static_cast<std::uint32_t>(q == 0 ? kNone : first_part_cells - 1);
+      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) {
+        if (i == 0 || common_depth(cut.code[i - 1], cut.code[i]) < depth)
+          cell_begin[++cell] = static_cast<std::uint32_t>(i);
+        cell_of[i] = cell;
+      }
+    });
+    cell_begin[cells] = static_cast<std::uint32_t>(n_prev);
 
     next.depth = depth;
     next.pos.resize(cells);

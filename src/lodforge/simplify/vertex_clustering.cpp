@@ -1105,12 +1105,12 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
 
 // ------------------------------------------------------------------- the chain
 
-/// Runs body(lo, hi) over [0, n) in chunks, in parallel when there is enough
-/// work: chunks of kChunk items keep the tasks coarse (a level's cells cost
-/// a few microseconds each at most).
-template <class Body>
+/// Runs body(lo, hi) over [0, n) in chunks of kChunk items, in parallel
+/// when there is more than one: coarse enough that a task's work outweighs
+/// its cost (an item of a pass over an array costs nanoseconds; choosing a
+/// cell's representative, up to microseconds: kCellChunk).
+template <std::size_t kChunk = 2048, class Body>
 void for_chunks(std::size_t n, const Body& body) {
-  constexpr std::size_t kChunk = 2048;
   if (n <= kChunk) {
     body(std::size_t(0), n);
     return;
@@ -1118,6 +1118,10 @@ void for_chunks(std::size_t n, const Body& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk),
                     [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
 }
+
+/// Cells per task when choosing representatives: small enough that the small
+/// levels of a chain (hundreds of cells) still run on every thread.
+constexpr std::size_t kCellChunk = 128;
 
 struct Octree {
   Vec3 lo;          ///< corner of the bounding cube
@@ -1614,7 +1618,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         });
     const LevelContext ctx{cut, measure ? &cell_faces : nullptr, weights};
     // Cells are independent: each reads the previous level and writes its own slot.
-    for_chunks(cells, [&](std::size_t lo, std::size_t hi) {
+    for_chunks<kCellChunk>(cells, [&](std::size_t lo, std::size_t hi) {
       Scratch& scratch = scratches.local();
       for (auto j = static_cast<std::uint32_t>(lo); j < hi; ++j) {
         const std::uint32_t b = cell_begin[j], e = cell_begin[j + 1];

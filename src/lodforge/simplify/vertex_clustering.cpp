@@ -435,6 +435,30 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     }
     return 2;
   }
+  // Up to 8 without doublets (nearly every run): each triangle goes to its
+  // rank among the keys, counted without branches (an insertion sort's
+  // swaps are data the branch predictor cannot learn).
+  constexpr std::size_t kRanked = 8;
+  if (n <= kRanked) {
+    std::uint64_t k[kRanked];
+    for (std::size_t i = 0; i < n; ++i) k[i] = key(tris[i]);
+    bool doublet = false;
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = 0; j < i; ++j) doublet |= k[j] == k[i];
+    if (!doublet) {
+      Triangle t[kRanked];
+      std::uint32_t o[kRanked];
+      std::copy_n(tris, n, t);
+      std::copy_n(origin, n, o);
+      for (std::size_t i = 0; i < n; ++i) {
+        std::size_t rank = 0;
+        for (std::size_t j = 0; j < n; ++j) rank += k[j] < k[i];
+        tris[rank] = t[i];
+        origin[rank] = o[i];
+      }
+      return n;
+    }
+  }
   constexpr std::size_t kSmall = 16;
   if (n <= kSmall) {
     // On the stack, each triangle as its key, origin and rotation (which

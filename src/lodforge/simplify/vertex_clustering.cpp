@@ -550,42 +550,48 @@ void remap_faces(std::size_t count, const Mapped& mapped, const Origin& origin,
                  RemapScratch& scratch) {
   // Triangles go straight to the output; a run of more than one (same
   // smallest corner) is then sorted in place by its canonical rotation and
-  // the doublets squeezed out.
+  // the doublets squeezed out. Every triangle is written at the next free
+  // slot of the triangles and of the line candidates, and each count moves
+  // on by 0 or 1 (whether a triangle collapses, and to what, is data the
+  // branch predictor cannot learn); the arrays are sized for every triangle
+  // (uninitialised) and cut back after.
   to.lines.clear();
-  to.tris.clear();
-  to.tri_origin.clear();
-  to.tris.reserve(count);  // not resize: zeroing `count` entries touches pages never used
-  to.tri_origin.reserve(count);
-  std::size_t run_begin = 0;
+  to.tris.resize(count);
+  to.tri_origin.resize(count);
+  const std::size_t lines_before = line_candidates.size();
+  line_candidates.resize(lines_before + count);
+  Triangle* tris = to.tris.data();
+  std::uint32_t* tri_origin = to.tri_origin.data();
+  Segment* candidate = line_candidates.data() + lines_before;
+  std::size_t kept = 0, candidates = 0, run_begin = 0;
   std::uint32_t run_vertex = kNone;
   auto flush = [&] {
-    const std::size_t n = to.tris.size() - run_begin;
-    const std::size_t kept = dedupe_run(to.tris.data() + run_begin,
-                                        to.tri_origin.data() + run_begin, n, run_vertex, scratch);
-    to.tris.resize(run_begin + kept);
-    to.tri_origin.resize(run_begin + kept);
+    kept = run_begin + dedupe_run(tris + run_begin, tri_origin + run_begin, kept - run_begin,
+                                  run_vertex, scratch);
   };
   for (std::size_t f = 0; f < count; ++f) {
     const Triangle t = mapped(f);
     const std::uint32_t a = t[0], b = t[1], c = t[2];
-    // Non-short-circuit tests: whether a triangle collapses is data.
     const bool ab = a == b, bc = b == c, ca = c == a;
-    if (!(ab | bc | ca)) {
-      const std::uint32_t lo = std::min({a, b, c});
-      if (lo != run_vertex) {
-        assert(run_vertex == kNone || lo > run_vertex);
-        if (to.tris.size() - run_begin > 1) flush();  // most runs are one triangle
-        run_vertex = lo;
-        run_begin = to.tris.size();
-      }
-      to.tris.push_back(t);
-      to.tri_origin.push_back(origin(f));
-    } else if (!no_lines & !(ab & bc)) {
-      std::uint32_t other = a != b ? b : c;
-      line_candidates.push_back({std::min(a, other), std::max(a, other)});
+    const bool keep = !(ab | bc | ca);
+    const std::uint32_t other = a != b ? b : c;
+    candidate[candidates] = {std::min(a, other), std::max(a, other)};
+    candidates += !keep & !no_lines & !(ab & bc);
+    const std::uint32_t lo = std::min({a, b, c});
+    if (keep & (lo != run_vertex)) {
+      assert(run_vertex == kNone || lo > run_vertex);
+      if (kept - run_begin > 1) flush();  // most runs are one triangle
+      run_vertex = lo;
+      run_begin = kept;
     }
+    tris[kept] = t;
+    tri_origin[kept] = origin(f);
+    kept += keep;
   }
-  flush();
+  if (kept - run_begin > 1) flush();
+  to.tris.resize(kept);
+  to.tri_origin.resize(kept);
+  line_candidates.resize(lines_before + candidates);
   finish_faces(lines, vertex_map, new_count, line_candidates, to, scratch);
 }
 

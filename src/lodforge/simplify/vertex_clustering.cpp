@@ -1386,56 +1386,63 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // The input's triangles are in any order: sort those with three distinct
     // corners by their smallest corner (a stable counting sort of the mapped
     // triangles and their origins, so the remap reads them in sequence); the
-    // others become line candidates in input order.
+    // others become line candidates in input order. For large inputs in two
+    // parts side by side, each with its half of the triangles: each maps and
+    // counts its triangles into counters of its own (and collects its line
+    // candidates), a prefix pass gives every vertex's run and each part's
+    // place in it (the first part's triangles first: stable), each part
+    // scatters its triangles, and each then squeezes the doublets out of
+    // the runs of one half of the vertices, in place, run by run (each
+    // vertex's run is known from the counts, so there is no looking for
+    // runs); the second half then moves up if the first lost doublets.
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
+    const std::size_t parts = nf >= kTwoParts ? 2 : 1;
+    const std::array<std::size_t, 3> tri_bound{0, parts == 2 ? nf / 2 : nf, nf};
+    auto distinct = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
     mapped.resize(nf);
-    // The mapped triangles in parallel (a gather each).
-    for_chunks(nf, [&](std::size_t lo, std::size_t hi) {
-      for (std::size_t f = lo; f < hi; ++f) {
+    std::array<Buffer<std::uint32_t>, 2> at;  // per part and vertex: count, then next slot
+    std::array<Buffer<Segment>, 2> part_lines;
+    for_parts(parts, [&](std::size_t q) {
+      at[q].assign(count, 0);
+      for (std::size_t f = tri_bound[q]; f < tri_bound[q + 1]; ++f) {
         const Triangle& input = mesh.triangles[f];
-        mapped[f] = {node_of[input[0]], node_of[input[1]], node_of[input[2]]};
+        const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
+        mapped[f] = t;
+        if (distinct(t)) {
+          ++at[q][std::min({t[0], t[1], t[2]})];
+        } else if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
+          std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
+          part_lines[q].push_back({std::min(t[0], other), std::max(t[0], other)});
+        }
       }
     });
-    auto distinct = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
-    Buffer<std::uint32_t> start(count + 1, 0);
-    for (const Triangle& t : mapped) {
-      if (distinct(t)) {
-        ++start[std::min({t[0], t[1], t[2]}) + 1];
-        continue;
-      }
-      if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
-        std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
-        line_candidates.push_back({std::min(t[0], other), std::max(t[0], other)});
-      }
-    }
-    for (std::size_t v = 0; v < count; ++v) start[v + 1] += start[v];
-    // Straight into the level's arrays, each thread the triangles of one
-    // half of the vertices (both read all of `mapped`; the scattered writes
-    // are the cost). Each vertex's run (the triangles whose smallest corner
-    // it is) is known from the counts, so the doublets are then squeezed out
-    // run by run, in place, without looking for the runs.
-    cut.tris.resize(start[count]);
-    cut.tri_origin.resize(start[count]);
-    auto scatter = [&](std::uint32_t v0, std::uint32_t v1) {
-      for (std::size_t f = 0; f < nf; ++f) {
+    for (const Buffer<Segment>& l : part_lines)
+      line_candidates.insert(line_candidates.end(), l.begin(), l.end());
+    std::uint32_t total = 0;
+    for (std::size_t v = 0; v < count; ++v)
+      for (std::size_t q = 0; q < parts; ++q) total += std::exchange(at[q][v], total);
+    cut.tris.resize(total);
+    cut.tri_origin.resize(total);
+    for_parts(parts, [&](std::size_t q) {
+      for (std::size_t f = tri_bound[q]; f < tri_bound[q + 1]; ++f) {
         const Triangle& t = mapped[f];
         if (!distinct(t)) continue;
-        const std::uint32_t lo = std::min({t[0], t[1], t[2]});
-        if (lo < v0 || lo >= v1) continue;
-        const std::uint32_t at = start[lo]++;
-        cut.tris[at] = t;
-        cut.tri_origin[at] = static_cast<std::uint32_t>(f);
+        const std::uint32_t slot = at[q][std::min({t[0], t[1], t[2]})]++;
+        cut.tris[slot] = t;
+        cut.tri_origin[slot] = static_cast<std::uint32_t>(f);
       }
-    };
-    // start[v] is then the end of v's run. The runs of vertices [v0, v1) are
-    // squeezed to the front of their part; two halves side by side (one
-    // thread runs both), the second then moved up if the first lost doublets.
-    // `begin`: where the runs of v0 begin.
-    auto squeeze = [&](std::size_t v0, std::size_t v1, std::size_t begin, RemapScratch& scratch) {
-      std::size_t out = begin;
-      for (std::size_t v = v0; v < v1; ++v) {
-        const std::size_t end = start[v];
+    });
+    // The last part's counters now hold where each run ends.
+    const Buffer<std::uint32_t>& run_end = at[parts - 1];
+    const std::array<std::size_t, 3> vertex_bound{0, parts == 2 ? count / 2 : count, count};
+    std::array<std::size_t, 2> first{0, 0}, kept{0, 0};  // each part's runs
+    if (parts == 2 && vertex_bound[1] > 0) first[1] = run_end[vertex_bound[1] - 1];
+    RemapScratch second_scratch;
+    for_parts(parts, [&](std::size_t q) {
+      std::size_t begin = first[q], out = first[q];
+      for (std::size_t v = vertex_bound[q]; v < vertex_bound[q + 1]; ++v) {
+        const std::size_t end = run_end[v];
         const std::size_t n = end - begin;
         if (n == 1) {
           cut.tris[out] = cut.tris[begin];
@@ -1447,34 +1454,18 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
             cut.tri_origin[out + i] = cut.tri_origin[begin + i];
           }
           out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
-                            scratch);
+                            q == 0 ? remap_scratch : second_scratch);
         }
         begin = end;
       }
-      return out;
-    };
-    const std::size_t half = count / 2;
-    const std::size_t second = start[half];  // where the second half's runs begin
-    std::size_t first_end = 0, second_end = 0;
-    RemapScratch second_scratch;
-    tbb::parallel_invoke(
-        [&] {
-          scatter(0, static_cast<std::uint32_t>(half));
-          first_end = squeeze(0, half, 0, remap_scratch);
-        },
-        [&] {
-          scatter(static_cast<std::uint32_t>(half), static_cast<std::uint32_t>(count));
-          second_end = squeeze(half, count, second, second_scratch);
-        });
-    if (first_end != second) {  // the first half lost doublets
-      std::copy(cut.tris.begin() + second, cut.tris.begin() + second_end,
-                cut.tris.begin() + first_end);
-      std::copy(cut.tri_origin.begin() + second, cut.tri_origin.begin() + second_end,
-                cut.tri_origin.begin() + first_end);
+      kept[q] = out - first[q];
+    });
+    if (parts == 2 && kept[0] != first[1]) {  // the first half lost doublets
+      std::copy_n(cut.tris.begin() + first[1], kept[1], cut.tris.begin() + kept[0]);
+      std::copy_n(cut.tri_origin.begin() + first[1], kept[1], cut.tri_origin.begin() + kept[0]);
     }
-    const std::size_t out = first_end + (second_end - second);
-    cut.tris.resize(out);
-    cut.tri_origin.resize(out);
+    cut.tris.resize(kept[0] + kept[1]);
+    cut.tri_origin.resize(kept[0] + kept[1]);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
     drop_unused_vertices(count, cut, remap_scratch);
   }

@@ -1483,18 +1483,19 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   // result being filled (below) never moves.
   chain.reserve(kMaxDepth + 2);
   // Copying a finished level into its result (a few large arrays: 5-10 % of
-  // a call) only reads `cut`, so it runs beside the next level's work, which
-  // reads `cut` and writes `next`; it is waited for before the two swap and
-  // before the chain is returned. Declared after `cut` and `chain`, so that
-  // on an exception it is waited for before they go.
-  tbb::task_group copying;
+  // a call) only reads `cut`, so the next level, which reads `cut` and writes
+  // `next`, does it in its remap task after the remap (the remap is the
+  // shorter of the level's two long tasks: the copy fills the gap, where
+  // copying at once held a thread from the level's first passes); when the
+  // chain ends first, `finish` does it. `pending`: the result awaiting it.
+  SimplifyResult* pending = nullptr;
   auto emit = [&](float error, StopReason reason, std::string detail) {
     assert(chain.size() < chain.capacity());
     SimplifyResult& r = chain.emplace_back();
     r.error = error;
     r.stop_reason = reason;
     r.stop_detail = std::move(detail);
-    copying.run([&mesh, &cut, &r] { fill_result(mesh, cut, r); });
+    pending = &r;
   };
   const std::size_t input_tris = mesh.triangle_count();
   const bool count_target = options.target.triangles > 0 || options.target.ratio > 0;
@@ -1506,7 +1507,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                    "vertices, {} triangles, {} lines",
                    cut.size(), cut.tris.size(), cut.lines.size()));
   auto finish = [&](StopReason reason, const std::string& why) {
-    copying.wait();
+    if (pending) fill_result(mesh, cut, *pending);
     chain.back().stop_reason = reason;
     chain.back().stop_detail += "; stopped: " + why;
     return std::move(chain);
@@ -1628,6 +1629,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
           cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
           [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
           options.no_lines, line_candidates, next, remap_scratch);
+      if (pending) fill_result(mesh, cut, *pending);
     });
     tbb::parallel_invoke(
         [&] {
@@ -1668,6 +1670,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       }
     });
     remapping.wait();
+    pending = nullptr;
     drop_unused_vertices(cells, next, remap_scratch);
     const Buffer<std::uint32_t>& keep = remap_scratch.keep;
     if (next.tris.empty() && next.lines.empty())
@@ -1709,7 +1712,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         depth, cell_size, std::sqrt(3.0) * cell_size, n_prev, next.size(),
         100.0 * (1.0 - double(next.size()) / double(n_prev)), next.tris.size(), next.lines.size(),
         error);
-    copying.wait();
     std::swap(cut, next);
     if (first_level) input_pos = std::move(next.pos);  // level 0's
     emit(error, StopReason::kTargetReached, std::move(detail));

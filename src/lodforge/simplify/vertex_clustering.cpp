@@ -128,11 +128,6 @@ std::uint32_t compact_bits(std::uint64_t x) {
   return static_cast<std::uint32_t>(x);
 }
 
-struct CodedVertex {
-  std::uint64_t code;
-  std::uint32_t vertex;
-};
-
 /// Arrays from this size on are processed in two parts side by side (the
 /// passes of level 0 and the radix sort; below it, a task costs more than
 /// it saves).
@@ -148,34 +143,46 @@ void for_parts(std::size_t parts, const Body& body) {
 /// An unused vertex's code: above every 63-bit code, so it sorts last.
 constexpr std::uint64_t kUnused = ~std::uint64_t(0);
 
-/// Sorts the coded vertices by code, then position (so that equal
-/// coordinates are neighbours), then index; unused ones (kUnused) last, by
-/// index, their positions unread. An LSD radix sort of the codes' top 32
-/// bits (bits 31-62: the octree down to depth 10 and a bit; three passes of
-/// 11, 11 and 10 bits), then each run of equal top bits sorted by the whole
-/// comparison: such runs are vertices in one cell of side 1/1024 of the
-/// bounding cube's or less, rarely more than one, so this gives the order of
-/// a sort by the whole code (six passes) at half the passes. From kTwoParts
-/// items on, every pass runs in two parts side by side (each counts and
-/// scatters its half; a bucket takes the first part's items, then the
-/// second's, so each pass stays stable) and the runs are sorted in two
-/// slices cut at a run boundary.
-void sort_vertices(Buffer<CodedVertex>& items, std::span<const Vec3> positions) {
-  constexpr int kShift = 31, kPasses = 3, kBits[kPasses] = {11, 11, 10};
+/// Sorts the used vertices into octree order: by Morton code, then by
+/// position (so that equal coordinates are neighbours), then by index;
+/// unused ones (code kUnused) last, by index, their positions unread.
+/// `keys[i]` is a vertex's top 32 code bits above its index (8 bytes an
+/// item: what is moved), `code[v]` its whole code. An LSD radix sort of the
+/// keys' top 32 bits (code bits 31-62: the octree down to depth 10 and a
+/// bit; three passes of 11, 11 and 10 bits; a pass where one bucket holds
+/// every item is skipped), then each run of equal top bits sorted by the
+/// whole comparison: such runs are vertices in one cell of side 1/1024 of
+/// the bounding cube's or less, rarely more than one, so this gives the
+/// order of a sort by the whole code (six passes) at half the passes. From
+/// kTwoParts items on, every pass runs in two parts side by side (each
+/// counts and scatters its half; a bucket takes the first part's items, then
+/// the second's, so each pass stays stable) and the runs are sorted in two
+/// slices cut at a run boundary; below, one pass counts every digit.
+void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> code,
+                   std::span<const Vec3> positions) {
+  constexpr int kPasses = 3, kBits[kPasses] = {11, 11, 10};
   constexpr std::size_t kBuckets = std::size_t(1) << 11;
-  const std::size_t n = items.size();
+  const std::size_t n = keys.size();
   const std::size_t parts = n >= kTwoParts ? 2 : 1;
-  auto digit = [&](const CodedVertex& it, int p) {
-    return static_cast<std::size_t>((it.code >> (kShift + 11 * p)) & ((1u << kBits[p]) - 1));
+  auto digit = [&](std::uint64_t key, int p) {
+    return static_cast<std::size_t>((key >> (32 + 11 * p)) & ((1u << kBits[p]) - 1));
   };
   std::array<std::size_t, 3> bound{0, parts == 2 ? n / 2 : n, n};  // parts [bound[q], bound[q + 1])
+  std::array<std::array<std::uint32_t, kBuckets>, kPasses> every{};  // one part: all passes' counts
+  if (parts == 1)
+    for (std::uint64_t key : keys)
+      for (int p = 0; p < kPasses; ++p) ++every[p][digit(key, p)];
   std::array<std::array<std::uint32_t, kBuckets>, 2> count;
-  Buffer<CodedVertex> tmp(n);
+  Buffer<std::uint64_t> tmp(n);
   for (int p = 0; p < kPasses; ++p) {
-    for_parts(parts, [&](std::size_t q) {
-      count[q].fill(0);
-      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) ++count[q][digit(items[i], p)];
-    });
+    if (parts == 1) {
+      count[0] = every[p];
+    } else {
+      for_parts(parts, [&](std::size_t q) {
+        count[q].fill(0);
+        for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) ++count[q][digit(keys[i], p)];
+      });
+    }
     // Each part's start in each bucket; a pass where one bucket holds every
     // item changes nothing.
     bool one_digit = false;
@@ -188,30 +195,30 @@ void sort_vertices(Buffer<CodedVertex>& items, std::span<const Vec3> positions) 
     if (one_digit) continue;
     for_parts(parts, [&](std::size_t q) {
       for (std::size_t i = bound[q]; i < bound[q + 1]; ++i)
-        tmp[count[q][digit(items[i], p)]++] = items[i];
+        tmp[count[q][digit(keys[i], p)]++] = keys[i];
     });
-    items.swap(tmp);
+    keys.swap(tmp);
   }
   // The runs are those of equal sorted bits exactly: a code with bit 63 set
   // (an unused vertex's ~0) shares its top 32 bits with the cube's far corner.
-  auto top = [](const CodedVertex& it) { return static_cast<std::uint32_t>(it.code >> kShift); };
-  auto less = [&](const CodedVertex& a, const CodedVertex& b) {
-    if (a.code != b.code) return a.code < b.code;
-    if (a.code == kUnused) return a.vertex < b.vertex;
-    const Vec3& pa = positions[a.vertex];
-    const Vec3& pb = positions[b.vertex];
+  auto top = [](std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); };
+  auto less = [&](std::uint64_t a, std::uint64_t b) {
+    const auto va = static_cast<std::uint32_t>(a), vb = static_cast<std::uint32_t>(b);
+    if (code[va] != code[vb]) return code[va] < code[vb];
+    if (code[va] == kUnused) return va < vb;
+    const Vec3& pa = positions[va];
+    const Vec3& pb = positions[vb];
     if (pa.x != pb.x) return pa.x < pb.x;
     if (pa.y != pb.y) return pa.y < pb.y;
     if (pa.z != pb.z) return pa.z < pb.z;
-    return a.vertex < b.vertex;
+    return va < vb;
   };
-  while (bound[1] > 0 && bound[1] < n && top(items[bound[1]]) == top(items[bound[1] - 1]))
-    ++bound[1];
+  while (bound[1] > 0 && bound[1] < n && top(keys[bound[1]]) == top(keys[bound[1] - 1])) ++bound[1];
   for_parts(parts, [&](std::size_t q) {
     for (std::size_t i = bound[q]; i < bound[q + 1];) {
       std::size_t j = i + 1;
-      while (j < bound[q + 1] && top(items[j]) == top(items[i])) ++j;
-      if (j - i > 1) std::sort(items.begin() + i, items.begin() + j, less);
+      while (j < bound[q + 1] && top(keys[j]) == top(keys[i])) ++j;
+      if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
       i = j;
     }
   });
@@ -1314,14 +1321,15 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   if (!(octree.side > 0)) octree.side = 1;
   const double scale = double(1u << kMaxDepth) / octree.side;
   const std::uint32_t max_q = (1u << kMaxDepth) - 1;
-  // Codes in parallel, one slot per vertex: an unused vertex gets ~0 (above
-  // every 63-bit code), sorts last and is cut off. The order of equal codes
-  // is settled below, so the sort's input order does not matter.
-  Buffer<CodedVertex> order(nv);
+  // Codes in parallel, one slot per vertex: an unused vertex gets kUnused
+  // (above every 63-bit code), sorts last and is cut off. The order of equal
+  // codes is settled by the sort, so its input order does not matter.
+  Buffer<std::uint64_t> code(nv), order(nv);  // order: sort keys (see sort_vertices)
   for_chunks(nv, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t v = lo; v < hi; ++v) {
       if (!used[v]) {  // its coordinates may be anything
-        order[v] = {kUnused, static_cast<std::uint32_t>(v)};
+        code[v] = kUnused;
+        order[v] = kUnused << 32 | v;
         continue;
       }
       // The offset from the box's corner is >= 0 (the rounding of an exact
@@ -1333,11 +1341,13 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         const auto qi = static_cast<std::uint32_t>(std::min(q, double(max_q)));
         c |= morton_spread(qi) << (2 - a);
       }
-      order[v] = {c, static_cast<std::uint32_t>(v)};
+      code[v] = c;
+      order[v] = (c >> 31) << 32 | v;
     }
   });
-  sort_vertices(order, mesh.positions);
-  while (!order.empty() && order.back().code == kUnused) order.pop_back();
+  sort_vertices(order, code, mesh.positions);
+  auto vertex = [&](std::size_t i) { return static_cast<std::uint32_t>(order[i]); };
+  while (!order.empty() && code[vertex(order.size() - 1)] == kUnused) order.pop_back();
 
   // Every buffer below lives for the whole call and is reused level after
   // level (the two cuts swap): freeing and reallocating them per level would
@@ -1352,8 +1362,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // Equal positions have equal codes: positions are compared only then.
     // Counted, then numbered, in two parts side by side for large inputs.
     auto starts_node = [&](std::size_t i) {
-      return i == 0 || order[i].code != order[i - 1].code ||
-             mesh.positions[order[i].vertex] != mesh.positions[order[i - 1].vertex];
+      return i == 0 || code[vertex(i)] != code[vertex(i - 1)] ||
+             mesh.positions[vertex(i)] != mesh.positions[vertex(i - 1)];
     };
     const std::size_t n = order.size();
     const std::size_t parts = n >= kTwoParts ? 2 : 1;
@@ -1371,12 +1381,12 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       // The node before the part's first start (kNone: wraps to 0 at i = 0).
       auto node = static_cast<std::uint32_t>(q == 0 ? kNone : nodes[0] - 1);
       for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) {
-        const std::uint32_t v = order[i].vertex;
+        const std::uint32_t v = vertex(i);
         if (starts_node(i)) {
           ++node;
           cut.pos[node] = mesh.positions[v];
           cut.orig[node] = v;
-          cut.code[node] = order[i].code;
+          cut.code[node] = code[v];
         }
         node_of[v] = node;
       }
@@ -1478,6 +1488,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   Buffer<std::uint32_t> input_node;
   node_of = {};
   order = {};
+  code = {};
   std::vector<SimplifyResult> chain;
   // Level 0 and at most one level per octree depth: reserved, so that a
   // result being filled (below) never moves.

@@ -1454,15 +1454,16 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       for (std::size_t v = vertex_bound[q]; v < vertex_bound[q + 1]; ++v) {
         const std::size_t end = run_end[v];
         const std::size_t n = end - begin;
-        if (n == 1) {
-          cut.tris[out] = cut.tris[begin];
-          cut.tri_origin[out] = cut.tri_origin[begin];
-          ++out;
-        } else if (n > 1) {
+        // Until the first doublet, every run is already in place.
+        if (out != begin) {
           for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
             cut.tris[out + i] = cut.tris[begin + i];
             cut.tri_origin[out + i] = cut.tri_origin[begin + i];
           }
+        }
+        if (n == 1) {
+          ++out;
+        } else if (n > 1) {
           out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
                             q == 0 ? remap_scratch : second_scratch);
         }

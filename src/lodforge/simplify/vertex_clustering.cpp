@@ -532,7 +532,7 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
 /// do: the previous level's triangles are sorted by smallest vertex and the
 /// map to cells is monotone); `origin(i)` is its input triangle. Applies the
 /// face rules; reads nothing of `to` but its faces, so that it can run beside
-/// the choice of the new vertices (drop_unused_vertices then drops those
+/// the choice of the new vertices (number_used_vertices and compact_vertices then drop those
 /// nothing uses). `line_candidates` holds the lines found before (they come
 /// first); the remapped `lines` follow.
 ///
@@ -652,10 +652,13 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
   }
 }
 
-/// Once `to` has its faces (remap_faces) and its new_count vertices: drops
-/// the vertices no triangle or line uses, keeping the order, and leaves the
-/// map (new vertex -> kept index or kNone) in `scratch.keep`.
-void drop_unused_vertices(std::size_t new_count, Cut& to, RemapScratch& scratch) {
+/// Dropping the vertices no triangle or line uses, keeping the order, in two
+/// steps: once `to` has its faces (remap_faces), of new_count vertices,
+/// number_used_vertices leaves the map (new vertex -> kept index or kNone) in
+/// `scratch.keep`, renumbers the faces and returns how many are kept (it reads
+/// nothing but the faces, so it can run beside the choice of the vertices);
+/// once the vertices are there too, compact_vertices drops the others.
+std::size_t number_used_vertices(std::size_t new_count, Cut& to, RemapScratch& scratch) {
   auto& keep = scratch.keep;
   keep.assign(new_count, kNone);
   for (const Triangle& t : to.tris) keep[t[0]] = keep[t[1]] = keep[t[2]] = 0;
@@ -663,11 +666,18 @@ void drop_unused_vertices(std::size_t new_count, Cut& to, RemapScratch& scratch)
   std::uint32_t kept = 0;
   for (std::size_t v = 0; v < new_count; ++v)
     if (keep[v] != kNone) keep[v] = kept++;
-  if (kept == new_count) return;  // every vertex used: the identity
+  if (kept == new_count) return kept;  // every vertex used: the identity
   for (Triangle& t : to.tris)
     for (std::uint32_t& v : t) v = keep[v];
   for (Segment& s : to.lines)
     for (std::uint32_t& v : s) v = keep[v];
+  return kept;
+}
+
+void compact_vertices(std::size_t new_count, std::size_t kept, Cut& to,
+                      const RemapScratch& scratch) {
+  if (kept == new_count) return;
+  const auto& keep = scratch.keep;
   auto compact = [&](auto& array) {
     if (array.empty()) return;
     for (std::size_t v = 0; v < new_count; ++v)
@@ -1478,7 +1488,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     cut.tris.resize(kept[0] + kept[1]);
     cut.tri_origin.resize(kept[0] + kept[1]);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
-    drop_unused_vertices(count, cut, remap_scratch);
+    compact_vertices(count, number_used_vertices(count, cut, remap_scratch), cut, remap_scratch);
   }
   // The input vertices still represented, by their level-0 vertex (the
   // input vertices of one level-0 vertex share its position exactly): their
@@ -1634,6 +1644,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // choices (a task a free thread takes; one thread runs it at the wait).
     // Declared after everything it touches, so that on an exception it is
     // waited for before they go.
+    std::size_t kept_cells = 0;
     tbb::task_group remapping;
     remapping.run([&] {
       line_candidates.clear();
@@ -1641,6 +1652,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
           cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
           [&](std::size_t f) { return cut.tri_origin[f]; }, cut.lines, cell_of, cells,
           options.no_lines, line_candidates, next, remap_scratch);
+      kept_cells = number_used_vertices(cells, next, remap_scratch);
       if (pending) fill_result(mesh, cut, *pending);
     });
     tbb::parallel_invoke(
@@ -1683,7 +1695,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     });
     remapping.wait();
     pending = nullptr;
-    drop_unused_vertices(cells, next, remap_scratch);
+    compact_vertices(cells, kept_cells, next, remap_scratch);
     const Buffer<std::uint32_t>& keep = remap_scratch.keep;
     if (next.tris.empty() && next.lines.empty())
       return finish(StopReason::kCannotSimplify,

@@ -149,54 +149,32 @@ constexpr std::uint64_t kUnused = ~std::uint64_t(0);
 /// `keys[i]` is a vertex's top 32 code bits above its index (8 bytes an
 /// item: what is moved), `code[v]` its whole code. An LSD radix sort of the
 /// keys' top 32 bits (code bits 31-62: the octree down to depth 10 and a
-/// bit; three passes of 11, 11 and 10 bits; a pass where one bucket holds
-/// every item is skipped), then each run of equal top bits sorted by the
-/// whole comparison: such runs are vertices in one cell of side 1/1024 of
-/// the bounding cube's or less, rarely more than one, so this gives the
-/// order of a sort by the whole code (six passes) at half the passes. From
-/// kTwoParts items on, every pass runs in two parts side by side (each
-/// counts and scatters its half; a bucket takes the first part's items, then
-/// the second's, so each pass stays stable) and the runs are sorted in two
-/// slices cut at a run boundary; below, one pass counts every digit.
+/// bit; three passes of 11, 11 and 10 bits, counted in one pass; a pass
+/// where one bucket holds every item is skipped), then each run of equal top
+/// bits sorted by the whole comparison: such runs are vertices in one cell
+/// of side 1/1024 of the bounding cube's or less, rarely more than one, so
+/// this gives the order of a sort by the whole code (six passes) at half the
+/// passes. On one thread: two threads scattering into the same buckets were
+/// slower than one (they share the cache lines where their parts of a bucket
+/// meet), on the bunny and on igea.
 void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> code,
                    std::span<const Vec3> positions) {
   constexpr int kPasses = 3, kBits[kPasses] = {11, 11, 10};
   constexpr std::size_t kBuckets = std::size_t(1) << 11;
   const std::size_t n = keys.size();
-  const std::size_t parts = n >= kTwoParts ? 2 : 1;
   auto digit = [&](std::uint64_t key, int p) {
     return static_cast<std::size_t>((key >> (32 + 11 * p)) & ((1u << kBits[p]) - 1));
   };
-  std::array<std::size_t, 3> bound{0, parts == 2 ? n / 2 : n, n};  // parts [bound[q], bound[q + 1])
-  std::array<std::array<std::uint32_t, kBuckets>, kPasses> every{};  // one part: all passes' counts
-  if (parts == 1)
-    for (std::uint64_t key : keys)
-      for (int p = 0; p < kPasses; ++p) ++every[p][digit(key, p)];
-  std::array<std::array<std::uint32_t, kBuckets>, 2> count;
+  std::array<std::array<std::uint32_t, kBuckets>, kPasses> count{};
+  for (std::uint64_t key : keys)
+    for (int p = 0; p < kPasses; ++p) ++count[p][digit(key, p)];
   Buffer<std::uint64_t> tmp(n);
   for (int p = 0; p < kPasses; ++p) {
-    if (parts == 1) {
-      count[0] = every[p];
-    } else {
-      for_parts(parts, [&](std::size_t q) {
-        count[q].fill(0);
-        for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) ++count[q][digit(keys[i], p)];
-      });
-    }
-    // Each part's start in each bucket; a pass where one bucket holds every
-    // item changes nothing.
-    bool one_digit = false;
+    auto& c = count[p];
+    if (std::find(c.begin(), c.end(), n) != c.end()) continue;  // one digit: no-op
     std::uint32_t sum = 0;
-    for (std::size_t b = 0; b < kBuckets; ++b) {
-      const std::uint32_t first = sum;
-      for (std::size_t q = 0; q < parts; ++q) sum += std::exchange(count[q][b], sum);
-      one_digit |= sum - first == n;
-    }
-    if (one_digit) continue;
-    for_parts(parts, [&](std::size_t q) {
-      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i)
-        tmp[count[q][digit(keys[i], p)]++] = keys[i];
-    });
+    for (auto& k : c) sum += std::exchange(k, sum);
+    for (std::uint64_t key : keys) tmp[c[digit(key, p)]++] = key;
     keys.swap(tmp);
   }
   // The runs are those of equal sorted bits exactly: a code with bit 63 set
@@ -213,15 +191,12 @@ void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> c
     if (pa.z != pb.z) return pa.z < pb.z;
     return va < vb;
   };
-  while (bound[1] > 0 && bound[1] < n && top(keys[bound[1]]) == top(keys[bound[1] - 1])) ++bound[1];
-  for_parts(parts, [&](std::size_t q) {
-    for (std::size_t i = bound[q]; i < bound[q + 1];) {
-      std::size_t j = i + 1;
-      while (j < bound[q + 1] && top(keys[j]) == top(keys[i])) ++j;
-      if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
-      i = j;
-    }
-  });
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && top(keys[j]) == top(keys[i])) ++j;
+    if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
+    i = j;
+  }
 }
 
 /// Depth of the deepest octree cell two codes share (kMaxDepth if equal).

@@ -1419,22 +1419,27 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       for (std::size_t q = 0; q < parts; ++q) total += std::exchange(at[q][v], total);
     cut.tris.resize(total);
     cut.tri_origin.resize(total);
+    // Each part then takes one half of the vertices: it scatters the
+    // triangles whose smallest corner lies there (reading all of them: the
+    // parts write to separate memory, where scattering each its half of the
+    // triangles shared cache lines in every run) and squeezes their runs.
+    const std::array<std::size_t, 3> vertex_bound{0, parts == 2 ? count / 2 : count, count};
+    std::array<std::size_t, 2> first{0, 0}, kept{0, 0};  // each part's runs
+    if (parts == 2) first[1] = vertex_bound[1] < count ? at[0][vertex_bound[1]] : total;
+    // Once scattered, the last part's counters hold where each run ends.
+    const Buffer<std::uint32_t>& run_end = at[parts - 1];
+    RemapScratch second_scratch;
     for_parts(parts, [&](std::size_t q) {
-      for (std::size_t f = tri_bound[q]; f < tri_bound[q + 1]; ++f) {
+      const std::size_t v0 = vertex_bound[q], v1 = vertex_bound[q + 1];
+      for (std::size_t f = 0; f < nf; ++f) {
         const Triangle& t = mapped[f];
         if (!distinct(t)) continue;
-        const std::uint32_t slot = at[q][std::min({t[0], t[1], t[2]})]++;
+        const std::uint32_t lo = std::min({t[0], t[1], t[2]});
+        if (lo < v0 || lo >= v1) continue;
+        const std::uint32_t slot = at[f >= tri_bound[1]][lo]++;
         cut.tris[slot] = t;
         cut.tri_origin[slot] = static_cast<std::uint32_t>(f);
       }
-    });
-    // The last part's counters now hold where each run ends.
-    const Buffer<std::uint32_t>& run_end = at[parts - 1];
-    const std::array<std::size_t, 3> vertex_bound{0, parts == 2 ? count / 2 : count, count};
-    std::array<std::size_t, 2> first{0, 0}, kept{0, 0};  // each part's runs
-    if (parts == 2 && vertex_bound[1] > 0) first[1] = run_end[vertex_bound[1] - 1];
-    RemapScratch second_scratch;
-    for_parts(parts, [&](std::size_t q) {
       std::size_t begin = first[q], out = first[q];
       for (std::size_t v = vertex_bound[q]; v < vertex_bound[q + 1]; ++v) {
         const std::size_t end = run_end[v];

@@ -65,7 +65,6 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
 #include <tbb/scalable_allocator.h>
 #include <tbb/task_group.h>
 
@@ -1253,24 +1252,32 @@ Box3 validate(const TriangleMesh& mesh, VertexBits& used) {
     Box3 box;
     std::size_t non_finite = SIZE_MAX;  ///< the first used vertex with one
   };
-  const Bounds bounds = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 2048), Bounds{},
-      [&](const tbb::blocked_range<std::size_t>& r, Bounds b) {
-        for (std::size_t v = r.begin(); v < r.end(); ++v) {
-          if (!used[v]) continue;
-          if (!is_finite(mesh.positions[v])) {
-            b.non_finite = std::min(b.non_finite, v);
-            break;
-          }
-          b.box.add(mesh.positions[v]);
-        }
-        return b;
-      },
-      [](Bounds a, const Bounds& b) {
-        a.box.add(b.box);
-        a.non_finite = std::min(a.non_finite, b.non_finite);
-        return a;
-      });
+  // Two parts side by side for large inputs, each in plain float minima and
+  // maxima (a task per few thousand vertices cost more than their work).
+  std::array<Bounds, 2> part;
+  const std::size_t parts = n >= kTwoParts ? 2 : 1;
+  for_parts(parts, [&](std::size_t q) {
+    const std::size_t v0 = q == 0 ? 0 : n / 2, v1 = parts == 1 || q == 1 ? n : n / 2;
+    float lo[3] = {part[q].box.lo.x, part[q].box.lo.y, part[q].box.lo.z};
+    float hi[3] = {part[q].box.hi.x, part[q].box.hi.y, part[q].box.hi.z};
+    for (std::size_t v = v0; v < v1; ++v) {
+      if (!used[v]) continue;
+      const Vec3& p = mesh.positions[v];
+      if (!is_finite(p)) {
+        part[q].non_finite = v;
+        break;
+      }
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+    }
+    part[q].box.lo = {lo[0], lo[1], lo[2]};
+    part[q].box.hi = {hi[0], hi[1], hi[2]};
+  });
+  Bounds bounds = part[0];
+  bounds.box.add(part[1].box);
+  bounds.non_finite = std::min(part[0].non_finite, part[1].non_finite);
   if (bounds.non_finite != SIZE_MAX)
     throw DataError(
         fmt::format("vertex clustering: vertex {} has a non-finite coordinate", bounds.non_finite));

@@ -1352,37 +1352,34 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   Buffer<std::uint32_t> node_of(nv);
   {
     // Equal positions have equal codes: positions are compared only then.
-    // Counted, then numbered, in two parts side by side for large inputs.
-    auto starts_node = [&](std::size_t i) {
-      return i == 0 || code[vertex(i)] != code[vertex(i - 1)] ||
-             mesh.positions[vertex(i)] != mesh.positions[vertex(i - 1)];
-    };
+    // One pass, each vertex's code and position gathered once (in octree
+    // order they are scattered over memory); the arrays are sized for every
+    // vertex and cut back.
     const std::size_t n = order.size();
-    const std::size_t parts = n >= kTwoParts ? 2 : 1;
-    const std::array<std::size_t, 3> bound{0, parts == 2 ? n / 2 : n, n};
-    std::array<std::size_t, 2> nodes{0, 0};  // starting in each part
-    for_parts(parts, [&](std::size_t q) {
-      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) nodes[q] += starts_node(i);
-    });
-    const std::size_t count = nodes[0] + nodes[1];
+    cut.pos.resize(n);
+    cut.orig.resize(n);
+    cut.code.resize(n);
+    std::size_t count = 0;
+    std::uint64_t last_code = 0;
+    Vec3 last_pos;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t v = vertex(i);
+      const std::uint64_t c = code[v];
+      const Vec3& p = mesh.positions[v];
+      if (i == 0 || c != last_code || p != last_pos) {
+        cut.pos[count] = p;
+        cut.orig[count] = v;
+        cut.code[count] = c;
+        ++count;
+        last_code = c;
+        last_pos = p;
+      }
+      node_of[v] = static_cast<std::uint32_t>(count - 1);
+    }
     cut.pos.resize(count);
-    cut.weight.assign(count, 1);
     cut.orig.resize(count);
     cut.code.resize(count);
-    for_parts(parts, [&](std::size_t q) {
-      // The node before the part's first start (kNone: wraps to 0 at i = 0).
-      auto node = static_cast<std::uint32_t>(q == 0 ? kNone : nodes[0] - 1);
-      for (std::size_t i = bound[q]; i < bound[q + 1]; ++i) {
-        const std::uint32_t v = vertex(i);
-        if (starts_node(i)) {
-          ++node;
-          cut.pos[node] = mesh.positions[v];
-          cut.orig[node] = v;
-          cut.code[node] = code[v];
-        }
-        node_of[v] = node;
-      }
-    });
+    cut.weight.assign(count, 1);
   }
   {
     // The input's triangles are in any order: sort those with three distinct

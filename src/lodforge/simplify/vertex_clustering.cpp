@@ -407,13 +407,16 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     return std::uint64_t(k1) << 32 | k2;
   };
   if (n < 2) return n;
-  if (n == 2) {
+  if (n == 2) {  // the commonest run: its order by stores to computed slots, not a branch
     const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);
     if (k0 == k1) return 1;
-    if (k1 < k0) {
-      std::swap(tris[0], tris[1]);
-      std::swap(origin[0], origin[1]);
-    }
+    const std::size_t second = k1 < k0;  // where the first goes
+    const Triangle t0 = tris[0], t1 = tris[1];
+    const std::uint32_t o0 = origin[0], o1 = origin[1];
+    tris[second] = t0;
+    tris[1 - second] = t1;
+    origin[second] = o0;
+    origin[1 - second] = o1;
     return 2;
   }
   // Up to 8 without doublets (nearly every run): each triangle goes to its

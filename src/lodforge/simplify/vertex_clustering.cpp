@@ -127,9 +127,11 @@ std::uint32_t compact_bits(std::uint64_t x) {
   return static_cast<std::uint32_t>(x);
 }
 
-/// Arrays from this size on are processed in two parts side by side (the
-/// passes of level 0 and the radix sort; below it, a task costs more than
-/// it saves).
+/// Arrays from this size on are processed in two parts side by side (level
+/// 0's passes over the input, a level's passes over its vertices; below it,
+/// a task costs more than it saves). A part writes memory of its own: where
+/// both parts' writes meet in cache lines (the radix sort's buckets, the runs
+/// of a counting sort split by triangles), two threads were slower than one.
 constexpr std::size_t kTwoParts = 16384;
 
 /// Runs body(0) and, when parts is 2, body(1) beside it.

@@ -115,15 +115,18 @@ struct VertexClusteringOptions {
 ///
 /// Time O(V + F) for level 0 (radix-sorted Morton codes) plus O(V + F) per
 /// further level (cells with more than 64 vertices score 64 of them), so
-/// O(V + F) in practice as the levels shrink geometrically. The cells of a
-/// level are processed in parallel (TBB, in chunks of 2048 cells; smaller
-/// levels run on the calling thread), a level's faces are remapped beside
-/// the choice of its vertices, and copying a finished level into its result
-/// overlaps the next level's work; the result does not depend on the thread
-/// count. The area and volume heuristics are summed in single
-/// precision relative to the cell's mean, four triangles at a time, and
-/// only in cells with more than one contender (see above). Memory: a few
-/// arrays of O(V + F) reused over the levels, plus the results. Throws
+/// O(V + F) in practice as the levels shrink geometrically. In parallel
+/// (TBB): the cells of a level in tasks of 128 cells, a level's faces
+/// remapped beside the choice of its vertices, a finished level copied into
+/// its result beside the next level's work, and level 0's passes over the
+/// input (checks, codes, the counting sort of the triangles) and each
+/// level's passes over its vertices in two parts from 16 384 items on; the
+/// result does not depend on the thread count. The area and volume
+/// heuristics are summed in single precision relative to the cell's mean,
+/// four triangles at a time, and only in cells with more than one contender
+/// (see above). Memory: a few arrays of O(V + F) reused over the levels, on
+/// TBB's scalable allocator (which keeps them for the next call), plus the
+/// results. Throws
 /// DataError if an index is out of range, a used coordinate is not finite or
 /// an attribute array has the wrong length.
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,

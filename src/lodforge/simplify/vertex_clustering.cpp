@@ -1391,14 +1391,14 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // corners by their smallest corner (a stable counting sort of the mapped
     // triangles and their origins, so the remap reads them in sequence); the
     // others become line candidates in input order. For large inputs in two
-    // parts side by side, each with its half of the triangles: each maps and
-    // counts its triangles into counters of its own (and collects its line
-    // candidates), a prefix pass gives every vertex's run and each part's
-    // place in it (the first part's triangles first: stable), each part
-    // scatters its triangles, and each then squeezes the doublets out of
-    // the runs of one half of the vertices, in place, run by run (each
-    // vertex's run is known from the counts, so there is no looking for
-    // runs); the second half then moves up if the first lost doublets.
+    // parts side by side: each maps and counts one half of the triangles
+    // into counters of its own (and collects its line candidates), a prefix
+    // pass gives every vertex's run and each half's place in it (the first
+    // half's triangles first: stable), then each part takes one half of the
+    // vertices, scatters the triangles of their runs and squeezes the
+    // doublets out of them, in place, run by run (each vertex's run is known
+    // from the counts, so there is no looking for runs); the second half of
+    // the runs then moves up if the first lost doublets.
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
     const std::size_t parts = nf >= kTwoParts ? 2 : 1;

@@ -1193,55 +1193,40 @@ void fill_result(const TriangleMesh& input, const Cut& cut, SimplifyResult& r) {
   r.face_map.assign(cut.tri_origin.begin(), cut.tri_origin.end());
 }
 
-/// One bit per vertex.
-class VertexBits {
- public:
-  explicit VertexBits(std::size_t n = 0) : words_((n + 63) / 64, 0) {}
-  bool operator[](std::size_t v) const { return (words_[v / 64] >> (v % 64)) & 1; }
-  void set(std::size_t v) { words_[v / 64] |= std::uint64_t(1) << (v % 64); }
-  VertexBits& operator|=(const VertexBits& o) {
-    for (std::size_t i = 0; i < words_.size(); ++i) words_[i] |= o.words_[i];
-    return *this;
-  }
-
- private:
-  Buffer<std::uint64_t> words_;
-};
-
-/// Checks the input, marks the vertices a triangle or line uses and returns
-/// the box around them. The passes over the triangles and the vertices run
-/// in parallel (the triangles in two halves, each marking a bit set of its
-/// own: one shared array bounced its cache lines between the cores and was
-/// slower than one thread); each error names the first offender, as one
+/// Checks the input, marks the vertices a triangle or line uses (1 in
+/// `used`) and returns the box around them. The passes over the triangles
+/// and the vertices run in parallel; the triangles in two halves, each
+/// marking a byte array of its own (one shared array bounced its cache lines
+/// between the cores and was slower than one thread; bits made each mark a
+/// read-modify-write, chained through memory when neighbouring triangles
+/// share a word), or'ed after. Each error names the first offender, as one
 /// pass in order would.
-Box3 validate(const TriangleMesh& mesh, VertexBits& used) {
+Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
   const std::size_t n = mesh.vertex_count(), nf = mesh.triangles.size();
   auto out_of_range = [&](const char* what, std::size_t i, std::uint32_t v) {
     return DataError(
         fmt::format("vertex clustering: {} {} uses vertex {} of only {}", what, i, v, n));
   };
   // Marks triangles [lo, hi); returns the first out of range, or nf.
-  auto mark = [&](std::size_t lo, std::size_t hi, VertexBits& bits) {
+  auto mark = [&](std::size_t lo, std::size_t hi, Buffer<std::uint8_t>& marks) {
+    marks.assign(n, 0);
     for (std::size_t f = lo; f < hi; ++f) {
       const Triangle& t = mesh.triangles[f];
       if (std::max({t[0], t[1], t[2]}) >= n) return f;
-      bits.set(t[0]);
-      bits.set(t[1]);
-      bits.set(t[2]);
+      marks[t[0]] = marks[t[1]] = marks[t[2]] = 1;
     }
     return nf;
   };
-  used = VertexBits(n);
   std::size_t bad = nf;
   if (nf < 8192) {
     bad = mark(0, nf, used);
   } else {
-    VertexBits second(n);
+    Buffer<std::uint8_t> second;
     std::size_t bad_second = nf;
     tbb::parallel_invoke([&] { bad = mark(0, nf / 2, used); },
                          [&] { bad_second = mark(nf / 2, nf, second); });
     if (bad == nf) bad = bad_second;
-    used |= second;
+    for (std::size_t v = 0; v < n; ++v) used[v] |= second[v];
   }
   if (bad < nf) {
     const Triangle& t = mesh.triangles[bad];
@@ -1250,8 +1235,7 @@ Box3 validate(const TriangleMesh& mesh, VertexBits& used) {
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Segment& s = mesh.lines[l];
     if (std::max(s[0], s[1]) >= n) throw out_of_range("line", l, std::max(s[0], s[1]));
-    used.set(s[0]);
-    used.set(s[1]);
+    used[s[0]] = used[s[1]] = 1;
   }
   struct Bounds {
     Box3 box;
@@ -1301,7 +1285,7 @@ Box3 validate(const TriangleMesh& mesh, VertexBits& used) {
 
 std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                                               const VertexClusteringOptions& options) {
-  VertexBits used;
+  Buffer<std::uint8_t> used;
   const Box3 box = validate(mesh, used);
   const std::size_t nv = mesh.vertex_count();
   const float min_diff = std::clamp(options.min_diff, 0.0f, 1.0f);

@@ -84,8 +84,10 @@ namespace {
 template <class T>
 struct BufferAllocator : tbb::scalable_allocator<T> {
   using value_type = T;
+  // The name the standard gives it; it hides the base's, which would rebind
+  // to tbb::scalable_allocator and lose construct() below.
   template <class U>
-  struct rebind {
+  struct rebind {  // NOLINT(readability-identifier-naming)
     using other = BufferAllocator<U>;
   };
   BufferAllocator() = default;

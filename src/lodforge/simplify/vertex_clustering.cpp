@@ -146,22 +146,14 @@ void for_parts(std::size_t parts, const Body& body) {
 /// An unused vertex's code: above every 63-bit code, so it sorts last.
 constexpr std::uint64_t kUnused = ~std::uint64_t(0);
 
-/// Sorts the used vertices into octree order: by Morton code, then by
-/// position (so that equal coordinates are neighbours), then by index;
-/// unused ones (code kUnused) last, by index, their positions unread.
-/// `keys[i]` is a vertex's top 32 code bits above its index (8 bytes an
-/// item: what is moved), `code[v]` its whole code. An LSD radix sort of the
-/// keys' top 32 bits (code bits 31-62: the octree down to depth 10 and a
-/// bit; three passes of 11, 11 and 10 bits, counted in one pass; a pass
-/// where one bucket holds every item is skipped), then each run of equal top
-/// bits sorted by the whole comparison: such runs are vertices in one cell
-/// of side 1/1024 of the bounding cube's or less, rarely more than one, so
-/// this gives the order of a sort by the whole code (six passes) at half the
-/// passes. On one thread: two threads scattering into the same buckets were
-/// slower than one (they share the cache lines where their parts of a bucket
-/// meet), on the bunny and on igea.
-void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> code,
-                   std::span<const Vec3> positions) {
+/// Sorts `keys` (a vertex's top 32 code bits above its index) by the whole
+/// comparison of sort_vertices below, on the calling thread, with `tmp` (as
+/// long) as scratch: an LSD radix sort of the top 32 bits (three passes of
+/// 11, 11 and 10 bits, counted in one pass; a pass where one bucket holds
+/// every key is skipped), then each run of equal top bits sorted by the
+/// whole comparison.
+void sort_range(std::span<std::uint64_t> keys, std::span<std::uint64_t> tmp,
+                std::span<const std::uint64_t> code, std::span<const Vec3> positions) {
   constexpr int kPasses = 3, kBits[kPasses] = {11, 11, 10};
   constexpr std::size_t kBuckets = std::size_t(1) << 11;
   const std::size_t n = keys.size();
@@ -171,15 +163,17 @@ void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> c
   std::array<std::array<std::uint32_t, kBuckets>, kPasses> count{};
   for (std::uint64_t key : keys)
     for (int p = 0; p < kPasses; ++p) ++count[p][digit(key, p)];
-  Buffer<std::uint64_t> tmp(n);
+  std::uint64_t* from = keys.data();
+  std::uint64_t* to = tmp.data();
   for (int p = 0; p < kPasses; ++p) {
     auto& c = count[p];
     if (std::find(c.begin(), c.end(), n) != c.end()) continue;  // one digit: no-op
     std::uint32_t sum = 0;
     for (auto& k : c) sum += std::exchange(k, sum);
-    for (std::uint64_t key : keys) tmp[c[digit(key, p)]++] = key;
-    keys.swap(tmp);
+    for (std::size_t i = 0; i < n; ++i) to[c[digit(from[i], p)]++] = from[i];
+    std::swap(from, to);
   }
+  if (from != keys.data()) std::copy_n(from, n, keys.data());
   // The runs are those of equal sorted bits exactly: a code with bit 63 set
   // (an unused vertex's ~0) shares its top 32 bits with the cube's far corner.
   auto top = [](std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); };
@@ -200,6 +194,64 @@ void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> c
     if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
     i = j;
   }
+}
+
+/// Sorts the used vertices into octree order: by Morton code, then by
+/// position (so that equal coordinates are neighbours), then by index;
+/// unused ones (code kUnused) last, by index, their positions unread.
+/// `keys[i]` is a vertex's top 32 code bits above its index (8 bytes an
+/// item: what is moved), `code[v]` its whole code. The top 32 bits are the
+/// octree down to depth 10 and a bit; runs of equal top bits are vertices in
+/// one cell of side 1/1024 of the bounding cube's or less, rarely more than
+/// one, so a radix sort of 32 bits and a sort of those runs give the order of
+/// a sort by the whole code at half the passes (sort_range). From kTwoParts
+/// keys on, the keys are first split (stably, each thread scattering its half
+/// of them) into the two ranges of the top 10 bits below and from the value
+/// that halves them, and each range is sorted on a thread of its own: each
+/// writes only its own memory (two threads scattering into the same buckets
+/// shared the cache lines where their parts of a bucket meet and were slower
+/// than one).
+void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> code,
+                   std::span<const Vec3> positions) {
+  const std::size_t n = keys.size();
+  Buffer<std::uint64_t> tmp(n);
+  if (n < kTwoParts) return sort_range(keys, tmp, code, positions);
+  constexpr std::size_t kTop = 1024;
+  auto top_digit = [](std::uint64_t key) { return static_cast<std::size_t>(key >> 54); };
+  const std::array<std::size_t, 3> half{0, n / 2, n};
+  std::array<std::array<std::uint32_t, kTop>, 2> count;
+  for_parts(2, [&](std::size_t q) {
+    count[q].fill(0);
+    for (std::size_t i = half[q]; i < half[q + 1]; ++i) ++count[q][top_digit(keys[i])];
+  });
+  // The split: the first top value at which the keys below reach half.
+  std::size_t split = 0, below = 0;
+  while (split < kTop && 2 * below < n) below += count[0][split] + count[1][split], ++split;
+  if (below == 0 || below == n) return sort_range(keys, tmp, code, positions);
+  // Where each half's keys go in each range: the first half's first (stable).
+  std::array<std::array<std::size_t, 2>, 2> at;  // [half][range]
+  std::size_t low0 = 0;
+  for (std::size_t d = 0; d < split; ++d) low0 += count[0][d];
+  at[0] = {0, below};
+  at[1] = {low0, below + (half[1] - low0)};
+  for_parts(2, [&](std::size_t q) {
+    std::size_t low = at[q][0], high = at[q][1];
+    for (std::size_t i = half[q]; i < half[q + 1]; ++i) {
+      const std::uint64_t key = keys[i];
+      if (top_digit(key) < split) {
+        tmp[low++] = key;
+      } else {
+        tmp[high++] = key;
+      }
+    }
+  });
+  keys.swap(tmp);
+  const std::array<std::size_t, 3> range{0, below, n};
+  for_parts(2, [&](std::size_t r) {
+    const std::size_t size = range[r + 1] - range[r];
+    sort_range(std::span(keys).subspan(range[r], size), std::span(tmp).subspan(range[r], size),
+               code, positions);
+  });
 }
 
 /// Depth of the deepest octree cell two codes share (kMaxDepth if equal).

@@ -136,6 +136,16 @@ std::uint32_t compact_bits(std::uint64_t x) {
 /// of a counting sort split by triangles), two threads were slower than one.
 constexpr std::size_t kTwoParts = 16384;
 
+/// How many parts an array of n items is processed in: 1 or 2.
+std::size_t parts_of(std::size_t n) {
+  return n >= kTwoParts ? 2 : 1;
+}
+
+/// The parts of [0, n): part q is [bound[q], bound[q + 1]).
+std::array<std::size_t, 3> halves(std::size_t n, std::size_t parts) {
+  return {0, parts == 2 ? n / 2 : n, n};
+}
+
 /// Runs body(0) and, when parts is 2, body(1) beside it.
 template <class Body>
 void for_parts(std::size_t parts, const Body& body) {
@@ -215,10 +225,10 @@ void sort_vertices(Buffer<std::uint64_t>& keys, std::span<const std::uint64_t> c
                    std::span<const Vec3> positions) {
   const std::size_t n = keys.size();
   Buffer<std::uint64_t> tmp(n);
-  if (n < kTwoParts) return sort_range(keys, tmp, code, positions);
+  if (parts_of(n) == 1) return sort_range(keys, tmp, code, positions);
   constexpr std::size_t kTop = 1024;
   auto top_digit = [](std::uint64_t key) { return static_cast<std::size_t>(key >> 54); };
-  const std::array<std::size_t, 3> half{0, n / 2, n};
+  const std::array<std::size_t, 3> half = halves(n, 2);
   std::array<std::array<std::uint32_t, kTop>, 2> count;
   for_parts(2, [&](std::size_t q) {
     count[q].fill(0);
@@ -1271,17 +1281,16 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
     }
     return nf;
   };
-  std::size_t bad = nf;
-  if (nf < 8192) {
-    bad = mark(0, nf, used);
-  } else {
-    Buffer<std::uint8_t> second;
-    std::size_t bad_second = nf;
-    tbb::parallel_invoke([&] { bad = mark(0, nf / 2, used); },
-                         [&] { bad_second = mark(nf / 2, nf, second); });
-    if (bad == nf) bad = bad_second;
+  const std::size_t tri_parts = parts_of(nf);
+  const std::array<std::size_t, 3> tri_bound = halves(nf, tri_parts);
+  Buffer<std::uint8_t> second;
+  std::array<std::size_t, 2> first_bad{nf, nf};
+  for_parts(tri_parts, [&](std::size_t q) {
+    first_bad[q] = mark(tri_bound[q], tri_bound[q + 1], q == 0 ? used : second);
+  });
+  if (tri_parts == 2)
     for (std::size_t v = 0; v < n; ++v) used[v] |= second[v];
-  }
+  const std::size_t bad = first_bad[0] < nf ? first_bad[0] : first_bad[1];
   if (bad < nf) {
     const Triangle& t = mesh.triangles[bad];
     throw out_of_range("triangle", bad, std::max({t[0], t[1], t[2]}));
@@ -1298,9 +1307,10 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
   // Two parts side by side for large inputs, each in plain float minima and
   // maxima (a task per few thousand vertices cost more than their work).
   std::array<Bounds, 2> part;
-  const std::size_t parts = n >= kTwoParts ? 2 : 1;
+  const std::size_t parts = parts_of(n);
+  const std::array<std::size_t, 3> bound = halves(n, parts);
   for_parts(parts, [&](std::size_t q) {
-    const std::size_t v0 = q == 0 ? 0 : n / 2, v1 = parts == 1 || q == 1 ? n : n / 2;
+    const std::size_t v0 = bound[q], v1 = bound[q + 1];
     float lo[3] = {part[q].box.lo.x, part[q].box.lo.y, part[q].box.lo.z};
     float hi[3] = {part[q].box.hi.x, part[q].box.hi.y, part[q].box.hi.z};
     for (std::size_t v = v0; v < v1; ++v) {
@@ -1447,8 +1457,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // the runs then moves up if the first lost doublets.
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
-    const std::size_t parts = nf >= kTwoParts ? 2 : 1;
-    const std::array<std::size_t, 3> tri_bound{0, parts == 2 ? nf / 2 : nf, nf};
+    const std::size_t parts = parts_of(nf);
+    const std::array<std::size_t, 3> tri_bound = halves(nf, parts);
     auto distinct = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
     mapped.resize(nf);
     std::array<Buffer<std::uint32_t>, 2> at;  // per part and vertex: count, then next slot
@@ -1478,7 +1488,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // triangles whose smallest corner lies there (reading all of them: the
     // parts write to separate memory, where scattering each its half of the
     // triangles shared cache lines in every run) and squeezes their runs.
-    const std::array<std::size_t, 3> vertex_bound{0, parts == 2 ? count / 2 : count, count};
+    const std::array<std::size_t, 3> vertex_bound = halves(count, parts);
     std::array<std::size_t, 2> first{0, 0}, kept{0, 0};  // each part's runs
     if (parts == 2) first[1] = vertex_bound[1] < count ? at[0][vertex_bound[1]] : total;
     // Once scattered, the last part's counters hold where each run ends.
@@ -1496,7 +1506,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         cut.tri_origin[slot] = static_cast<std::uint32_t>(f);
       }
       std::size_t begin = first[q], out = first[q];
-      for (std::size_t v = vertex_bound[q]; v < vertex_bound[q + 1]; ++v) {
+      for (std::size_t v = v0; v < v1; ++v) {
         const std::size_t end = run_end[v];
         const std::size_t n = end - begin;
         // Until the first doublet, every run is already in place.
@@ -1588,8 +1598,8 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // Cells per depth: 1 + the neighbours in octree order that part above it.
     // In two parts side by side for large levels; each part's own histogram
     // also tells where its cells start in the numbering below.
-    const std::size_t parts = n_prev >= kTwoParts ? 2 : 1;
-    const std::array<std::size_t, 3> bound{0, parts == 2 ? n_prev / 2 : n_prev, n_prev};
+    const std::size_t parts = parts_of(n_prev);
+    const std::array<std::size_t, 3> bound = halves(n_prev, parts);
     histogram[1].fill(0);
     for_parts(parts, [&](std::size_t q) {
       histogram[q].fill(0);

@@ -1288,13 +1288,13 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
   for_parts(tri_parts, [&](std::size_t q) {
     first_bad[q] = mark(tri_bound[q], tri_bound[q + 1], q == 0 ? used : second);
   });
-  if (tri_parts == 2)
-    for (std::size_t v = 0; v < n; ++v) used[v] |= second[v];
   const std::size_t bad = first_bad[0] < nf ? first_bad[0] : first_bad[1];
   if (bad < nf) {
     const Triangle& t = mesh.triangles[bad];
     throw out_of_range("triangle", bad, std::max({t[0], t[1], t[2]}));
   }
+  // The lines mark the first array (the second is or'ed into it below, part
+  // by part).
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Segment& s = mesh.lines[l];
     if (std::max(s[0], s[1]) >= n) throw out_of_range("line", l, std::max(s[0], s[1]));
@@ -1311,6 +1311,8 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
   const std::array<std::size_t, 3> bound = halves(n, parts);
   for_parts(parts, [&](std::size_t q) {
     const std::size_t v0 = bound[q], v1 = bound[q + 1];
+    if (tri_parts == 2)
+      for (std::size_t v = v0; v < v1; ++v) used[v] |= second[v];
     float lo[3] = {part[q].box.lo.x, part[q].box.lo.y, part[q].box.lo.z};
     float hi[3] = {part[q].box.hi.x, part[q].box.hi.y, part[q].box.hi.z};
     for (std::size_t v = v0; v < v1; ++v) {
@@ -1407,35 +1409,62 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // Equal positions have equal codes: positions are compared only then.
     // One pass, each vertex's code and position gathered once (in octree
     // order they are scattered over memory); the arrays are sized for every
-    // vertex and cut back.
+    // vertex and cut back. For large inputs in two parts side by side: the
+    // second starts where the code changes (equal positions never straddle
+    // the parts) and writes its vertices from its own first index on, as if
+    // the first had merged none; if it had, they move down after.
     const std::size_t n = order.size();
     cut.pos.resize(n);
     cut.orig.resize(n);
     cut.code.resize(n);
-    std::size_t count = 0;
-    std::uint64_t last_code = 0;
-    Vec3 last_pos;
-    // The gathers' addresses are known ahead: fetched kAhead vertices early.
-    constexpr std::size_t kAhead = 16;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i + kAhead < n) {
-        const std::uint32_t ahead = vertex(i + kAhead);
-        __builtin_prefetch(&code[ahead]);
-        __builtin_prefetch(&mesh.positions[ahead]);
-        __builtin_prefetch(&node_of[ahead], 1);
+    const std::size_t parts = parts_of(n);
+    std::array<std::size_t, 3> bound = halves(n, parts);
+    while (parts == 2 && bound[1] < n && code[vertex(bound[1])] == code[vertex(bound[1] - 1)])
+      ++bound[1];
+    std::array<std::size_t, 2> kept{0, 0};
+    for_parts(parts, [&](std::size_t q) {
+      const std::size_t begin = bound[q], end = bound[q + 1];
+      std::size_t out = begin;
+      std::uint64_t last_code = 0;
+      Vec3 last_pos;
+      // The gathers' addresses are known ahead: fetched kAhead vertices early.
+      constexpr std::size_t kAhead = 16;
+      for (std::size_t i = begin; i < end; ++i) {
+        if (i + kAhead < end) {
+          const std::uint32_t ahead = vertex(i + kAhead);
+          __builtin_prefetch(&code[ahead]);
+          __builtin_prefetch(&mesh.positions[ahead]);
+          __builtin_prefetch(&node_of[ahead], 1);
+        }
+        const std::uint32_t v = vertex(i);
+        const std::uint64_t c = code[v];
+        const Vec3& p = mesh.positions[v];
+        if (i == begin || c != last_code || p != last_pos) {
+          cut.pos[out] = p;
+          cut.orig[out] = v;
+          cut.code[out] = c;
+          ++out;
+          last_code = c;
+          last_pos = p;
+        }
+        node_of[v] = static_cast<std::uint32_t>(out - 1);
       }
-      const std::uint32_t v = vertex(i);
-      const std::uint64_t c = code[v];
-      const Vec3& p = mesh.positions[v];
-      if (i == 0 || c != last_code || p != last_pos) {
-        cut.pos[count] = p;
-        cut.orig[count] = v;
-        cut.code[count] = c;
-        ++count;
-        last_code = c;
-        last_pos = p;
+      kept[q] = out - begin;
+    });
+    std::size_t count = kept[0];
+    if (parts == 2) {
+      if (const std::size_t gap = bound[1] - kept[0]; gap != 0) {
+        auto move_down = [&](auto& array) {
+          std::copy_n(array.begin() + bound[1], kept[1], array.begin() + kept[0]);
+        };
+        move_down(cut.pos);
+        move_down(cut.orig);
+        move_down(cut.code);
+        for_chunks(n - bound[1], [&](std::size_t lo, std::size_t hi) {
+          for (std::size_t i = bound[1] + lo; i < bound[1] + hi; ++i) node_of[vertex(i)] -= gap;
+        });
       }
-      node_of[v] = static_cast<std::uint32_t>(count - 1);
+      count += kept[1];
     }
     cut.pos.resize(count);
     cut.orig.resize(count);
@@ -1463,6 +1492,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     mapped.resize(nf);
     std::array<Buffer<std::uint32_t>, 2> at;  // per part and vertex: count, then next slot
     std::array<Buffer<Segment>, 2> part_lines;
+    std::array<std::size_t, 2> collapsed{0, 0};  // triangles with equal corners, per part
     for_parts(parts, [&](std::size_t q) {
       at[q].assign(count, 0);
       for (std::size_t f = tri_bound[q]; f < tri_bound[q + 1]; ++f) {
@@ -1471,7 +1501,10 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
         mapped[f] = t;
         if (distinct(t)) {
           ++at[q][std::min({t[0], t[1], t[2]})];
-        } else if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
+          continue;
+        }
+        ++collapsed[q];
+        if (!options.no_lines && (t[0] != t[1] || t[1] != t[2])) {
           std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
           part_lines[q].push_back({std::min(t[0], other), std::max(t[0], other)});
         }
@@ -1533,15 +1566,25 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     cut.tris.resize(kept[0] + kept[1]);
     cut.tri_origin.resize(kept[0] + kept[1]);
     finish_faces(mesh.lines, node_of, count, line_candidates, cut, remap_scratch);
-    compact_vertices(count, number_used_vertices(count, cut, remap_scratch), cut, remap_scratch);
+    // Every vertex is a corner of an input triangle or an end of an input
+    // line (validate); when no triangle collapsed and there are no lines,
+    // each is a corner of a kept triangle (a doublet's corners are those of
+    // the one kept) and there is nothing to drop.
+    if (collapsed[0] + collapsed[1] != 0 || !mesh.lines.empty())
+      compact_vertices(count, number_used_vertices(count, cut, remap_scratch), cut, remap_scratch);
   }
   // The input vertices still represented, by their level-0 vertex (the
-  // input vertices of one level-0 vertex share its position exactly): their
-  // positions (level 0's, kept when the first level replaces them; until
-  // then cut.pos) and current vertices (until the first level, the identity),
-  // for the displacement of each level.
+  // input vertices of one level-0 vertex share its position exactly), for
+  // the displacement of each level: level 0's positions (kept when the first
+  // level replaces them; until then cut.pos). Cells are runs of the previous
+  // level's vertices in octree order and level 0 is in octree order, so
+  // every vertex of a level stands for a run of level-0 vertices:
+  // [level0_start[k], level0_start[k + 1]) for vertex k (until the first
+  // level, [k, k + 1)), of which those a dropped vertex stood for are no
+  // longer represented (level0_alive = 0).
   Buffer<Vec3> input_pos;
-  Buffer<std::uint32_t> input_node;
+  Buffer<std::uint32_t> level0_start, next_start;
+  Buffer<std::uint8_t> level0_alive;
   node_of = {};
   order = {};
   code = {};
@@ -1747,27 +1790,51 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
                     fmt::format("the level at octree depth {} would be empty", depth));
 
     // The largest displacement of a represented input vertex, in double: a
-    // float square overflows for coordinates beyond ~1.8e19. Each input
-    // vertex moves on to its new vertex in place (on an early return below
-    // the map is not read again).
-    const bool first_level = input_node.empty();
-    if (first_level) input_node.resize(n_prev);
+    // float square overflows for coordinates beyond ~1.8e19. Cell by cell,
+    // over the level-0 vertices it stands for (read in sequence), in tasks
+    // of about kErrorChunk of them; the cells' runs of level-0 vertices give
+    // the new level's (on an early return below they are not read again).
+    const bool first_level = level0_start.empty();
+    if (first_level) level0_alive.assign(n_prev, 1);
     const Buffer<Vec3>& level0_pos = first_level ? cut.pos : input_pos;
+    const std::size_t n0 = level0_alive.size();
+    auto level0_begin = [&](std::uint32_t k) {  // k <= n_prev
+      return first_level ? k : level0_start[k];
+    };
+    next_start.resize(kept_cells + 1);
     std::atomic<double> largest2{0};
-    for_chunks(input_node.size(), [&](std::size_t lo, std::size_t hi) {
+    constexpr std::size_t kErrorChunk = 4096;
+    const std::size_t grain = std::max<std::size_t>(1, cells * kErrorChunk / n0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, grain), [&](const auto& r) {
       double error2 = 0;
-      for (std::size_t i = lo; i < hi; ++i) {
-        const std::uint32_t current = first_level ? static_cast<std::uint32_t>(i) : input_node[i];
-        const std::uint32_t n = current == kNone ? kNone : keep[cell_of[current]];
-        input_node[i] = n;
-        if (n == kNone) continue;
-        const Vec3 d = level0_pos[i] - next.pos[n];
-        error2 = std::max(error2, double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+      for (std::size_t j = r.begin(); j < r.end(); ++j) {
+        const std::uint32_t i0 = level0_begin(cell_begin[j]), i1 = level0_begin(cell_begin[j + 1]);
+        const std::uint32_t n = keep[j];
+        if (n == kNone) {
+          std::fill(level0_alive.begin() + i0, level0_alive.begin() + i1, 0);
+          continue;
+        }
+        next_start[n] = i0;
+        const Vec3 p = next.pos[n];
+        auto displacement2 = [&](std::uint32_t i) {  // 0 for a vertex no longer represented
+          const Vec3 d = level0_pos[i] - p;
+          const double e2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+          return level0_alive[i] ? e2 : 0.0;
+        };
+        // Four maxima side by side: one would chain every vertex to the last.
+        double m[4] = {error2, 0, 0, 0};
+        std::uint32_t i = i0;
+        for (; i + 4 <= i1; i += 4)
+          for (std::uint32_t u = 0; u < 4; ++u) m[u] = std::max(m[u], displacement2(i + u));
+        for (; i < i1; ++i) m[0] = std::max(m[0], displacement2(i));
+        error2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
       }
       double seen = largest2.load(std::memory_order_relaxed);
       while (error2 > seen && !largest2.compare_exchange_weak(seen, error2)) {
       }
     });
+    next_start[kept_cells] = static_cast<std::uint32_t>(n0);
+    std::swap(level0_start, next_start);
     const float error = float(std::sqrt(largest2.load()));
     if (error > max_error)
       return finish(

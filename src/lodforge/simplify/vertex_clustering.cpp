@@ -275,9 +275,12 @@ int common_depth(std::uint64_t a, std::uint64_t b) {
 // -------------------------------------------------------------------- quadrics
 
 /// Q(x) = x^T A x - 2 b.x + c, A symmetric (a00 a01 a02 a11 a12 a22).
+/// Without member initialisers, so that a Buffer of them resizes without
+/// writing (a level's quadrics are written in parallel passes): Quadric{} is
+/// the zero quadric.
 struct Quadric {
-  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
-  double b0 = 0, b1 = 0, b2 = 0, c = 0;
+  double a00, a01, a02, a11, a12, a22;
+  double b0, b1, b2, c;
 
   Quadric& operator+=(const Quadric& o) {
     a00 += o.a00;
@@ -349,7 +352,7 @@ void add_plane_quadrics(std::span<const Vec3> pos, std::span<const Triangle> tri
 #endif
     for (; i < n; ++i) s[i] = 0.5 / sqrt_nonnegative(len2[i]);
     for (i = 0; i < n; ++i) {
-      Quadric k;
+      Quadric k{};
       if (len2[i] > 0) {
         const double sx = s[i] * nx[i], sy = s[i] * ny[i], sz = s[i] * nz[i];
         k.a00 = sx * nx[i];
@@ -1672,6 +1675,14 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
 
     // The cells at `depth`: runs of vertices in octree order (numbered in
     // the same parts; the second part's first cell follows the first's).
+    // Each cell's quadric: the sum of its vertices' (a vertex's is the sum of
+    // the plane quadrics of the input triangles around it). Level 0 keeps
+    // none: the first level adds each distinct triangle's plane quadric to
+    // the cells of its three corners directly (level 0 positions are the
+    // input's), which writes a third of the memory; its quadrics start at
+    // zero, each part zeroing those of its cells.
+    const bool quadrics_from_triangles = quadrics && cut.quadric.empty();
+    if (quadrics) next.quadric.resize(cells);
     cell_of.resize(n_prev);
     cell_begin.resize(cells + 1);
     std::size_t first_part_cells = 1;
@@ -1684,6 +1695,10 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
           cell_begin[++cell] = static_cast<std::uint32_t>(i);
         cell_of[i] = cell;
       }
+      if (quadrics_from_triangles) {
+        const std::size_t first = q == 0 ? 0 : first_part_cells;
+        std::fill(next.quadric.begin() + first, next.quadric.begin() + (cell + 1), Quadric{});
+      }
     });
     cell_begin[cells] = static_cast<std::uint32_t>(n_prev);
 
@@ -1692,13 +1707,6 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     next.weight.resize(cells);
     next.orig.resize(cells);
     next.code.resize(cells);
-    // Each cell's quadric: the sum of its vertices' (a vertex's is the sum of
-    // the plane quadrics of the input triangles around it). Level 0 keeps
-    // none: the first level adds each distinct triangle's plane quadric to
-    // the cells of its three corners directly (level 0 positions are the
-    // input's), which writes a third of the memory.
-    const bool quadrics_from_triangles = quadrics && cut.quadric.empty();
-    if (quadrics) next.quadric.assign(cells, Quadric{});
     // The triangles with their corners mapped to the new cells (read three
     // times below).
     mapped.resize(cut.tris.size());
@@ -1768,7 +1776,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
           continue;
         }
         if (quadrics && !quadrics_from_triangles) {
-          Quadric sum;
+          Quadric sum{};
           for (std::uint32_t i = b; i < e; ++i) sum += cut.quadric[i];
           next.quadric[j] = sum;
         }

@@ -1486,7 +1486,9 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // vertices, scatters the triangles of their runs and squeezes the
     // doublets out of them, in place, run by run (each vertex's run is known
     // from the counts, so there is no looking for runs); the second half of
-    // the runs then moves up if the first lost doublets.
+    // the runs then moves up if the first lost doublets. The first pass also
+    // lists, per half of the vertices, the distinct triangles whose smallest
+    // corner lies there, so that the second reads only its own.
     const std::size_t count = cut.pos.size();
     const std::size_t nf = mesh.triangles.size();
     const std::size_t parts = parts_of(nf);
@@ -1496,14 +1498,25 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     std::array<Buffer<std::uint32_t>, 2> at;  // per part and vertex: count, then next slot
     std::array<Buffer<Segment>, 2> part_lines;
     std::array<std::size_t, 2> collapsed{0, 0};  // triangles with equal corners, per part
+    const std::array<std::size_t, 3> vertex_bound = halves(count, parts);
+    // [part][vertex half]: the distinct triangles of the part whose smallest
+    // corner lies in the half, in order (sized for all of the part's).
+    std::array<std::array<Buffer<std::uint32_t>, 2>, 2> own;
+    std::array<std::array<std::size_t, 2>, 2> owned{};
     for_parts(parts, [&](std::size_t q) {
       at[q].assign(count, 0);
+      for (Buffer<std::uint32_t>& list : own[q]) list.resize(tri_bound[q + 1] - tri_bound[q]);
+      std::uint32_t* list[2] = {own[q][0].data(), own[q][1].data()};
+      std::size_t listed[2] = {0, 0};
       for (std::size_t f = tri_bound[q]; f < tri_bound[q + 1]; ++f) {
         const Triangle& input = mesh.triangles[f];
         const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
         mapped[f] = t;
         if (distinct(t)) {
-          ++at[q][std::min({t[0], t[1], t[2]})];
+          const std::uint32_t lo = std::min({t[0], t[1], t[2]});
+          ++at[q][lo];
+          const std::size_t h = lo >= vertex_bound[1];
+          list[h][listed[h]++] = static_cast<std::uint32_t>(f);
           continue;
         }
         ++collapsed[q];
@@ -1512,6 +1525,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
           part_lines[q].push_back({std::min(t[0], other), std::max(t[0], other)});
         }
       }
+      owned[q] = {listed[0], listed[1]};
     });
     for (const Buffer<Segment>& l : part_lines)
       line_candidates.insert(line_candidates.end(), l.begin(), l.end());
@@ -1521,10 +1535,9 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     cut.tris.resize(total);
     cut.tri_origin.resize(total);
     // Each part then takes one half of the vertices: it scatters the
-    // triangles whose smallest corner lies there (reading all of them: the
-    // parts write to separate memory, where scattering each its half of the
-    // triangles shared cache lines in every run) and squeezes their runs.
-    const std::array<std::size_t, 3> vertex_bound = halves(count, parts);
+    // triangles whose smallest corner lies there (from both parts' lists:
+    // the parts write to separate memory, where scattering each its half of
+    // the triangles shared cache lines in every run) and squeezes their runs.
     std::array<std::size_t, 2> first{0, 0}, kept{0, 0};  // each part's runs
     if (parts == 2) first[1] = vertex_bound[1] < count ? at[0][vertex_bound[1]] : total;
     // Once scattered, the last part's counters hold where each run ends.
@@ -1532,14 +1545,16 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     RemapScratch second_scratch;
     for_parts(parts, [&](std::size_t q) {
       const std::size_t v0 = vertex_bound[q], v1 = vertex_bound[q + 1];
-      for (std::size_t f = 0; f < nf; ++f) {
-        const Triangle& t = mapped[f];
-        if (!distinct(t)) continue;
-        const std::uint32_t lo = std::min({t[0], t[1], t[2]});
-        if (lo < v0 || lo >= v1) continue;
-        const std::uint32_t slot = at[f >= tri_bound[1]][lo]++;
-        cut.tris[slot] = t;
-        cut.tri_origin[slot] = static_cast<std::uint32_t>(f);
+      for (std::size_t p = 0; p < parts; ++p) {
+        Buffer<std::uint32_t>& counter = at[p];
+        const std::uint32_t* list = own[p][q].data();
+        for (std::size_t k = 0; k < owned[p][q]; ++k) {
+          const std::uint32_t f = list[k];
+          const Triangle& t = mapped[f];
+          const std::uint32_t slot = counter[std::min({t[0], t[1], t[2]})]++;
+          cut.tris[slot] = t;
+          cut.tri_origin[slot] = f;
+        }
       }
       std::size_t begin = first[q], out = first[q];
       for (std::size_t v = v0; v < v1; ++v) {

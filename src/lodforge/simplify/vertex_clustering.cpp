@@ -134,7 +134,7 @@ std::uint32_t compact_bits(std::uint64_t x) {
 /// a task costs more than it saves). A part writes memory of its own: where
 /// both parts' writes meet in cache lines (the radix sort's buckets, the runs
 /// of a counting sort split by triangles), two threads were slower than one.
-constexpr std::size_t kTwoParts = 16384;
+constexpr std::size_t kTwoParts = 4096;
 
 /// How many parts an array of n items is processed in: 1 or 2.
 std::size_t parts_of(std::size_t n) {
@@ -454,7 +454,8 @@ struct RemapScratch {
   Buffer<Entry> run;
   Buffer<Triangle> run_tris;
   Buffer<std::uint32_t> run_origin;
-  Buffer<std::uint32_t> off, upper;  // vertex -> larger neighbours (when there are lines)
+  Buffer<std::uint32_t> run_start;   // vertex -> its run of kept triangles (when there are lines)
+  Buffer<std::uint32_t> off, upper;  // vertex -> the larger ends of the third edges at it
   Buffer<Segment> not_edges;
   SegmentSet seen_lines;
   Buffer<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
@@ -661,26 +662,41 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
   }
 
   if (!line_candidates.empty()) {
-    // For "a line equal to an edge of a triangle": the edges of the kept
-    // triangles, each listed at its smaller vertex as its larger one (counts
-    // into off[v + 1], starts, fill with off[v]++, shift back), so a line
-    // (lo, hi) is an edge exactly when hi is in lo's list, read in sequence.
+    // For "a line equal to an edge of a triangle": the kept triangles come
+    // sorted by smallest corner, so a line (lo, hi) is an edge of one of
+    // them exactly when hi is a corner of one in lo's run (those whose
+    // smallest corner is lo) or (lo, hi) is the third edge of one (the edge
+    // away from its smallest corner, of a triangle whose smallest corner is
+    // below lo). The runs: run_start[v + 1] is first set to one past the
+    // last triangle whose smallest corner is v (0 when there is none), then
+    // to the largest such value up to v. The third edges: each listed at its
+    // smaller end as its larger one (counts into off[v + 1], starts, fill
+    // with off[v]++, shift back).
+    auto& run_start = scratch.run_start;
     auto& off = scratch.off;
     auto& upper = scratch.upper;
+    run_start.assign(new_count + 1, 0);
     off.assign(new_count + 1, 0);
-    auto edges = [&](const Triangle& t, auto&& add) {
-      add(t[0], t[1]);
-      add(t[1], t[2]);
-      add(t[2], t[0]);
-    };
-    for (const Triangle& t : to.tris)
-      edges(t, [&](std::uint32_t x, std::uint32_t y) { ++off[std::min(x, y) + 1]; });
-    for (std::size_t v = 0; v < new_count; ++v) off[v + 1] += off[v];
+    const auto nt = static_cast<std::uint32_t>(to.tris.size());
+    for (std::uint32_t f = 0; f < nt; ++f) {
+      const Triangle& t = to.tris[f];
+      const std::uint32_t lo = std::min({t[0], t[1], t[2]});
+      assert(f == 0 || lo >= std::min({to.tris[f - 1][0], to.tris[f - 1][1], to.tris[f - 1][2]}));
+      run_start[lo + 1] = f + 1;
+      // The third edge's smaller end: the middle corner.
+      ++off[std::max(std::min(t[0], t[1]), std::min(std::max(t[0], t[1]), t[2])) + 1];
+    }
+    for (std::size_t v = 0; v < new_count; ++v) {
+      run_start[v + 1] = std::max(run_start[v + 1], run_start[v]);
+      off[v + 1] += off[v];
+    }
     upper.resize(off[new_count]);
-    for (const Triangle& t : to.tris)
-      edges(t, [&](std::uint32_t x, std::uint32_t y) {
-        upper[off[std::min(x, y)]++] = std::max(x, y);
-      });
+    for (const Triangle& t : to.tris) {
+      const std::uint32_t hi = std::max({t[0], t[1], t[2]});
+      const std::uint32_t mid =
+          std::max(std::min(t[0], t[1]), std::min(std::max(t[0], t[1]), t[2]));
+      upper[off[mid]++] = hi;
+    }
     std::copy_backward(off.begin(), off.end() - 1, off.end());
     off[0] = 0;
     // Most candidates are edges of kept triangles: the set of lines seen is
@@ -689,6 +705,10 @@ void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t>
     not_edges.clear();
     for (const Segment& s : line_candidates) {
       bool is_edge = false;
+      for (std::uint32_t f = run_start[s[0]]; f < run_start[s[0] + 1]; ++f) {
+        const Triangle& t = to.tris[f];
+        is_edge |= (t[0] == s[1]) | (t[1] == s[1]) | (t[2] == s[1]);
+      }
       for (std::uint32_t k = off[s[0]]; k < off[s[0] + 1]; ++k) is_edge |= upper[k] == s[1];
       if (!is_edge) not_edges.push_back(s);
     }
@@ -1602,6 +1622,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
   // longer represented (level0_alive = 0).
   Buffer<Vec3> input_pos;
   Buffer<std::uint32_t> level0_start, next_start;
+  Buffer<double> reach, next_reach;
   Buffer<std::uint8_t> level0_alive;
   node_of = {};
   order = {};
@@ -1817,6 +1838,13 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // over the level-0 vertices it stands for (read in sequence), in tasks
     // of about kErrorChunk of them; the cells' runs of level-0 vertices give
     // the new level's (on an early return below they are not read again).
+    // Each vertex of a level keeps a bound on the distance from it to the
+    // level-0 vertices it stands for (`reach`), so the level-0 vertices of
+    // a previous vertex k in cell j are within |p_j - p_k| + reach_k of the
+    // new position p_j (with a margin for rounding); when that is no more
+    // than the largest displacement found so far, they are not read. The
+    // largest displacement is still exact: only vertices that cannot exceed
+    // it are left out.
     const bool first_level = level0_start.empty();
     if (first_level) level0_alive.assign(n_prev, 1);
     const Buffer<Vec3>& level0_pos = first_level ? cut.pos : input_pos;
@@ -1825,32 +1853,54 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       return first_level ? k : level0_start[k];
     };
     next_start.resize(kept_cells + 1);
+    next_reach.resize(kept_cells);
     std::atomic<double> largest2{0};
     constexpr std::size_t kErrorChunk = 4096;
+    constexpr double kMargin = 1 + 1e-5;  // float rounding of a difference: 2^-24 relative
     const std::size_t grain = std::max<std::size_t>(1, cells * kErrorChunk / n0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, grain), [&](const auto& r) {
-      double error2 = 0;
+      double error2 = largest2.load(std::memory_order_relaxed);
       for (std::size_t j = r.begin(); j < r.end(); ++j) {
-        const std::uint32_t i0 = level0_begin(cell_begin[j]), i1 = level0_begin(cell_begin[j + 1]);
         const std::uint32_t n = keep[j];
         if (n == kNone) {
+          const std::uint32_t i0 = level0_begin(cell_begin[j]);
+          const std::uint32_t i1 = level0_begin(cell_begin[j + 1]);
           std::fill(level0_alive.begin() + i0, level0_alive.begin() + i1, 0);
           continue;
         }
-        next_start[n] = i0;
+        next_start[n] = level0_begin(cell_begin[j]);
         const Vec3 p = next.pos[n];
         auto displacement2 = [&](std::uint32_t i) {  // 0 for a vertex no longer represented
           const Vec3 d = level0_pos[i] - p;
           const double e2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
           return level0_alive[i] ? e2 : 0.0;
         };
-        // Four maxima side by side: one would chain every vertex to the last.
-        double m[4] = {error2, 0, 0, 0};
-        std::uint32_t i = i0;
-        for (; i + 4 <= i1; i += 4)
-          for (std::uint32_t u = 0; u < 4; ++u) m[u] = std::max(m[u], displacement2(i + u));
-        for (; i < i1; ++i) m[0] = std::max(m[0], displacement2(i));
-        error2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+        // The largest displacement of [i0, i1); four maxima side by side:
+        // one would chain every vertex to the last.
+        auto largest = [&](std::uint32_t i0, std::uint32_t i1) {
+          double m[4] = {0, 0, 0, 0};
+          std::uint32_t i = i0;
+          for (; i + 4 <= i1; i += 4)
+            for (std::uint32_t u = 0; u < 4; ++u) m[u] = std::max(m[u], displacement2(i + u));
+          for (; i < i1; ++i) m[0] = std::max(m[0], displacement2(i));
+          const double k2 = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+          error2 = std::max(error2, k2);
+          return std::sqrt(k2) * kMargin;
+        };
+        if (first_level) {  // one level-0 vertex per previous vertex: no bound to check
+          next_reach[n] = largest(cell_begin[j], cell_begin[j + 1]);
+          continue;
+        }
+        double cell_reach = 0;
+        for (std::uint32_t k = cell_begin[j]; k < cell_begin[j + 1]; ++k) {
+          const Vec3& q = cut.pos[k];
+          const double dx = double(q.x) - p.x, dy = double(q.y) - p.y, dz = double(q.z) - p.z;
+          const double bound = (std::sqrt(dx * dx + dy * dy + dz * dz) + reach[k]) * kMargin;
+          cell_reach = std::max(cell_reach, bound * bound <= error2
+                                                ? bound
+                                                : largest(level0_start[k], level0_start[k + 1]));
+        }
+        next_reach[n] = cell_reach;
       }
       double seen = largest2.load(std::memory_order_relaxed);
       while (error2 > seen && !largest2.compare_exchange_weak(seen, error2)) {
@@ -1858,6 +1908,7 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     });
     next_start[kept_cells] = static_cast<std::uint32_t>(n0);
     std::swap(level0_start, next_start);
+    std::swap(reach, next_reach);
     const float error = float(std::sqrt(largest2.load()));
     if (error > max_error)
       return finish(

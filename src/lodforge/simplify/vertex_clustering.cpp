@@ -461,12 +461,10 @@ struct RemapScratch {
   Buffer<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
 };
 
-/// Sorts the run [tris, tris + n) of triangles whose smallest corner is
-/// `vertex` (and their origins) by canonical rotation (`vertex` first,
-/// orientation kept; ties in run order) and squeezes out the doublets (equal
-/// rotations: the first stays); returns how many are left, at the front.
-std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std::uint32_t vertex,
-                       RemapScratch& scratch) {
+/// dedupe_run (below) for any n: out of line, for the runs of more than
+/// three triangles and those with doublets.
+[[gnu::noinline]] std::size_t dedupe_long_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
+                                              std::uint32_t vertex, RemapScratch& scratch) {
   using Entry = RemapScratch::Entry;
   // The canonical rotation's last two corners as one 64-bit key (compared
   // lexicographically); selects, not branches: which corner is `vertex` is data.
@@ -477,18 +475,6 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     return std::uint64_t(k1) << 32 | k2;
   };
   if (n < 2) return n;
-  if (n == 2) {  // the commonest run: its order by stores to computed slots, not a branch
-    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);
-    if (k0 == k1) return 1;
-    const std::size_t second = k1 < k0;  // where the first goes
-    const Triangle t0 = tris[0], t1 = tris[1];
-    const std::uint32_t o0 = origin[0], o1 = origin[1];
-    tris[second] = t0;
-    tris[1 - second] = t1;
-    origin[second] = o0;
-    origin[1 - second] = o1;
-    return 2;
-  }
   // Up to 8 without doublets (nearly every run): each triangle goes to its
   // rank among the keys, counted without branches (an insertion sort's
   // swaps are data the branch predictor cannot learn).
@@ -566,6 +552,53 @@ std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std
     ++out;
   }
   return out;
+}
+
+/// Sorts the run [tris, tris + n) of triangles whose smallest corner is
+/// `vertex` (and their origins) by canonical rotation (`vertex` first,
+/// orientation kept; ties in run order) and squeezes out the doublets (equal
+/// rotations: the first stays); returns how many are left, at the front.
+/// Runs of two and three (nine in ten) are inlined into the callers.
+inline std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
+                              std::uint32_t vertex, RemapScratch& scratch) {
+  // The canonical rotation's last two corners as one 64-bit key (compared
+  // lexicographically); selects, not branches: which corner is `vertex` is data.
+  auto key = [&](const Triangle& t) -> std::uint64_t {
+    const bool first = t[0] == vertex, second = t[1] == vertex;
+    const std::uint32_t k1 = first ? t[1] : second ? t[2] : t[0];
+    const std::uint32_t k2 = first ? t[2] : second ? t[0] : t[1];
+    return std::uint64_t(k1) << 32 | k2;
+  };
+  if (n < 2) return n;
+  if (n == 2) {  // the commonest run: its order by stores to computed slots, not a branch
+    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);
+    if (k0 == k1) return 1;
+    const std::size_t second = k1 < k0;  // where the first goes
+    const Triangle t0 = tris[0], t1 = tris[1];
+    const std::uint32_t o0 = origin[0], o1 = origin[1];
+    tris[second] = t0;
+    tris[1 - second] = t1;
+    origin[second] = o0;
+    origin[1 - second] = o1;
+    return 2;
+  }
+  if (n == 3) {  // each to its rank among the keys
+    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]), k2 = key(tris[2]);
+    if (k0 != k1 && k0 != k2 && k1 != k2) {
+      const std::size_t r0 = (k1 < k0) + (k2 < k0), r1 = (k0 < k1) + (k2 < k1),
+                        r2 = (k0 < k2) + (k1 < k2);
+      const Triangle t0 = tris[0], t1 = tris[1], t2 = tris[2];
+      const std::uint32_t o0 = origin[0], o1 = origin[1], o2 = origin[2];
+      tris[r0] = t0;
+      tris[r1] = t1;
+      tris[r2] = t2;
+      origin[r0] = o0;
+      origin[r1] = o1;
+      origin[r2] = o2;
+      return 3;
+    }
+  }
+  return dedupe_long_run(tris, origin, n, vertex, scratch);
 }
 
 void finish_faces(std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,

@@ -1371,16 +1371,26 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
       for (std::size_t v = v0; v < v1; ++v) used[v] |= second[v];
     float lo[3] = {part[q].box.lo.x, part[q].box.lo.y, part[q].box.lo.z};
     float hi[3] = {part[q].box.hi.x, part[q].box.hi.y, part[q].box.hi.z};
+    // Without branches on the data: an unused vertex takes the part of a
+    // coordinate already in the box; finiteness is summed (x - x is 0 for a
+    // finite x, NaN otherwise) and the first offender looked for only then.
+    float not_finite = 0;
     for (std::size_t v = v0; v < v1; ++v) {
-      if (!used[v]) continue;
       const Vec3& p = mesh.positions[v];
-      if (!is_finite(p)) {
-        part[q].non_finite = v;
-        break;
-      }
+      const bool in = used[v] != 0;
       for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a]);
+        const float x = p[a];
+        not_finite += in ? x - x : 0.0f;
+        lo[a] = std::min(lo[a], in ? x : lo[a]);
+        hi[a] = std::max(hi[a], in ? x : hi[a]);
+      }
+    }
+    if (not_finite != 0 || std::isnan(not_finite)) {
+      for (std::size_t v = v0; v < v1; ++v) {
+        if (used[v] && !is_finite(mesh.positions[v])) {
+          part[q].non_finite = v;
+          break;
+        }
       }
     }
     part[q].box.lo = {lo[0], lo[1], lo[2]};

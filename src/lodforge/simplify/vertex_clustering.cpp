@@ -461,19 +461,23 @@ struct RemapScratch {
   Buffer<std::uint32_t> keep;  ///< the result: new vertex -> kept index or kNone
 };
 
+/// The last two corners of triangle t's rotation that starts at its corner
+/// `vertex` (orientation kept), as one 64-bit key (compared
+/// lexicographically); selects, not branches: which corner is `vertex` is
+/// data.
+inline std::uint64_t rotation_key(const Triangle& t, std::uint32_t vertex) {
+  const bool first = t[0] == vertex, second = t[1] == vertex;
+  const std::uint32_t k1 = first ? t[1] : second ? t[2] : t[0];
+  const std::uint32_t k2 = first ? t[2] : second ? t[0] : t[1];
+  return std::uint64_t(k1) << 32 | k2;
+}
+
 /// dedupe_run (below) for any n: out of line, for the runs of more than
 /// three triangles and those with doublets.
 [[gnu::noinline]] std::size_t dedupe_long_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
                                               std::uint32_t vertex, RemapScratch& scratch) {
   using Entry = RemapScratch::Entry;
-  // The canonical rotation's last two corners as one 64-bit key (compared
-  // lexicographically); selects, not branches: which corner is `vertex` is data.
-  auto key = [&](const Triangle& t) -> std::uint64_t {
-    const bool first = t[0] == vertex, second = t[1] == vertex;
-    const std::uint32_t k1 = first ? t[1] : second ? t[2] : t[0];
-    const std::uint32_t k2 = first ? t[2] : second ? t[0] : t[1];
-    return std::uint64_t(k1) << 32 | k2;
-  };
+  auto key = [&](const Triangle& t) { return rotation_key(t, vertex); };
   if (n < 2) return n;
   // Up to 8 without doublets (nearly every run): each triangle goes to its
   // rank among the keys, counted without branches (an insertion sort's
@@ -561,14 +565,7 @@ struct RemapScratch {
 /// Runs of two and three (nine in ten) are inlined into the callers.
 inline std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
                               std::uint32_t vertex, RemapScratch& scratch) {
-  // The canonical rotation's last two corners as one 64-bit key (compared
-  // lexicographically); selects, not branches: which corner is `vertex` is data.
-  auto key = [&](const Triangle& t) -> std::uint64_t {
-    const bool first = t[0] == vertex, second = t[1] == vertex;
-    const std::uint32_t k1 = first ? t[1] : second ? t[2] : t[0];
-    const std::uint32_t k2 = first ? t[2] : second ? t[0] : t[1];
-    return std::uint64_t(k1) << 32 | k2;
-  };
+  auto key = [&](const Triangle& t) { return rotation_key(t, vertex); };
   if (n < 2) return n;
   if (n == 2) {  // the commonest run: its order by stores to computed slots, not a branch
     const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);

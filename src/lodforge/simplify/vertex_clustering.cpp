@@ -54,6 +54,7 @@
 #include <numeric>
 #include <span>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -804,37 +805,36 @@ struct CellFaces {
 
   /// `mapped`: the triangles with their corners replaced by their cells.
   /// Lists only the cells with `wanted[cell]` (the others get empty lists).
-  /// Branch-free: whether corners share a cell is data the branch predictor
-  /// cannot learn (about half the triangles collapse at a level), so each
-  /// corner adds 0 or 1 (an entry only at a cell's first corner).
   void build(std::span<const Triangle> mapped, std::span<const char> wanted) {
-    const std::size_t cells = wanted.size();
-    start.assign(cells + 1, 0);
-    // Whether each corner starts an entry: its cell is wanted and no earlier
-    // corner of the triangle is in it (0 or 1, for adding).
-    auto adds = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-      const std::uint32_t ab = a != b, ac = a != c, bc = b != c;
-      return std::array<std::uint32_t, 3>{std::uint32_t(wanted[a]), ab & std::uint32_t(wanted[b]),
-                                          ac & bc & std::uint32_t(wanted[c])};
-    };
-    // Count into start[cell + 1], turn the counts into starts, fill with
-    // start[cell]++ (which leaves the starts shifted down by one cell) and
-    // shift them back. A corner that adds nothing writes to a spare last slot.
-    std::uint32_t* count = start.data() + 1;
+    count(mapped, wanted);
+    fill(mapped, wanted);
+  }
+
+  /// build in two passes over the triangles, which may run on different
+  /// threads, one after the other: count into start[cell + 1]; then turn
+  /// the counts into starts, fill with start[cell]++ (which leaves the
+  /// starts shifted down by one cell) and shift them back.
+  void count(std::span<const Triangle> mapped, std::span<const char> wanted) {
+    start.assign(wanted.size() + 1, 0);
+    std::uint32_t* counts = start.data() + 1;
     for (const Triangle& t : mapped) {
-      const auto add = adds(t[0], t[1], t[2]);
-      count[t[0]] += add[0];
-      count[t[1]] += add[1];
-      count[t[2]] += add[2];
+      const auto add = adds(t[0], t[1], t[2], wanted);
+      counts[t[0]] += add[0];
+      counts[t[1]] += add[1];
+      counts[t[2]] += add[2];
     }
+  }
+  void fill(std::span<const Triangle> mapped, std::span<const char> wanted) {
+    const std::size_t cells = wanted.size();
     for (std::size_t j = 0; j < cells; ++j) start[j + 1] += start[j];
+    // A corner that adds nothing writes to a spare last slot.
     const std::uint32_t spare = start[cells];
     entry.resize(spare + 1);
     std::uint32_t* next = start.data();
     std::uint32_t* out = entry.data();
     for (std::size_t f = 0; f < mapped.size(); ++f) {
       const std::uint32_t a = mapped[f][0], b = mapped[f][1], c = mapped[f][2];
-      const auto add = adds(a, b, c);
+      const auto add = adds(a, b, c, wanted);
       // The inside corner's index, or 3 when another corner shares the cell.
       const auto g = static_cast<std::uint32_t>(4 * f);
       const std::uint32_t code[3] = {g + (a == b || a == c ? 3u : 0u),
@@ -850,6 +850,19 @@ struct CellFaces {
     entry.pop_back();
     std::copy_backward(start.begin(), start.end() - 1, start.end());
     start[0] = 0;
+  }
+
+ private:
+  /// Whether each corner starts an entry: its cell is wanted and no earlier
+  /// corner of the triangle is in it (0 or 1, for adding). Branch-free:
+  /// whether corners share a cell is data the branch predictor cannot learn
+  /// (about half the triangles collapse at a level), so each corner adds 0
+  /// or 1 (an entry only at a cell's first corner).
+  static std::array<std::uint32_t, 3> adds(std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                           std::span<const char> wanted) {
+    const std::uint32_t ab = a != b, ac = a != c, bc = b != c;
+    return {std::uint32_t(wanted[a]), ab & std::uint32_t(wanted[b]),
+            ac & bc & std::uint32_t(wanted[c])};
   }
 };
 
@@ -1814,11 +1827,33 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
     // The faces of the new level need only the mapped triangles, not the
     // new vertices: they are remapped beside the quadrics, face lists and
     // choices (a task a free thread takes; one thread runs it at the wait).
+    // At the first level the quadrics and the lists are the longer share of
+    // the two: the remap task starts with the lists' count (when it gets to
+    // it first), so that the other thread, done with quadrics and fill
+    // first, starts on the representatives instead of waiting for the
+    // remap to end. Whoever claims the count does it; the other waits for it
+    // only if it needs it (the remap task never does).
     // Declared after everything it touches, so that on an exception it is
     // waited for before they go.
+    enum : int { kCountFree, kCountClaimed, kCountDone, kCountFailed };
+    std::atomic<int> count_state{kCountFree};
+    const bool count_aside = measure && quadrics_from_triangles;
+    auto claim_count = [&] {
+      int expected = kCountFree;
+      if (!count_state.compare_exchange_strong(expected, kCountClaimed)) return false;
+      try {
+        cell_faces.count(mapped, wanted);
+      } catch (...) {  // (bad_alloc) the waiting thread must not wait forever
+        count_state.store(kCountFailed, std::memory_order_release);
+        throw;
+      }
+      count_state.store(kCountDone, std::memory_order_release);
+      return true;
+    };
     std::size_t kept_cells = 0;
     tbb::task_group remapping;
     remapping.run([&] {
+      if (count_aside) claim_count();
       line_candidates.clear();
       remap_faces(
           cut.tris.size(), [&](std::size_t f) { return mapped[f]; },
@@ -1827,14 +1862,25 @@ std::vector<SimplifyResult> vertex_clustering(const TriangleMesh& mesh,
       kept_cells = number_used_vertices(cells, next, remap_scratch);
       if (pending) fill_result(mesh, cut, *pending);
     });
-    tbb::parallel_invoke(
-        [&] {
-          if (!quadrics_from_triangles) return;
-          add_plane_quadrics(cut.pos, cut.tris, mapped, next.quadric);
-        },
-        [&] {
-          if (measure) cell_faces.build(mapped, wanted);
-        });
+    if (count_aside) {
+      add_plane_quadrics(cut.pos, cut.tris, mapped, next.quadric);
+      if (!claim_count()) {
+        int state;
+        while ((state = count_state.load(std::memory_order_acquire)) == kCountClaimed)
+          std::this_thread::yield();
+        if (state == kCountFailed) remapping.wait();  // rethrows the remap task's exception
+      }
+      cell_faces.fill(mapped, wanted);
+    } else {
+      tbb::parallel_invoke(
+          [&] {
+            if (!quadrics_from_triangles) return;
+            add_plane_quadrics(cut.pos, cut.tris, mapped, next.quadric);
+          },
+          [&] {
+            if (measure) cell_faces.build(mapped, wanted);
+          });
+    }
     const LevelContext ctx{cut, measure ? &cell_faces : nullptr, weights};
     // Cells are independent: each reads the previous level and writes its own slot.
     for_chunks<kCellChunk>(cells, [&](std::size_t lo, std::size_t hi) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 
@@ -327,6 +328,58 @@ TEST(VertexClustering, ErrorIsTheLargestVertexDisplacement) {
     // a level's vertex is within `error` of the original it stands for.
     for (std::size_t v = 0; v < r.mesh.vertex_count(); ++v)
       EXPECT_LE(length(r.mesh.positions[v] - sphere.positions[r.vertex_map[v]]), r.error * 1.0001f);
+  }
+}
+
+/// Each level's error recomputed from scratch: the octree as the
+/// implementation sets it up (the used vertices' box, its largest side, 21
+/// bits per axis), each input vertex's cell at the level's depth (read from
+/// its detail), the level's vertex in that cell (the one whose source vertex
+/// lies there), and the largest distance of an input vertex still stood for
+/// (used, and its cell never lost its vertex) to it. The implementation
+/// skips vertices a bound says cannot be the farthest: its figure must still
+/// be exactly this one.
+TEST(VertexClustering, ErrorIsExactlyTheLargestDisplacement) {
+  for (const TriangleMesh& mesh :
+       {test::make_uv_sphere(32, 16), test::make_icosphere(4), soup(test::make_icosphere(3))}) {
+    const std::vector<SimplifyResult> chain = vertex_clustering(mesh);
+    ASSERT_GE(chain.size(), 3u);
+    Box3 box;
+    std::vector<char> alive(mesh.vertex_count(), 0);
+    for (const Triangle& t : mesh.triangles)
+      for (std::uint32_t v : t) box.add(mesh.positions[v]), alive[v] = 1;
+    const Vec3 size = box.size();
+    const double scale =
+        double(1u << 21) / std::max({double(size.x), double(size.y), double(size.z)});
+    auto cell = [&](const Vec3& p, int depth) {
+      std::uint64_t key = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double q = (double(p[a]) - box.lo[a]) * scale;
+        const auto qi = static_cast<std::uint32_t>(std::min(q, double((1u << 21) - 1)));
+        key = key << 21 | qi >> (21 - depth);
+      }
+      return key;
+    };
+    for (std::size_t l = 1; l < chain.size(); ++l) {
+      const SimplifyResult& r = chain[l];
+      int depth = 0;
+      ASSERT_EQ(std::sscanf(r.stop_detail.c_str(), "octree depth %d", &depth), 1) << r.stop_detail;
+      std::map<std::uint64_t, std::uint32_t> vertex_of;
+      for (std::uint32_t v = 0; v < r.mesh.vertex_count(); ++v)
+        EXPECT_TRUE(vertex_of.emplace(cell(mesh.positions[r.vertex_map[v]], depth), v).second);
+      double largest2 = 0;
+      for (std::uint32_t i = 0; i < mesh.vertex_count(); ++i) {
+        if (!alive[i]) continue;
+        auto it = vertex_of.find(cell(mesh.positions[i], depth));
+        if (it == vertex_of.end()) {
+          alive[i] = 0;
+          continue;
+        }
+        const Vec3 d = mesh.positions[i] - r.mesh.positions[it->second];
+        largest2 = std::max(largest2, double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+      }
+      EXPECT_EQ(r.error, float(std::sqrt(largest2))) << "level " << l << ": " << r.stop_detail;
+    }
   }
 }
 

@@ -1395,7 +1395,7 @@ Box3 validate(const TriangleMesh& mesh, Buffer<std::uint8_t>& used) {
         hi[a] = std::max(hi[a], in ? x : hi[a]);
       }
     }
-    if (not_finite != 0 || std::isnan(not_finite)) {
+    if (not_finite != 0) {  // NaN compares unequal too
       for (std::size_t v = v0; v < v1; ++v) {
         if (used[v] && !is_finite(mesh.positions[v])) {
           part[q].non_finite = v;

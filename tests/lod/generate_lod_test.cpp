@@ -83,18 +83,25 @@ TEST(GenerateLod, BunnySceneLevelsStayWithinTheErrorRangeOnScreen) {
 TEST(GenerateLod, TableB5LowerErrorRangeSwitchesFarther) {
   // The original's Table B.5 behaviour on a generated model: the same levels
   // switch farther away as the error range shrinks (0.1 %, 2 %, 10 %), and
-  // each level's distance grows with its error.
+  // each level's distance grows with its error. Spacing 1 keeps every
+  // candidate, so the levels are the same in all three (up to where each
+  // error range lets the object vanish).
   const std::string text = scene_of(test::make_icosphere(4));
   std::vector<std::vector<float>> ranges;
+  std::vector<std::vector<LevelStatistics>> levels;
   for (float p : {0.001f, 0.02f, 0.10f}) {
-    LodResult r = generate_lod(read(text), {.range = {.error_range = p}, .measure_samples = 20000});
+    LodResult r = generate_lod(
+        read(text), {.range = {.error_range = p}, .level_spacing = 1.0, .measure_samples = 20000});
     ranges.push_back(r.shapes[0].ranges);
+    levels.push_back(r.shapes[0].levels);
     for (std::size_t k = 1; k < r.shapes[0].levels.size(); ++k)
       EXPECT_GT(r.shapes[0].levels[k].error, r.shapes[0].levels[k - 1].error);
   }
-  ASSERT_EQ(ranges[0].size(), ranges[1].size());
-  ASSERT_EQ(ranges[1].size(), ranges[2].size());
-  for (std::size_t i = 0; i < ranges[0].size(); ++i) {
+  // The last range is the vanishing distance; the ones before it are levels'.
+  const std::size_t common = std::min({ranges[0].size(), ranges[1].size(), ranges[2].size()}) - 1;
+  ASSERT_GE(common, 3u);
+  for (std::size_t i = 0; i < common; ++i) {
+    EXPECT_EQ(levels[0][i + 1].triangles, levels[2][i + 1].triangles);
     EXPECT_GT(ranges[0][i], ranges[1][i]);
     EXPECT_GT(ranges[1][i], ranges[2][i]);
   }
@@ -256,6 +263,51 @@ TEST(GenerateLod, BadInputNamesTheLine) {
                  "line 4: IndexedFaceSet coordIndex[2] = 7 is out of range (the current "
                  "Coordinate3 has 3 points)");
   }
+}
+
+// A group USEd three times (forest-style placement) draws its shape three
+// times: occurrences and the triangles-by-distance table count each instance,
+// each with the ranges of the LOD node it draws.
+TEST(GenerateLod, InstancesOfAUsedGroupAreCounted) {
+  std::string ball = scene_of(test::make_icosphere(2));
+  std::string text =
+      "#VRML V1.0 ascii\nSeparator {\nDEF Tree " + ball.substr(ball.find("Separator"));
+  text += "Translation { translation 5 0 0 } USE Tree\n";
+  text += "Translation { translation 5 0 0 } Scale { scaleFactor 3 3 3 } USE Tree\n}\n";
+  LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  ASSERT_EQ(r.shapes.size(), 1u);
+  const ShapeStatistics& s = r.shapes[0];
+  EXPECT_EQ(s.occurrences, 3u);
+  EXPECT_DOUBLE_EQ(s.scale, 3.0);
+  ASSERT_FALSE(r.triangles_by_distance.empty());
+  EXPECT_EQ(r.triangles_by_distance.front().first, 0.0);
+  EXPECT_EQ(r.triangles_by_distance.front().second, 3 * s.levels[0].triangles);
+  // Far enough away every instance is gone.
+  EXPECT_EQ(r.triangles_by_distance.back().second, 0u);
+}
+
+// Whole chains spaced by what a viewer notices: the bunny-like smooth sphere
+// reaches a few percent of its triangles, and every kept level is shown over
+// at least 1.25x of distance (the last one before the object vanishes).
+TEST(GenerateLod, ChainReachesACoarseLevelAndLevelsAreSpaced) {
+  const std::string text = scene_of(test::make_icosphere(5));
+  LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  ASSERT_EQ(r.shapes.size(), 1u);
+  const ShapeStatistics& s = r.shapes[0];
+  ASSERT_GE(s.levels.size(), 3u);
+  EXPECT_LE(double(s.levels.back().triangles), 0.05 * double(s.levels[0].triangles))
+      << s.stop_reason;
+  ASSERT_EQ(s.ranges.size(), s.levels.size());
+  for (std::size_t i = 1; i < s.ranges.size(); ++i)
+    EXPECT_GE(s.ranges[i], 1.25f * s.ranges[i - 1] * (1 - 1e-6f)) << i;
+  // Switching later than the error allows is safe, never earlier.
+  RangeOptions ro;
+  for (std::size_t k = 1; k < s.levels.size(); ++k)
+    EXPECT_GE(s.ranges[k - 1] * (1 + 1e-6), switch_distance(s.levels[k].error, 1, s.radius, ro));
+  EXPECT_FALSE(s.stop_reason.empty());
+  // Spacing 1 keeps more of the candidates.
+  LodResult dense = generate_lod(read(text), {.level_spacing = 1.0, .measure_samples = 20000});
+  EXPECT_GT(dense.shapes[0].levels.size(), s.levels.size());
 }
 
 }  // namespace

@@ -74,6 +74,18 @@ TEST_P(LodCorpus, OutputIsReadByCoinAndKeepsTheInputAtLevelZero) {
   for (const auto& s : r.shapes)
     for (std::size_t k = 1; k < s.levels.size(); ++k)
       EXPECT_LE(s.levels[k].triangles, s.levels[k - 1].triangles) << s.type << " line " << s.line;
+  // Whole chains: a face set of 200 triangles or more ends at a quarter of
+  // them at most, unless its coarsest level's error is already half of the
+  // error at which the object vanishes (2 r).
+  for (const auto& s : r.shapes) {
+    if (s.type != "IndexedFaceSet" || s.levels.empty() || s.ranges.empty()) continue;
+    if (s.levels[0].triangles < 200) continue;
+    const LevelStatistics& coarsest = s.levels.back();
+    EXPECT_TRUE(4 * coarsest.triangles <= s.levels[0].triangles || coarsest.error >= s.radius)
+        << "line " << s.line << ": " << s.levels[0].triangles << " -> " << coarsest.triangles
+        << " triangles, error " << coarsest.error << " of radius " << s.radius << " ("
+        << s.stop_reason << ")";
+  }
 
   // The deviation of level k from level 0, measured again (another seed, more
   // samples), is within the errors the ranges used. Over the whole scene the

@@ -47,5 +47,55 @@ TEST(SwitchingRanges, ScaleOfTheTransformScalesTheDistance) {
   EXPECT_NEAR(b, 3 * a, 1e-9);
 }
 
+// Candidates with tiny errors crowd just beyond the radius; spacing keeps one
+// level per 1.25x of distance, the coarsest each distance allows, and none the
+// viewer would see over a shorter interval before the object vanishes.
+TEST(SpaceLevels, KeepsTheCoarsestLevelPerSpacedDistance) {
+  const double r = 1;
+  std::vector<double> errors;
+  for (int i = 1; i <= 40; ++i) errors.push_back(1e-4 * std::pow(1.3, i));  // up to ~3.6 r
+  SpacedLevels s = space_levels(errors, r, {}, 1.25);
+  ASSERT_GE(s.levels.size(), 3u);
+  EXPECT_TRUE(s.vanished);
+  const double vanish = switch_distance(vanishing_error(r), 1, r, {});
+  double previous = 0;
+  for (std::size_t i = 0; i < s.levels.size(); ++i) {
+    const SpacedLevel& l = s.levels[i];
+    const double d = switch_distance(l.switch_error, 1, r, {});
+    EXPECT_GE(l.switch_error, errors[l.candidate]);  // never nearer than its error allows
+    if (i > 0) {
+      EXPECT_GE(d, 1.25 * previous * (1 - 1e-9)) << i;
+      EXPECT_GT(l.candidate, s.levels[i - 1].candidate);
+    }
+    // The next candidate would not be allowed yet at this distance.
+    if (l.candidate + 1 < errors.size())
+      EXPECT_GT(switch_distance(errors[l.candidate + 1], 1, r, {}), d * (1 + 1e-12)) << i;
+    previous = d;
+  }
+  EXPECT_LE(1.25 * previous, vanish);
+  // Without spacing every candidate below the vanishing distance is kept.
+  SpacedLevels all = space_levels(errors, r, {}, 1.0);
+  EXPECT_GT(all.levels.size(), s.levels.size());
+  for (std::size_t i = 0; i < all.levels.size(); ++i) EXPECT_EQ(all.levels[i].candidate, i);
+}
+
+TEST(SpaceLevels, ErrorFreeCandidatesCollapseToTheCoarsest) {
+  // A flat patch simplified without error: the coarsest candidate is shown
+  // from the radius on, the finer ones never.
+  std::vector<double> errors = {0, 0, 0, 0};
+  SpacedLevels s = space_levels(errors, 2.0, {});
+  ASSERT_EQ(s.levels.size(), 1u);
+  EXPECT_EQ(s.levels[0].candidate, 3u);
+  EXPECT_DOUBLE_EQ(s.levels[0].switch_error, 0);
+  EXPECT_FALSE(s.vanished);
+}
+
+TEST(SpaceLevels, NothingPastTheVanishingError) {
+  std::vector<double> errors = {3.0, 4.0};  // radius 1: beyond 2 r
+  SpacedLevels s = space_levels(errors, 1.0, {});
+  EXPECT_TRUE(s.levels.empty());
+  EXPECT_TRUE(s.vanished);
+}
+
 }  // namespace
 }  // namespace lodforge

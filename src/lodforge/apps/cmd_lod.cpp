@@ -57,7 +57,7 @@ struct Settings {
   std::vector<std::string> inputs;
   std::string output, out_dir, stats;
   std::string method = "qem", export_flavour = "spec";
-  double error_range_pct = 2, min_diff_pct = 20;
+  double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing;
   double camera_angle = -1, quad_split_angle = 0.174533;
   int levels = 0, threads = 0;
   std::optional<int> extract;
@@ -78,6 +78,7 @@ LodOptions lod_options(const Settings& s) {
     o.camera_angle_given = true;
   }
   o.min_diff = float(s.min_diff_pct / 100.0);
+  o.level_spacing = s.level_spacing;
   o.max_levels = std::size_t(s.levels);
   o.differentiate_by_size = s.by_size;
   o.no_lines = s.no_lines;
@@ -172,7 +173,12 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "Camera height angle in radians (default: first PerspectiveCamera, else pi/4)")
       ->check(CLI::Range(0.0001, 3.14));
   cmd->add_option("--min-diff", s->min_diff_pct,
-                  "Each level keeps at most (100 - PCT) % of the previous")
+                  "Candidate levels: each keeps at most (100 - PCT) % of the previous")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
+  cmd->add_option("--level-spacing", s->level_spacing,
+                  "Automatic mode: keep a level only where it is shown over at least this "
+                  "factor of distance (1 keeps every candidate)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   cmd->add_option("--levels", s->levels, "At most N levels per shape (original and empty included)")

@@ -80,6 +80,7 @@ struct Occurrence {
   std::size_t job;
   double scale;
   Mat4 transform;
+  std::vector<float> ranges;  // of the LOD node written here (empty: none)
 };
 
 struct Job {
@@ -187,8 +188,9 @@ class Pipeline {
       double scale = max_scale_of(v.state.transform);
       auto [oit, new_place] =
           occurrence_of.try_emplace({parent, v.child_index}, occurrences_.size());
+      instances_.push_back(oit->second);
       if (new_place) {
-        occurrences_.push_back({parent, v.child_index, jit->second, scale, v.state.transform});
+        occurrences_.push_back({parent, v.child_index, jit->second, scale, v.state.transform, {}});
       } else {
         // The same place reached again (its group is USEd elsewhere): one
         // subtree serves all, so it takes the largest scale (the farthest ranges).
@@ -307,11 +309,12 @@ class Pipeline {
     LevelChainOptions c;
     c.method = opt_.method;
     c.min_diff = opt_.min_diff;
-    c.max_levels = simplified_max;
     c.measure_samples = opt_.measure_samples;
     c.threads = opt_.threads;
-    if (quality >= 2) {
+    const bool manual = quality >= 2;
+    if (manual) {
       // Manual mode: quality-2 levels, halving the triangles each time.
+      c.max_levels = simplified_max;
       double tcount = double(j.geometry.mesh.triangle_count());
       for (int k = 0; k < quality - 2; ++k) {
         tcount = std::floor(tcount / 2);
@@ -322,18 +325,48 @@ class Pipeline {
     }
     j.stats.method = j.geometry.mesh.triangles.empty() ? "cluster" : to_string(opt_.method);
     std::vector<MeasuredLevel> levels = simplify_levels(j.geometry.mesh, c);
-    const double vanish = vanishing_error(j.radius);
-    for (auto& l : levels) {
-      // A level whose error reaches the object's size is never seen: the
-      // object vanishes first (automatic mode only).
-      if (quality < 0 && l.error >= vanish) break;
+    if (levels.empty()) {
+      j.stats.stop_reason = "nothing could be removed";
+      return;
+    }
+    auto add = [&](MeasuredLevel& l, double switch_error) {
       j.level_nodes.push_back(shape_level_node(j.geometry, l.level.mesh, l.level.vertex_map,
                                                l.level.face_map, opt_.no_lines));
-      j.errors.push_back(l.error);
+      j.errors.push_back(switch_error);
       j.stats.levels.push_back(
           {l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
-      j.stats.stop_reason = to_string(l.level.stop_reason);
+    };
+    const std::string chain_end =
+        std::string(to_string(levels.back().level.stop_reason)) +
+        (levels.back().level.stop_detail.empty() ? "" : ": " + levels.back().level.stop_detail);
+    if (manual) {
+      for (auto& l : levels) add(l, l.error);
+      j.stats.stop_reason = chain_end;
+      return;
     }
+    // Automatic mode: the candidates worth showing, spaced by what a viewer
+    // notices (switch_distance grows by the spacing factor from one kept level
+    // to the next), down to the level after which the object vanishes.
+    std::vector<double> errors;
+    for (const auto& l : levels) errors.push_back(l.error);
+    RangeOptions ro = opt_.range;
+    ro.camera_angle = float(camera_angle_);
+    SpacedLevels spaced = space_levels(errors, j.radius, ro, opt_.level_spacing);
+    std::size_t kept = 0;
+    for (const SpacedLevel& s : spaced.levels) {
+      if (simplified_max && kept == simplified_max) break;
+      add(levels[s.candidate], s.switch_error);
+      ++kept;
+    }
+    if (kept < spaced.levels.size())
+      j.stats.stop_reason = fmt::format("level limit ({} levels)", opt_.max_levels);
+    else if (spaced.vanished)
+      j.stats.stop_reason = fmt::format(
+          "vanishing error: a coarser level would be seen over less than {}x the distance before "
+          "the object vanishes (error 2 r)",
+          opt_.level_spacing);
+    else
+      j.stats.stop_reason = chain_end;
   }
 
   // The measured deviation of a primitive's tessellation at `segments` from
@@ -389,7 +422,7 @@ class Pipeline {
   }
 
   // The subtree that replaces one occurrence.
-  NodePtr subtree(Job& j, const Occurrence& o) {
+  NodePtr subtree(Job& j, Occurrence& o) {
     if (j.remove) return make_node("Separator");
     auto sep = make_node("Separator");
     const ShapeGeometry& g = j.geometry;
@@ -459,13 +492,13 @@ class Pipeline {
     lod->children.push_back(make_node("Separator"));  // the empty last level
     sep->children.push_back(lod);
     if (j.stats.ranges.empty()) j.stats.ranges = ranges;
+    o.ranges = ranges;
     return sep;
   }
 
   void replace() {
-    for (const auto& o : occurrences_) {
+    for (auto& o : occurrences_) {
       Job& j = jobs_[o.job];
-      ++occurrence_count_[o.job];
       if (j.keep) continue;
       NodePtr s = subtree(j, o);
       if (!j.shape->name.empty()) s->name = j.shape->name;
@@ -476,25 +509,34 @@ class Pipeline {
     }
   }
 
+  // Every instance a viewer draws (a shape in a group USEd n times is drawn n
+  // times), each with the ranges of the LOD node it draws.
   void statistics() {
+    std::vector<std::size_t> instance_count(jobs_.size(), 0);
     std::set<double> distances = {0.0};
-    std::vector<std::vector<float>> occurrence_ranges;
+    for (std::size_t oi : instances_) {
+      ++instance_count[occurrences_[oi].job];
+      for (float r : occurrences_[oi].ranges) distances.insert(r);
+    }
     for (std::size_t i = 0; i < jobs_.size(); ++i) {
-      jobs_[i].stats.occurrences = occurrence_count_[i];
+      jobs_[i].stats.occurrences = instance_count[i];
       jobs_[i].stats.radius = jobs_[i].radius;
-      if (!jobs_[i].stats.ranges.empty() || jobs_[i].no_lod || jobs_[i].remove) {
-        for (float r : jobs_[i].stats.ranges) distances.insert(r);
-      }
       result_.shapes.push_back(jobs_[i].stats);
     }
-    // Each occurrence draws the level whose range interval holds the distance.
+    // Each instance draws the level whose range interval holds the distance
+    // (--extract: its one level).
     for (double d : distances) {
       std::size_t total = 0;
-      for (const auto& o : occurrences_) {
-        const ShapeStatistics& s = jobs_[o.job].stats;
-        if (s.levels.empty()) continue;
+      for (std::size_t oi : instances_) {
+        const Occurrence& o = occurrences_[oi];
+        const Job& j = jobs_[o.job];
+        const ShapeStatistics& s = j.stats;
+        if (s.levels.empty() || j.remove) continue;
         std::size_t level = 0;
-        while (level < s.ranges.size() && d >= s.ranges[level]) ++level;
+        if (opt_.extract && !j.keep)
+          level = std::size_t(std::max(0, *opt_.extract));
+        else
+          while (level < o.ranges.size() && d >= o.ranges[level]) ++level;
         if (level < s.levels.size()) total += s.levels[level].triangles;
       }
       result_.triangles_by_distance.emplace_back(d, total);
@@ -505,7 +547,7 @@ class Pipeline {
   LodResult result_;
   std::vector<Job> jobs_;
   std::vector<Occurrence> occurrences_;
-  std::unordered_map<std::size_t, std::size_t> occurrence_count_;
+  std::vector<std::size_t> instances_;  // the occurrence of every shape visit
   std::vector<const Node*> empty_path_;
   double camera_angle_ = 0.785398;
   double largest_radius_ = 0;

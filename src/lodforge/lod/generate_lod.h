@@ -45,8 +45,13 @@ struct LodOptions {
   LodMethod method = LodMethod::kQem;
   RangeOptions range;               ///< error range p and camera height angle
   bool camera_angle_given = false;  ///< else: the first PerspectiveCamera's, else range's
-  float min_diff = 0.2f;            ///< each level <= (1 - min_diff) of the previous one
-  std::size_t max_levels = 0;       ///< at most this many levels, original and empty included
+  /// Candidate levels: each <= (1 - min_diff) of the previous candidate.
+  float min_diff = 0.2f;
+  /// Automatic mode: of the candidates, a level is kept only where it is shown
+  /// over a distance interval of at least this factor (space_levels in
+  /// switching_ranges.h); <= 1 keeps every candidate with a larger distance.
+  double level_spacing = kDefaultLevelSpacing;
+  std::size_t max_levels = 0;  ///< at most this many levels, original and empty included
   /// Per shape type: "polygon" (IndexedFaceSet), "line" (IndexedLineSet),
   /// "sphere", "cone", "cylinder", "cube".
   std::map<std::string, ShapeTypeSettings> manual;
@@ -80,13 +85,18 @@ struct ShapeStatistics {
   std::string type;  ///< node type
   std::string name;  ///< DEF name, if any
   int line = 0;      ///< where the shape was read
+  /// Instances a viewer draws: every DEF/USE of the shape and of the groups
+  /// holding it, each under its own transform.
   std::size_t occurrences = 1;
   double radius = 0;                    ///< bounding sphere, local units
   double scale = 0;                     ///< largest transform scale among its occurrences
   std::vector<LevelStatistics> levels;  ///< level 0 .. empty level
   std::vector<float> ranges;            ///< LOD.range (levels.size() - 1 values)
   std::string method;                   ///< simplifier, or "tessellation" / "none"
-  std::string stop_reason;              ///< why the chain ended
+  /// Why the chain ended: the vanishing error, the level limit, or the
+  /// simplifier's own reason (nothing more could be removed, or its smallest
+  /// target of a few triangles was reached).
+  std::string stop_reason;
 };
 
 struct LodResult {

@@ -79,9 +79,14 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
   const bool manual = !options.triangle_targets.empty();
   for (auto& level : chain) {
     std::size_t count = lines_only ? level.mesh.lines.size() : level.mesh.triangle_count();
-    // A level must be smaller by min diff (manual targets: smaller at all).
+    // A level must be smaller than the previous kept one by min diff (manual
+    // targets: smaller at all). The simplifiers aim their targets at the
+    // previous target, not the previous result (quadric collapse lands a
+    // triangle or two below its target), so a level that misses the step is
+    // skipped: the next, smaller one is tried against the same result.
+    if (count == 0) break;
     double limit = manual ? double(previous) - 1 : double(previous) * (1.0 - options.min_diff);
-    if (double(count) > limit + 1e-9 || count == 0) break;
+    if (double(count) > limit + 1e-9) continue;
     out.push_back({std::move(level), 0.0});
     previous = count;
     if (options.max_levels && out.size() >= options.max_levels) break;

@@ -45,8 +45,12 @@ struct MeasuredLevel {
 /// [20 000, 200 000] (every vertex is sampled as well).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
-/// Levels 1..n of `mesh` (level 0 is `mesh` itself). Stops when a level would
-/// not reduce by min_diff, when nothing is left, or at max_levels.
+/// Levels 1..n of `mesh` (level 0 is `mesh` itself), each at most (1 -
+/// min_diff) x the triangles of the level before it (a simplifier's level that
+/// misses the step is skipped, not the end of the chain). Stops when the
+/// simplifier can remove nothing more, when nothing is left (an empty level is
+/// never returned), or at max_levels; the last level's stop_reason says which
+/// (kTargetReached: the smallest target, a few triangles, was met).
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options);
 

@@ -10,6 +10,7 @@
 /// height angle; p: the error range (fraction of the screen height); r: the
 /// radius of the shape's bounding sphere (distances are measured from the
 /// centre, the surface can be r closer).
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -36,5 +37,40 @@ inline double vanishing_error(double radius) {
 /// (VRML requires it: equal neighbours are nudged up by one float step).
 std::vector<float> switching_ranges(std::span<const double> level_errors, double scale,
                                     double radius, const RangeOptions& options);
+
+/// Default of SpacingOptions::spacing: a kept level is shown over at least a
+/// 1.25x distance interval (from d to 1.25 d or farther).
+inline constexpr double kDefaultLevelSpacing = 1.25;
+
+struct SpacedLevel {
+  std::size_t candidate = 0;  ///< index into the candidate errors
+  /// The error whose switch_distance is this level's switching distance: at
+  /// least the candidate's own error (switching later than its error allows
+  /// is always safe), larger where the spacing pushes the switch outwards.
+  double switch_error = 0;
+};
+
+struct SpacedLevels {
+  std::vector<SpacedLevel> levels;
+  /// The chain ended because the next candidate would be shown too close to
+  /// (or beyond) the distance at which the object vanishes (vanishing_error),
+  /// rather than because the candidates ran out.
+  bool vanished = false;
+};
+
+/// Chooses, from candidate levels 1..n of one shape (finer to coarser, with
+/// their errors eps, model units), the levels worth writing: each kept level
+/// is shown over a distance interval of at least `spacing` x its start, and
+/// the last one also before the object vanishes (distance of the vanishing
+/// error). The switching distances are a geometric sweep: level 0 is shown up
+/// to the first candidate's distance d_1; from each switching distance D the
+/// next one is D' = max(spacing x D, d of the next candidate), and the level
+/// shown from D' is the coarsest candidate whose own distance is at most D'
+/// (so no candidate is shown nearer than its error allows). Errors are made
+/// non-decreasing first, as switching_ranges does. The choice does not depend
+/// on the transform scale (every distance scales with it). spacing <= 1 keeps
+/// every candidate whose distance is larger than the previous kept one's.
+SpacedLevels space_levels(std::span<const double> candidate_errors, double radius,
+                          const RangeOptions& options, double spacing = kDefaultLevelSpacing);
 
 }  // namespace lodforge

@@ -10,6 +10,7 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
 
+#include <cmath>
 #include <filesystem>
 #include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/statistics.h"
@@ -204,19 +205,86 @@ TEST(GenerateLod, SharedShapeIsSimplifiedOnceAndItsLevelsShared) {
 TEST(GenerateLod, PerFaceMaterialsBecomeIndexedAndSurviveSimplification) {
   TriangleMesh m = test::make_icosphere(3);
   std::string text = scene_of(m, "", true);
-  // PER_FACE needs one material per face: repeat the three colours.
+  // PER_FACE needs one material per face: three bands of colour by height
+  // (regions a simplifier can reduce inside).
   std::string colours;
-  for (std::size_t i = 0; i < m.triangle_count(); ++i)
-    colours += i % 3 == 0 ? "1 0 0," : i % 3 == 1 ? "0 1 0," : "0 0 1,";
+  for (const auto& t : m.triangles) {
+    const float z = (m.positions[t[0]].z + m.positions[t[1]].z + m.positions[t[2]].z) / 3;
+    colours += z < -0.33f ? "1 0 0," : z < 0.33f ? "0 1 0," : "0 0 1,";
+  }
   text.replace(text.find("[1 0 0, 0 1 0, 0 0 1]"), 21, "[" + colours + "]");
   LodResult r = generate_lod(read(text), {.measure_samples = 20000});
+  ASSERT_GE(r.shapes[0].levels.size(), 2u);
   scene::Scene out = read(vrml1::write_vrml1(r.scene));
   testing::expect_indices_in_range(out);
   std::string written = vrml1::write_vrml1(out);
+  // Level 0 is the input (PER_FACE); the simplified levels are indexed.
+  EXPECT_THAT(written, HasSubstr("value PER_FACE\n"));
   EXPECT_THAT(written, HasSubstr("PER_FACE_INDEXED"));
   // Three distinct materials remain after de-duplication.
   scene::SceneStatistics st = scene::scene_statistics(out);
   EXPECT_EQ(st.node_counts["Material"], 2u);  // the original (kept) and the de-duplicated one
+}
+
+// A wavy grid of bent quads: level 0 must be the input node as it is (quads
+// a reader splits its own way), and the simplified levels index one shared
+// Coordinate3 that holds each position once.
+TEST(GenerateLod, LevelZeroIsTheInputAndLevelsShareTheirCoordinates) {
+  constexpr int n = 24;
+  std::string text = "#VRML V1.0 ascii\nSeparator {\nShapeHints { faceType UNKNOWN_FACE_TYPE }\n"
+                     "Coordinate3 { point [\n";
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x)
+      text += fmt::format("{} {} {},\n", x, y, 2 * std::sin(x * 0.7) * std::cos(y * 0.5));
+  text += "] }\nIndexedFaceSet { coordIndex [\n";
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x;
+      text += fmt::format("{}, {}, {}, {}, -1,\n", a, a + 1, a + n + 2, a + n + 1);
+    }
+  text += "] }\n}\n";
+  const scene::Scene in = read(text);
+  LodResult r = generate_lod(in, {.measure_samples = 20000});
+  ASSERT_EQ(r.shapes.size(), 1u);
+  ASSERT_GE(r.shapes[0].levels.size(), 3u);
+  const scene::Scene out = read(vrml1::write_vrml1(r.scene));
+  // Per level: the face set drawn, and the Coordinate3 and ShapeHints it is drawn under.
+  struct Drawn {
+    const scene::Node *shape, *coords, *hints;
+  };
+  auto drawn = [](const scene::Scene& s, int level) {
+    std::vector<Drawn> d;
+    scene::traverse(
+        s,
+        [&](const scene::ShapeVisit& v) {
+          if (v.shape.type == "IndexedFaceSet")
+            d.push_back({&v.shape, v.state.coordinate3, v.state.shape_hints});
+        },
+        {.lod_level = level});
+    return d;
+  };
+  const auto input = drawn(in, 0), level0 = drawn(out, 0);
+  ASSERT_EQ(input.size(), 1u);
+  ASSERT_EQ(level0.size(), 1u);
+  EXPECT_EQ(level0[0].shape->value("coordIndex")->ints, input[0].shape->value("coordIndex")->ints);
+  EXPECT_EQ(level0[0].coords->value("point")->floats, input[0].coords->value("point")->floats);
+  EXPECT_EQ(scene::field_or_default(*level0[0].hints, "faceType")->strings,
+            std::vector<std::string>{"UNKNOWN_FACE_TYPE"});
+  const scene::Node* shared = nullptr;
+  std::size_t vertices = 0;
+  for (std::size_t k = 1; k < r.shapes[0].levels.size(); ++k) {
+    const auto level = drawn(out, int(k));
+    ASSERT_EQ(level.size(), 1u) << k;
+    if (!shared) shared = level[0].coords;
+    EXPECT_EQ(level[0].coords, shared) << "level " << k << " has a Coordinate3 of its own";
+    EXPECT_EQ(scene::field_or_default(*level[0].hints, "faceType")->strings,
+              std::vector<std::string>{"CONVEX"});
+    vertices += r.shapes[0].levels[k].vertices;
+  }
+  // Each position once: no more points than the levels' vertices together.
+  ASSERT_NE(shared, nullptr);
+  EXPECT_LE(shared->value("point")->floats.size() / 3, vertices);
+  testing::expect_indices_in_range(out);
 }
 
 TEST(GenerateLod, ExtractWritesOneLevelWithoutLodNodes) {

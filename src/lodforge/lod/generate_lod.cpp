@@ -91,6 +91,7 @@ struct Job {
   std::vector<double> errors;        // per level (0 for level 0)
   std::vector<float> ranges_override;
   ShapeGeometry geometry;
+  std::unique_ptr<LevelWriter> writer;  // the levels' shared vertex data
   Vec3 center;
   double radius = 0;
   bool remove = false;  // quality 0
@@ -277,9 +278,23 @@ class Pipeline {
     j.no_lod = quality == 1 || (opt_.extract && *opt_.extract <= 0);
     std::size_t max_levels = opt_.max_levels;
     if (quality >= 2) max_levels = std::size_t(quality);
-    // Level 0.
+    // Level 0: the input node itself, drawn under the state it was read in
+    // (nothing is placed between it and that state), so it draws exactly what
+    // the input draws. Rebuilt from the geometry only where the input cannot
+    // be kept: an attribute index out of range (dropped), coordinates moved
+    // to the origin (reducer flavour), or clean-and-reformat (--extract -1).
     if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
-      j.level_nodes.push_back(shape_level_node(j.geometry, j.geometry.mesh, {}, {}, opt_.no_lines));
+      j.writer = std::make_unique<LevelWriter>(j.geometry, j.state, opt_.no_lines);
+      const bool rebuild = j.geometry.repaired ||
+                           opt_.export_flavour == ExportFlavour::kReducer ||
+                           (opt_.extract && *opt_.extract < 0);
+      if (rebuild) {
+        j.level_nodes.push_back(j.writer->level(j.geometry.mesh, {}, {}));
+      } else {
+        auto original = std::make_shared<Node>(*j.shape);
+        original->name.clear();
+        j.level_nodes.push_back(original);
+      }
       j.errors.push_back(0);
       j.stats.levels.push_back(
           {j.geometry.mesh.triangle_count(), j.geometry.mesh.vertex_count(), 0});
@@ -330,8 +345,7 @@ class Pipeline {
       return;
     }
     auto add = [&](MeasuredLevel& l, double switch_error) {
-      j.level_nodes.push_back(shape_level_node(j.geometry, l.level.mesh, l.level.vertex_map,
-                                               l.level.face_map, opt_.no_lines));
+      j.level_nodes.push_back(j.writer->level(l.level.mesh, l.level.vertex_map, l.level.face_map));
       j.errors.push_back(switch_error);
       j.stats.levels.push_back(
           {l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
@@ -348,10 +362,16 @@ class Pipeline {
     // notices (switch_distance grows by the spacing factor from one kept level
     // to the next), down to the level after which the object vanishes.
     std::vector<double> errors;
-    for (const auto& l : levels) errors.push_back(l.error);
+    std::vector<std::size_t> triangles;
+    for (const auto& l : levels) {
+      errors.push_back(l.error);
+      triangles.push_back(l.level.mesh.triangle_count() + l.level.mesh.lines.size());
+    }
     RangeOptions ro = opt_.range;
     ro.camera_angle = float(camera_angle_);
-    SpacedLevels spaced = space_levels(errors, j.radius, ro, opt_.level_spacing);
+    SpacedLevels spaced =
+        space_levels(errors, j.radius, ro, opt_.level_spacing, triangles,
+                     j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size());
     std::size_t kept = 0;
     for (const SpacedLevel& s : spaced.levels) {
       if (simplified_max && kept == simplified_max) break;
@@ -407,48 +427,19 @@ class Pipeline {
       if (error >= vanishing_error(j.radius)) break;
       ShapeGeometry g = primitive_geometry(tess, true);
       mark_inherited_attributes(g, j.state);
-      j.level_nodes.push_back(shape_level_node(g, g.mesh, {}, {}, true));
+      j.level_nodes.push_back(LevelWriter(g, j.state, true).level(g.mesh, {}, {}));
       j.errors.push_back(error);
       j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), error});
       previous = tess.triangle_count();
     }
   }
 
-  NodePtr binding_node(const char* type, AttributeBinding b) {
-    auto n = make_node(type);
-    n->set("value", scene::make_enum(b == AttributeBinding::kPerFace ? "PER_FACE_INDEXED"
-                                                                     : "PER_VERTEX_INDEXED"));
-    return n;
-  }
-
   // The subtree that replaces one occurrence.
   NodePtr subtree(Job& j, Occurrence& o) {
     if (j.remove) return make_node("Separator");
+    // Each level carries its own property nodes (LevelWriter): what is
+    // placed here is seen by every level, level 0 the input included.
     auto sep = make_node("Separator");
-    const ShapeGeometry& g = j.geometry;
-    const bool primitive = j.shape->type != "IndexedFaceSet" && j.shape->type != "IndexedLineSet";
-    if (g.material_binding != AttributeBinding::kNone) {
-      sep->children.push_back(g.material);
-      sep->children.push_back(binding_node("MaterialBinding", g.material_binding));
-    } else if (g.override_material_binding ||
-               (primitive && j.state.material_binding && j.level_nodes.size() > 1)) {
-      // Primitive levels are IndexedFaceSets: a binding meant for the
-      // primitive's parts would index materials per face.
-      auto overall = make_node("MaterialBinding");
-      overall->set("value", scene::make_enum("OVERALL"));
-      sep->children.push_back(overall);
-    }
-    if (g.normal_binding != AttributeBinding::kNone)
-      sep->children.push_back(binding_node("NormalBinding", g.normal_binding));
-    else if (primitive && j.level_nodes.size() > 1)
-      sep->children.push_back(binding_node("NormalBinding", AttributeBinding::kPerVertex));
-    if (g.needs_convex_hint) {
-      auto hints = std::make_shared<Node>(*j.state.shape_hints);
-      hints->name.clear();
-      hints->children.clear();
-      hints->set("faceType", scene::make_enum("CONVEX"));
-      sep->children.push_back(hints);
-    }
     if (opt_.export_flavour == ExportFlavour::kReducer && j.shape->type != "IndexedFaceSet" &&
         j.shape->type != "IndexedLineSet") {
       // Primitives are centred at their origin already: nothing to move.

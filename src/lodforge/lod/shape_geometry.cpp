@@ -189,9 +189,11 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
 
   bool material_ok = mbind != Bind::kOverall, normal_ok = nbind != Bind::kOverall,
        tex_ok = g.has_texcoords;
+  bool repaired = false;
   auto drop = [&](bool& ok, const char* what, std::int64_t bad, std::size_t limit) {
     if (!ok) return;
     ok = false;
+    repaired = true;
     log.warn(LogCategory::kParse,
              fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
                          shape.first_line, shape.type, what, bad, std::int64_t(limit) - 1, what));
@@ -349,6 +351,19 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
                          ? AttributeBinding::kPerVertex
                          : AttributeBinding::kPerFace;
   g.has_texcoords = tex_ok;
+  // The input node is drawn as it is only if every index it holds is in
+  // range of what it indexes (an index field the geometry does not use, e.g.
+  // textureCoordIndex without texture coordinates, still reaches a reader).
+  auto in_range = [&](const char* field, std::size_t limit) {
+    const FieldValue* idx = shape.value(field);
+    if (!idx) return true;
+    for (std::int32_t i : idx->ints)
+      if (i < -1 || (i >= 0 && std::size_t(i) >= limit)) return false;
+    return true;
+  };
+  g.repaired = repaired || !in_range("normalIndex", nnormals) ||
+               !in_range("textureCoordIndex", ntex) ||
+               !in_range("materialIndex", std::max<std::size_t>(nmat, 1));
   g.normal_values = normals.values;
   g.texcoord_values = texcoords.values;
   if (g.material_binding != AttributeBinding::kNone) {
@@ -391,44 +406,94 @@ void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& st
 namespace lodforge {
 namespace {
 
-// Appends the face (triangle or quad) `verts` to the index lists.
+// The index lists of one IndexedFaceSet or IndexedLineSet being written.
 struct IndexWriter {
   std::vector<std::int32_t> coord, normal, texcoord, material;
 };
 
+// Values numbered in first-use order, each once (by bit pattern).
+template <int N>
+struct ValuePool {
+  std::map<std::array<std::uint32_t, N>, std::int32_t> ids;
+  std::vector<float> values;
+  std::int32_t add(const float* v) {
+    std::array<std::uint32_t, N> key;
+    for (int k = 0; k < N; ++k) key[k] = bits(v[k]);
+    auto [it, fresh] = ids.try_emplace(key, std::int32_t(values.size() / N));
+    if (fresh) values.insert(values.end(), v, v + N);
+    return it->second;
+  }
+};
+
+NodePtr make_node(const char* type) {
+  auto n = std::make_shared<Node>();
+  n->type = type;
+  return n;
+}
+
+NodePtr binding_node(const char* type, AttributeBinding b) {
+  auto n = make_node(type);
+  n->set("value", scene::make_enum(b == AttributeBinding::kPerFace ? "PER_FACE_INDEXED"
+                                                                   : "PER_VERTEX_INDEXED"));
+  return n;
+}
+
 }  // namespace
 
-scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh,
-                                const std::vector<std::uint32_t>& vertex_map,
-                                const std::vector<std::uint32_t>& face_map, bool no_lines) {
+struct LevelWriter::Impl {
+  const ShapeGeometry& g;
+  bool no_lines;
+  ValuePool<3> coords, normals;
+  ValuePool<2> texs;
+  std::vector<NodePtr> properties;  // shared by every level, in order
+  NodePtr coord_node, normal_node, tex_node;
+};
+
+LevelWriter::LevelWriter(const ShapeGeometry& g, const scene::TraversalState& state,
+                         bool no_lines)
+    : impl_(new Impl{g, no_lines, {}, {}, {}, {}, {}, {}, {}}) {
   using scene::FieldKind;
-  // Coordinates, normals and texture coordinates used by this level, each
-  // de-duplicated and numbered in first-use order.
-  std::map<std::array<std::uint32_t, 3>, std::int32_t> coord_ids;
-  std::vector<float> coords;
-  auto coord_of = [&](std::uint32_t v) {
-    const Vec3& p = mesh.positions[v];
-    auto [it, fresh] =
-        coord_ids.try_emplace({bits(p.x), bits(p.y), bits(p.z)}, std::int32_t(coords.size() / 3));
-    if (fresh) coords.insert(coords.end(), {p.x, p.y, p.z});
-    return it->second;
-  };
-  std::map<std::array<std::uint32_t, 3>, std::int32_t> normal_ids;
-  std::map<std::array<std::uint32_t, 2>, std::int32_t> tex_ids;
-  std::vector<float> normals, texs;
-  auto normal_of = [&](std::uint32_t value) {
-    const Vec3& n = g.normal_values[value];
-    auto [it, fresh] =
-        normal_ids.try_emplace({bits(n.x), bits(n.y), bits(n.z)}, std::int32_t(normals.size() / 3));
-    if (fresh) normals.insert(normals.end(), {n.x, n.y, n.z});
-    return it->second;
-  };
-  auto tex_of = [&](std::uint32_t value) {
-    const Vec2& t = g.texcoord_values[value];
-    auto [it, fresh] = tex_ids.try_emplace({bits(t.x), bits(t.y)}, std::int32_t(texs.size() / 2));
-    if (fresh) texs.insert(texs.end(), {t.x, t.y});
-    return it->second;
-  };
+  auto& props = impl_->properties;
+  if (g.material_binding != AttributeBinding::kNone) {
+    props.push_back(g.material);
+    props.push_back(binding_node("MaterialBinding", g.material_binding));
+  } else if (g.override_material_binding) {
+    auto overall = make_node("MaterialBinding");
+    overall->set("value", scene::make_enum("OVERALL"));
+    props.push_back(overall);
+  }
+  if (g.normal_binding != AttributeBinding::kNone)
+    props.push_back(binding_node("NormalBinding", g.normal_binding));
+  if (g.needs_convex_hint && state.shape_hints) {
+    auto hints = std::make_shared<Node>(*state.shape_hints);
+    hints->name.clear();
+    hints->children.clear();
+    hints->set("faceType", scene::make_enum("CONVEX"));
+    props.push_back(hints);
+  }
+  impl_->coord_node = make_node("Coordinate3");
+  props.push_back(impl_->coord_node);
+  if (g.normal_binding != AttributeBinding::kNone || g.override_normals) {
+    impl_->normal_node = make_node("Normal");
+    props.push_back(impl_->normal_node);
+  }
+  if (g.has_texcoords || g.override_texcoords) {
+    impl_->tex_node = make_node("TextureCoordinate2");
+    props.push_back(impl_->tex_node);
+  }
+}
+
+LevelWriter::~LevelWriter() = default;
+
+scene::NodePtr LevelWriter::level(const TriangleMesh& mesh,
+                                  const std::vector<std::uint32_t>& vertex_map,
+                                  const std::vector<std::uint32_t>& face_map) {
+  using scene::FieldKind;
+  const ShapeGeometry& g = impl_->g;
+  const bool no_lines = impl_->no_lines;
+  auto coord_of = [&](std::uint32_t v) { return impl_->coords.add(&mesh.positions[v].x); };
+  auto normal_of = [&](std::uint32_t value) { return impl_->normals.add(&g.normal_values[value].x); };
+  auto tex_of = [&](std::uint32_t value) { return impl_->texs.add(&g.texcoord_values[value].x); };
   auto origin = [&](std::uint32_t v) { return vertex_map.empty() ? v : vertex_map[v]; };
   auto origin_face = [&](std::size_t t) {
     return face_map.empty() ? std::uint32_t(t) : face_map[t];
@@ -520,28 +585,17 @@ scene::NodePtr shape_level_node(const ShapeGeometry& g, const TriangleMesh& mesh
     }
   }
 
-  auto level = std::make_shared<scene::Node>();
-  level->type = "Separator";
-  auto coord_node = std::make_shared<scene::Node>();
-  coord_node->type = "Coordinate3";
-  coord_node->set("point", scene::make_floats(FieldKind::kVec3f, true, std::move(coords)));
-  level->children.push_back(coord_node);
-  if (!normals.empty() || g.override_normals) {
-    auto n = std::make_shared<scene::Node>();
-    n->type = "Normal";
-    n->set("vector", scene::make_floats(FieldKind::kVec3f, true, std::move(normals)));
-    level->children.push_back(n);
-  }
-  if (!texs.empty() || g.override_texcoords) {
-    auto t = std::make_shared<scene::Node>();
-    t->type = "TextureCoordinate2";
-    t->set("point", scene::make_floats(FieldKind::kVec2f, true, std::move(texs)));
-    level->children.push_back(t);
-  }
+  auto level = make_node("Separator");
+  level->children = impl_->properties;
+  impl_->coord_node->set("point", scene::make_floats(FieldKind::kVec3f, true, impl_->coords.values));
+  if (impl_->normal_node)
+    impl_->normal_node->set("vector",
+                            scene::make_floats(FieldKind::kVec3f, true, impl_->normals.values));
+  if (impl_->tex_node)
+    impl_->tex_node->set("point", scene::make_floats(FieldKind::kVec2f, true, impl_->texs.values));
   auto add_set = [&](const char* type, IndexWriter& w) {
     if (w.coord.empty()) return;
-    auto s = std::make_shared<scene::Node>();
-    s->type = type;
+    auto s = make_node(type);
     s->set("coordIndex", scene::make_longs(std::move(w.coord)));
     if (!w.material.empty()) s->set("materialIndex", scene::make_longs(std::move(w.material)));
     if (!w.normal.empty()) s->set("normalIndex", scene::make_longs(std::move(w.normal)));

@@ -10,6 +10,7 @@
 /// face map. Bindings that are 1:1 with faces or vertices (PER_FACE, PER_PART,
 /// PER_VERTEX) are converted to their *_INDEXED forms (original §4 intro).
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -62,6 +63,10 @@ struct ShapeGeometry {
   bool override_normals = false;
   bool override_texcoords = false;
   bool override_material_binding = false;
+  /// An index field of the input holds an index out of range (an attribute
+  /// was dropped for it, or the field indexes nothing the state holds): the
+  /// input node cannot be drawn as it is (Coin may crash on it).
+  bool repaired = false;
   std::size_t input_faces = 0;    ///< polygons (or polylines) read
   std::size_t dropped_faces = 0;  ///< polygons with < 3 distinct corners
 };
@@ -81,13 +86,39 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
 /// Sets the override_* flags of `g` from the state it will be drawn under.
 void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& state);
 
-/// One level as VRML: a Separator holding Coordinate3, [Normal],
-/// [TextureCoordinate2], the IndexedFaceSet (or IndexedLineSet) and, for
-/// faces that collapsed to lines, an extra IndexedLineSet (unless no_lines).
-/// `mesh` is a simplified version of geometry.mesh with `vertex_map` (new ->
-/// geometry.mesh vertex) and `face_map` (new -> geometry.mesh triangle).
-scene::NodePtr shape_level_node(const ShapeGeometry& geometry, const TriangleMesh& mesh,
-                                const std::vector<std::uint32_t>& vertex_map,
-                                const std::vector<std::uint32_t>& face_map, bool no_lines);
+/// The levels of one shape as VRML, sharing one set of vertex data: one
+/// Coordinate3 (and Normal / TextureCoordinate2 where the geometry has them)
+/// holds every value the levels use, each once, in first-use order: a
+/// position a simplifier left in place is reused by every level, a moved one
+/// is appended. Each level is
+///
+///     Separator { [Material MaterialBinding] [NormalBinding] [ShapeHints]
+///                 Coordinate3 [Normal] [TextureCoordinate2]
+///                 IndexedFaceSet [IndexedLineSet] }
+///
+/// whose property nodes are the same nodes in every level (a writer DEFs
+/// them in the first level and USEs them in the others), so the levels
+/// carry nothing of the state they are drawn under. Faces that collapsed to
+/// lines become the extra IndexedLineSet unless `no_lines`.
+class LevelWriter {
+ public:
+  /// `geometry` must outlive the writer; `state` is the one the shape was
+  /// read under (its ShapeHints is copied as CONVEX where needed).
+  LevelWriter(const ShapeGeometry& geometry, const scene::TraversalState& state, bool no_lines);
+  ~LevelWriter();
+  LevelWriter(const LevelWriter&) = delete;
+  LevelWriter& operator=(const LevelWriter&) = delete;
+
+  /// One level: `mesh` is geometry.mesh itself (empty maps) or a simplified
+  /// version of it with `vertex_map` (new -> geometry.mesh vertex) and
+  /// `face_map` (new -> geometry.mesh triangle). The shared nodes are up to
+  /// date after each call.
+  scene::NodePtr level(const TriangleMesh& mesh, const std::vector<std::uint32_t>& vertex_map,
+                       const std::vector<std::uint32_t>& face_map);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace lodforge

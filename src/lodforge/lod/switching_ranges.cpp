@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace lodforge {
 
@@ -29,9 +31,19 @@ std::vector<float> switching_ranges(std::span<const double> level_errors, double
   return ranges;
 }
 
+// The choice of switching distances as a shortest path. Distances from the
+// first candidate's to the vanishing one are a geometric grid (kGridSteps
+// steps per spacing factor). A level starting at grid point g is the coarsest
+// candidate allowed there (coarser is never worse: every later choice stays
+// open). best[g] = the fewest triangles drawn, integrated over log distance
+// (grid steps), from g to the vanishing distance, with the level of g shown
+// for at least one spacing factor. Level 0 is shown up to the first switch.
 SpacedLevels space_levels(std::span<const double> candidate_errors, double radius,
-                          const RangeOptions& options, double spacing) {
+                          const RangeOptions& options, double spacing,
+                          std::span<const std::size_t> candidate_triangles,
+                          std::size_t level0_triangles) {
   SpacedLevels out;
+  const std::size_t n = candidate_errors.size();
   // Distances at scale 1 (every distance scales with the transform alike).
   std::vector<double> error, d;
   for (double e : candidate_errors) {
@@ -41,21 +53,85 @@ SpacedLevels space_levels(std::span<const double> candidate_errors, double radiu
   const double vanish = switch_distance(vanishing_error(radius), 1.0, radius, options);
   const double per_unit =
       2 * std::tan(double(options.camera_angle) / 2) * double(options.error_range);
-  double previous = 0;  // switching distance of the last kept level (level 0: 0)
-  std::size_t next = 0;
-  while (next < d.size()) {
-    double at = std::max(spacing * previous, d[next]);
-    // Too close to the vanishing distance to be seen over a spaced interval.
-    if (at >= vanish || std::max(spacing, 1.0) * at > vanish) {
-      out.vanished = true;
-      break;
+  auto level_at = [&](double at) {
+    return SpacedLevel{0, std::max((at - radius) * per_unit, 0.0)};
+  };
+  if (n == 0) return out;
+  if (spacing <= 1 || d[0] <= 0) {
+    // Every candidate below the vanishing distance, at its own distance.
+    for (std::size_t j = 0; j < n; ++j) {
+      if (d[j] >= vanish) {
+        out.vanished = true;
+        break;
+      }
+      if (j + 1 < n && d[j + 1] <= d[j]) continue;  // an equal, coarser one follows
+      SpacedLevel l = level_at(d[j]);
+      l.candidate = j;
+      l.switch_error = std::max(l.switch_error, error[j]);
+      out.levels.push_back(l);
     }
-    std::size_t best = next;
-    while (best + 1 < d.size() && d[best + 1] <= at) ++best;
-    out.levels.push_back({best, std::max((at - radius) * per_unit, error[best])});
-    previous = at;
-    next = best + 1;
+    return out;
   }
+  constexpr int kGridSteps = 16;
+  const double step = std::log(spacing) / kGridSteps;
+  if (d[0] * spacing > vanish) {
+    out.vanished = true;
+    return out;
+  }
+  const auto grid = std::size_t(std::floor(std::log(vanish / d[0]) / step));  // points 0..grid
+  auto at = [&](std::size_t g) { return g == 0 ? d[0] : d[0] * std::exp(double(g) * step); };
+  // The coarsest candidate allowed at each grid point (-1: none).
+  std::vector<std::ptrdiff_t> level(grid + 1, -1);
+  for (std::size_t g = 0, j = 0; g <= grid; ++g) {
+    while (j < n && d[j] <= at(g) * (1 + 1e-12)) ++j;
+    level[g] = std::ptrdiff_t(j) - 1;
+  }
+  const double end = std::log(vanish / d[0]) / step;  // the vanishing distance in grid steps
+  auto triangles = [&](std::ptrdiff_t j) {
+    return j < 0 ? double(level0_triangles)
+                 : std::size_t(j) < candidate_triangles.size()
+                       ? double(candidate_triangles[std::size_t(j)])
+                       : double(n - std::size_t(j));  // no counts: later is coarser
+  };
+  const double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> best(grid + 1, kInf);
+  std::vector<std::size_t> next(grid + 1, SIZE_MAX);  // SIZE_MAX: shown until vanishing
+  for (std::size_t g = grid + 1; g-- > 0;) {
+    const std::ptrdiff_t j = level[g];
+    if (j < 0) continue;
+    const double here = triangles(j);
+    if (end - double(g) >= kGridSteps) best[g] = here * (end - double(g));
+    for (std::size_t h = g + kGridSteps; h <= grid; ++h) {
+      if (level[h] <= j || best[h] == kInf) continue;
+      const double c = here * double(h - g) + best[h];
+      if (c < best[g]) {
+        best[g] = c;
+        next[g] = h;
+      }
+    }
+  }
+  // Level 0 up to the first switch.
+  std::size_t first = SIZE_MAX;
+  double total = kInf;
+  for (std::size_t g = 0; g <= grid; ++g) {
+    if (best[g] == kInf) continue;
+    const double c = double(level0_triangles ? level0_triangles : n + 1) * double(g) + best[g];
+    if (c < total) {
+      total = c;
+      first = g;
+    }
+  }
+  if (first == SIZE_MAX) {
+    out.vanished = true;
+    return out;
+  }
+  for (std::size_t g = first; g != SIZE_MAX; g = next[g]) {
+    SpacedLevel l = level_at(at(g));
+    l.candidate = std::size_t(level[g]);
+    l.switch_error = std::max(l.switch_error, error[l.candidate]);
+    out.levels.push_back(l);
+  }
+  out.vanished = out.levels.back().candidate + 1 < n;
   return out;
 }
 

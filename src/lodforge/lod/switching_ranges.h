@@ -59,18 +59,22 @@ struct SpacedLevels {
 };
 
 /// Chooses, from candidate levels 1..n of one shape (finer to coarser, with
-/// their errors eps, model units), the levels worth writing: each kept level
-/// is shown over a distance interval of at least `spacing` x its start, and
-/// the last one also before the object vanishes (distance of the vanishing
-/// error). The switching distances are a geometric sweep: level 0 is shown up
-/// to the first candidate's distance d_1; from each switching distance D the
-/// next one is D' = max(spacing x D, d of the next candidate), and the level
-/// shown from D' is the coarsest candidate whose own distance is at most D'
-/// (so no candidate is shown nearer than its error allows). Errors are made
-/// non-decreasing first, as switching_ranges does. The choice does not depend
-/// on the transform scale (every distance scales with it). spacing <= 1 keeps
-/// every candidate whose distance is larger than the previous kept one's.
+/// their errors eps, model units, and triangle counts), the levels worth
+/// writing, and where each switches. Each kept level is shown over a distance
+/// interval of at least `spacing` x its start (from D to spacing x D or
+/// farther), the last one too before the object vanishes (the distance of
+/// vanishing_error); no level switches nearer than its own error allows
+/// (switching later is always safe). Among such choices it takes the one
+/// drawing the fewest triangles integrated over log distance (a shortest path
+/// over a geometric grid of 16 steps per spacing factor, from the first
+/// candidate's distance to the vanishing one). Errors are made non-decreasing
+/// first, as switching_ranges does. The choice does not depend on the
+/// transform scale (every distance scales with it). spacing <= 1 keeps every
+/// candidate below the vanishing distance at its own distance. Without
+/// counts (`candidate_triangles` empty), later candidates count as coarser.
 SpacedLevels space_levels(std::span<const double> candidate_errors, double radius,
-                          const RangeOptions& options, double spacing = kDefaultLevelSpacing);
+                          const RangeOptions& options, double spacing = kDefaultLevelSpacing,
+                          std::span<const std::size_t> candidate_triangles = {},
+                          std::size_t level0_triangles = 0);
 
 }  // namespace lodforge

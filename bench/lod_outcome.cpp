@@ -1,0 +1,171 @@
+// What `lodforge lod` buys a viewer (issue 16, "a benchmark of the outcome"):
+// the triangles its output draws at 40 log-spaced distances from each shape's
+// bounding radius to 200x it, summed, beside a peer chain built the way
+// engines build one: meshopt_simplify to 1/2, 1/4, ... of the triangles, each
+// level switched at the distance where its *measured* Hausdorff deviation
+// (the same DeviationMeter, without lodforge's 10 % margin) covers the same
+// error range of the same camera, and gone at the same vanishing distance.
+// Both sides use each shape's bounding sphere, largest instance scale and
+// instance count from lodforge's statistics. Also the output file's size
+// against the input's.
+//
+//   lod_outcome FILE...      (VRML 1.0 scenes; a mesh file (PLY, OBJ, ...) is
+//                             made a scene of one IndexedFaceSet first)
+//
+// Prints a Markdown table on stdout; ratio = lodforge / peer (target <= 0.7).
+#include <fmt/core.h>
+#include <meshoptimizer.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/lod/measure_deviation.h"
+#include "lodforge/lod/switching_ranges.h"
+#include "lodforge/mesh/mesh_io.h"
+#include "lodforge/scene/shape_mesh.h"
+#include "lodforge/scene/traverse.h"
+
+namespace {
+
+using namespace lodforge;
+
+constexpr int kDistances = 40;
+constexpr double kFarthest = 200;  // x the radius
+
+std::string scene_text_of(const TriangleMesh& mesh) {
+  std::string s = "#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [\n";
+  for (const auto& p : mesh.positions) s += fmt::format("{} {} {},\n", p.x, p.y, p.z);
+  s += "] }\nIndexedFaceSet { coordIndex [\n";
+  for (const auto& t : mesh.triangles) s += fmt::format("{}, {}, {}, -1,\n", t[0], t[1], t[2]);
+  return s + "] }\n}\n";
+}
+
+// The peer's chain of one mesh: triangle counts and switching distances at
+// scale 1 (level 0 first, distance 0).
+struct PeerChain {
+  std::vector<std::size_t> triangles;
+  std::vector<double> distance;
+};
+
+PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions& range) {
+  PeerChain c{{mesh.triangle_count()}, {0.0}};
+  std::vector<unsigned> indices;
+  for (const auto& t : mesh.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+  std::vector<float> xyz;
+  for (const auto& p : mesh.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  DeviationMeter meter(mesh, {.samples = std::clamp<std::size_t>(20 * mesh.triangle_count(),
+                                                                 20000, 200000)});
+  double worst = 0;
+  for (std::size_t target = indices.size() / 2; target >= 3; target /= 2) {
+    std::vector<unsigned> out(indices.size());
+    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(),
+                                mesh.positions.size(), 3 * sizeof(float), target / 3 * 3,
+                                std::numeric_limits<float>::max(), 0, nullptr));
+    if (out.empty() || out.size() / 3 >= c.triangles.back()) break;
+    TriangleMesh level;
+    level.positions = mesh.positions;
+    for (std::size_t i = 0; i < out.size(); i += 3)
+      level.triangles.push_back({out[i], out[i + 1], out[i + 2]});
+    worst = std::max(worst, meter.hausdorff(level));
+    const double d = switch_distance(worst, 1, radius, range);
+    if (d >= switch_distance(vanishing_error(radius), 1, radius, range)) break;
+    c.triangles.push_back(level.triangle_count());
+    c.distance.push_back(d);
+  }
+  return c;
+}
+
+struct Outcome {
+  double lodforge = 0, peer = 0;
+  std::size_t input_bytes = 0, output_bytes = 0;
+  std::size_t shapes = 0;
+};
+
+Outcome measure(const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string ext = fs::path(path).extension().string();
+  scene::Scene in;
+  Outcome o;
+  if (ext == ".wrl" || ext == ".iv") {
+    in = vrml1::read_vrml1_file(path).scene;
+    o.input_bytes = fs::file_size(path);
+  } else {
+    const std::string text = scene_text_of(read_mesh(path));
+    in = vrml1::read_vrml1(text).scene;
+    o.input_bytes = text.size();
+  }
+  const LodResult r = generate_lod(in, {});
+  o.output_bytes = vrml1::write_vrml1(r.scene).size();
+  RangeOptions range;
+  range.camera_angle = float(r.camera_angle);
+  // The input mesh of each IndexedFaceSet, by line (lodforge's statistics name it so).
+  std::map<int, TriangleMesh> meshes;
+  scene::traverse(in, [&](const scene::ShapeVisit& v) {
+    if (v.shape.type == "IndexedFaceSet" && !meshes.count(v.shape.first_line))
+      meshes[v.shape.first_line] = scene::shape_mesh(v, {.world_space = false});
+  });
+  for (const ShapeStatistics& s : r.shapes) {
+    if (s.type != "IndexedFaceSet" || s.levels.empty() || s.radius <= 0) continue;
+    auto m = meshes.find(s.line);
+    if (m == meshes.end() || m->second.triangles.empty()) continue;
+    ++o.shapes;
+    const PeerChain peer = peer_chain(m->second, s.radius, range);
+    const double k = s.scale > 0 ? s.scale : 1.0;
+    const double vanish = k * switch_distance(vanishing_error(s.radius), 1, s.radius, range);
+    for (int i = 0; i < kDistances; ++i) {
+      const double d = k * s.radius * std::pow(kFarthest, double(i) / (kDistances - 1));
+      // lodforge: the level whose range interval holds d (past the last: empty).
+      std::size_t level = 0;
+      while (level < s.ranges.size() && d >= s.ranges[level]) ++level;
+      if (level < s.levels.size()) o.lodforge += double(s.occurrences * s.levels[level].triangles);
+      // The peer: its coarsest level allowed at d, nothing past vanishing.
+      if (d >= vanish) continue;
+      std::size_t p = 0;
+      while (p + 1 < peer.distance.size() && k * peer.distance[p + 1] <= d) ++p;
+      o.peer += double(s.occurrences * peer.triangles[p]);
+    }
+  }
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fmt::print(stderr, "usage: lod_outcome FILE...\n");
+    return 2;
+  }
+  fmt::print("| file | shapes | triangles drawn, lodforge | peer | ratio | output / input size |\n");
+  fmt::print("|---|---|---|---|---|---|\n");
+  Outcome all;
+  for (int a = 1; a < argc; ++a) {
+    Outcome o;
+    try {
+      o = measure(argv[a]);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "{}: {}\n", argv[a], e.what());
+      continue;
+    }
+    if (o.shapes == 0) continue;
+    all.lodforge += o.lodforge;
+    all.peer += o.peer;
+    all.input_bytes += o.input_bytes;
+    all.output_bytes += o.output_bytes;
+    all.shapes += o.shapes;
+    fmt::print("| {} | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} |\n",
+               std::filesystem::path(argv[a]).filename().string(), o.shapes, o.lodforge, o.peer,
+               o.lodforge / o.peer, double(o.output_bytes) / double(o.input_bytes));
+  }
+  if (all.peer > 0)
+    fmt::print("| all | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} |\n", all.shapes, all.lodforge,
+               all.peer, all.lodforge / all.peer,
+               double(all.output_bytes) / double(all.input_bytes));
+  return 0;
+}

@@ -85,6 +85,20 @@ TEST_F(LodCli, EmptyFaceSetIsAWarningNamingItsLine) {
   EXPECT_THAT(r.err, HasSubstr("warning: line 4: IndexedFaceSet has no faces; kept as it is"));
 }
 
+TEST_F(LodCli, TexturesAreFoundFromAnotherOutputFolder) {
+  fs::create_directories(path("in/tex"));
+  write("in/tex/wood.png", "not read by lod");
+  std::string in = write("in/scene.wrl",
+                         "#VRML V1.0 ascii\nSeparator {\nTexture2 { filename \"tex/wood.png\" }\n"
+                         "Cube {}\n}\n");
+  auto r = run_lodforge("lod " + in + " -o " + path("other/dir/out.wrl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("1 file name (Texture2, WWWInline) made relative to"));
+  auto out = vrml1::read_vrml1_file(path("other/dir/out.wrl"));
+  EXPECT_THAT(read_text(path("other/dir/out.wrl")), HasSubstr("\"../../in/tex/wood.png\""));
+  EXPECT_TRUE(fs::exists(path("other/dir/../../in/tex/wood.png")));
+}
+
 TEST_F(LodCli, BadUsageIsExitTwo) {
   EXPECT_EQ(run_lodforge("lod " + kPrimitives).exit_code, 2);  // no -o
   EXPECT_EQ(run_lodforge("lod " + kPrimitives + " " + kPrimitives + " -o x.wrl").exit_code, 2);

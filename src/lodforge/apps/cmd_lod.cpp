@@ -12,6 +12,7 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/lod/generate_lod.h"
+#include "lodforge/scene/relocate_references.h"
 
 namespace lodforge::apps {
 namespace {
@@ -249,6 +250,20 @@ void add_lod_command(CLI::App& app, Runner& run) {
                 input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
             if (base.ends_with(".gz")) base.resize(base.size() - 3);
             target = (std::filesystem::path(s->out_dir) / base).string();
+          }
+          if (input != "-" && target != "-") {
+            namespace fs = std::filesystem;
+            const fs::path to = fs::path(target).parent_path();
+            std::error_code ec;
+            if (!to.empty() && (fs::create_directories(to, ec), ec))  // as --out-dir does
+              throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(),
+                                          ec.message()));
+            const auto moved =
+                scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
+            if (moved.rewritten && !s->read.quiet)
+              fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n",
+                         input, moved.rewritten, moved.rewritten == 1 ? "" : "s",
+                         to.empty() ? "." : to.string());
           }
           vrml1::write_vrml1_file(result.scene, target, s->write);
           if (!s->read.quiet) print_summary(input, result);

@@ -54,7 +54,7 @@ TEST(SpaceLevels, KeepsTheCoarsestLevelPerSpacedDistance) {
   const double r = 1;
   std::vector<double> errors;
   for (int i = 1; i <= 40; ++i) errors.push_back(1e-4 * std::pow(1.3, i));  // up to ~3.6 r
-  SpacedLevels s = space_levels(errors, r, {}, 1.25);
+  SpacedLevels s = space_levels({.errors = errors}, r, {}, {.spacing = 1.25});
   ASSERT_GE(s.levels.size(), 3u);
   EXPECT_TRUE(s.vanished);
   const double vanish = switch_distance(vanishing_error(r), 1, r, {});
@@ -74,7 +74,7 @@ TEST(SpaceLevels, KeepsTheCoarsestLevelPerSpacedDistance) {
   }
   EXPECT_LE(1.25 * previous, vanish);
   // Without spacing every candidate below the vanishing distance is kept.
-  SpacedLevels all = space_levels(errors, r, {}, 1.0);
+  SpacedLevels all = space_levels({.errors = errors}, r, {}, {.spacing = 1.0});
   EXPECT_GT(all.levels.size(), s.levels.size());
   for (std::size_t i = 0; i < all.levels.size(); ++i) EXPECT_EQ(all.levels[i].candidate, i);
 }
@@ -83,16 +83,47 @@ TEST(SpaceLevels, ErrorFreeCandidatesCollapseToTheCoarsest) {
   // A flat patch simplified without error: the coarsest candidate is shown
   // from the radius on, the finer ones never.
   std::vector<double> errors = {0, 0, 0, 0};
-  SpacedLevels s = space_levels(errors, 2.0, {});
+  SpacedLevels s = space_levels({.errors = errors}, 2.0, {});
   ASSERT_EQ(s.levels.size(), 1u);
   EXPECT_EQ(s.levels[0].candidate, 3u);
   EXPECT_DOUBLE_EQ(s.levels[0].switch_error, 0);
   EXPECT_FALSE(s.vanished);
 }
 
+TEST(SpaceLevels, EachLevelHasAtMostTheRatioOfTheOneBefore) {
+  // Candidates 20 % apart in size, errors growing as for a smooth surface.
+  std::vector<double> errors;
+  std::vector<std::size_t> triangles;
+  for (int i = 1; i <= 25; ++i) {
+    triangles.push_back(std::size_t(100000 * std::pow(0.8, i)));
+    errors.push_back(1e-3 / std::sqrt(double(triangles.back()) / 100000));
+  }
+  const LevelCandidates c{.errors = errors, .triangles = triangles, .level0_triangles = 100000};
+  for (double ratio : {0.5, 0.25}) {
+    SpacedLevels s = space_levels(c, 1.0, {}, {.max_ratio = ratio});
+    ASSERT_GE(s.levels.size(), 2u) << ratio;
+    std::size_t before = 100000, total = 0;
+    for (const SpacedLevel& l : s.levels) {
+      EXPECT_LE(double(triangles[l.candidate]), ratio * double(before)) << ratio;
+      before = triangles[l.candidate];
+      total += before;
+    }
+    EXPECT_LE(double(total), ratio / (1 - ratio) * 100000) << ratio;
+  }
+  // Without the rule a level 80 % of the one before it is worth keeping here.
+  SpacedLevels free = space_levels(c, 1.0, {}, {.max_ratio = 1});
+  bool close = false;
+  std::size_t before = 100000;
+  for (const SpacedLevel& l : free.levels) {
+    close = close || triangles[l.candidate] > before / 2;
+    before = triangles[l.candidate];
+  }
+  EXPECT_TRUE(close);
+}
+
 TEST(SpaceLevels, NothingPastTheVanishingError) {
   std::vector<double> errors = {3.0, 4.0};  // radius 1: beyond 2 r
-  SpacedLevels s = space_levels(errors, 1.0, {});
+  SpacedLevels s = space_levels({.errors = errors}, 1.0, {});
   EXPECT_TRUE(s.levels.empty());
   EXPECT_TRUE(s.vanished);
 }

@@ -58,7 +58,8 @@ struct Settings {
   std::vector<std::string> inputs;
   std::string output, out_dir, stats;
   std::string method = "qem", export_flavour = "spec";
-  double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing;
+  double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing,
+         level_ratio = kDefaultLevelRatio;
   double camera_angle = -1, quad_split_angle = 0.174533;
   int levels = 0, threads = 0;
   std::optional<int> extract;
@@ -80,6 +81,7 @@ LodOptions lod_options(const Settings& s) {
   }
   o.min_diff = float(s.min_diff_pct / 100.0);
   o.level_spacing = s.level_spacing;
+  o.level_ratio = s.level_ratio;
   o.max_levels = std::size_t(s.levels);
   o.differentiate_by_size = s.by_size;
   o.no_lines = s.no_lines;
@@ -182,6 +184,11 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "factor of distance (1 keeps every candidate)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
+  cmd->add_option("--level-ratio", s->level_ratio,
+                  "Automatic mode: a level keeps at most this fraction of the triangles of the "
+                  "level before it (1: no size rule)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 1.0));
   cmd->add_option("--levels", s->levels, "At most N levels per shape (original and empty included)")
       ->check(CLI::Range(2, 1000));
   cmd->add_option("--quality", s->quality,

@@ -370,8 +370,11 @@ class Pipeline {
     RangeOptions ro = opt_.range;
     ro.camera_angle = float(camera_angle_);
     SpacedLevels spaced =
-        space_levels(errors, j.radius, ro, opt_.level_spacing, triangles,
-                     j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size());
+        space_levels({.errors = errors,
+                      .triangles = triangles,
+                      .level0_triangles =
+                          j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
+                     j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
     std::size_t kept = 0;
     for (const SpacedLevel& s : spaced.levels) {
       if (simplified_max && kept == simplified_max) break;
@@ -416,6 +419,49 @@ class Pipeline {
     return h;
   }
 
+  // A simplified level of a Sphere, Cone or Cylinder: the tessellation of the
+  // unit primitive of its kind (radius 1, height 2, the node's parts), shared
+  // by every primitive drawn under the same kind of attribute state, under a
+  // Scale to the node's size. A scene of many spheres holds one set of
+  // sphere levels. (Texture coordinates of the primitives do not depend on
+  // their size; normals follow the Scale as every browser transforms them.)
+  NodePtr primitive_level(const Job& j, int segments) {
+    auto size = [&](const char* field) {
+      const scene::FieldValue* v = scene::field_or_default(*j.shape, field);
+      return v && !v->floats.empty() ? std::abs(v->floats[0]) : 1.0f;
+    };
+    const std::string& t = j.shape->type;
+    const Vec3 scale = t == "Sphere" ? Vec3{size("radius"), size("radius"), size("radius")}
+                       : t == "Cone" ? Vec3{size("bottomRadius"), size("height") / 2,
+                                            size("bottomRadius")}
+                                     : Vec3{size("radius"), size("height") / 2, size("radius")};
+    const bool scalable = scale.x > 0 && scale.y > 0 && std::isfinite(scale.x) &&
+                          std::isfinite(scale.y);
+    Node unit{.type = t};
+    if (const scene::FieldValue* parts = j.shape->value("parts")) unit.set("parts", *parts);
+    const Node& source = scalable ? unit : *j.shape;
+    ShapeGeometry g =
+        primitive_geometry(scene::tessellate_primitive(source, {.segments = segments}), true);
+    mark_inherited_attributes(g, j.state);
+    if (!scalable) return LevelWriter(g, j.state, true).level(g.mesh, {}, {});
+    std::string key = fmt::format("{}/{}/{}{}{}", t, segments, int(g.override_normals),
+                                  int(g.override_texcoords), int(g.override_material_binding));
+    if (const scene::FieldValue* parts = j.shape->value("parts"))
+      for (const auto& p : parts->strings) key += "/" + p;
+    NodePtr shared;
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex_);
+      NodePtr& cached = unit_levels_[key];
+      if (!cached) cached = LevelWriter(g, j.state, true).level(g.mesh, {}, {});
+      shared = cached;
+    }
+    auto level = make_node("Separator");
+    auto s = make_node("Scale");
+    s->set("scaleFactor", scene::make_floats(FieldKind::kVec3f, false, {scale.x, scale.y, scale.z}));
+    level->children = {s, shared};
+    return level;
+  }
+
   void primitive_levels(Job& j, std::size_t simplified_max) {
     j.stats.method = "tessellation";
     std::size_t previous = j.stats.levels.front().triangles;
@@ -425,9 +471,7 @@ class Pipeline {
       if (double(tess.triangle_count()) > double(previous) * (1.0 - opt_.min_diff)) continue;
       const double error = kErrorMargin * tessellation_error(*j.shape, seg);
       if (error >= vanishing_error(j.radius)) break;
-      ShapeGeometry g = primitive_geometry(tess, true);
-      mark_inherited_attributes(g, j.state);
-      j.level_nodes.push_back(LevelWriter(g, j.state, true).level(g.mesh, {}, {}));
+      j.level_nodes.push_back(primitive_level(j, seg));
       j.errors.push_back(error);
       j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), error});
       previous = tess.triangle_count();
@@ -544,6 +588,7 @@ class Pipeline {
   double largest_radius_ = 0;
   std::mutex cache_mutex_;
   std::map<std::string, double> tessellation_errors_;
+  std::map<std::string, NodePtr> unit_levels_;  // primitive_level's shared tessellations
 };
 
 }  // namespace

@@ -51,6 +51,9 @@ struct LodOptions {
   /// over a distance interval of at least this factor (space_levels in
   /// switching_ranges.h); <= 1 keeps every candidate with a larger distance.
   double level_spacing = kDefaultLevelSpacing;
+  /// Automatic mode: a kept level has at most this fraction of the triangles
+  /// of the level before it (>= 1: no size rule).
+  double level_ratio = kDefaultLevelRatio;
   std::size_t max_levels = 0;  ///< at most this many levels, original and empty included
   /// Per shape type: "polygon" (IndexedFaceSet), "line" (IndexedLineSet),
   /// "sphere", "cone", "cylinder", "cube".

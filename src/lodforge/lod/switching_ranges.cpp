@@ -34,14 +34,17 @@ std::vector<float> switching_ranges(std::span<const double> level_errors, double
 // The choice of switching distances as a shortest path. Distances from the
 // first candidate's to the vanishing one are a geometric grid (kGridSteps
 // steps per spacing factor). A level starting at grid point g is the coarsest
-// candidate allowed there (coarser is never worse: every later choice stays
-// open). best[g] = the fewest triangles drawn, integrated over log distance
+// candidate allowed there (coarser is never worse for the distances; with the
+// size rule a finer one could leave a later level open that the coarsest
+// closes, which the grid does not try). best[g] = the fewest triangles drawn, integrated over log distance
 // (grid steps), from g to the vanishing distance, with the level of g shown
 // for at least one spacing factor. Level 0 is shown up to the first switch.
-SpacedLevels space_levels(std::span<const double> candidate_errors, double radius,
-                          const RangeOptions& options, double spacing,
-                          std::span<const std::size_t> candidate_triangles,
-                          std::size_t level0_triangles) {
+SpacedLevels space_levels(const LevelCandidates& candidates, double radius,
+                          const RangeOptions& options, const SpacingOptions& spacing_options) {
+  const std::span<const double> candidate_errors = candidates.errors;
+  const std::span<const std::size_t> candidate_triangles = candidates.triangles;
+  const std::size_t level0_triangles = candidates.level0_triangles;
+  const double spacing = spacing_options.spacing;
   SpacedLevels out;
   const std::size_t n = candidate_errors.size();
   // Distances at scale 1 (every distance scales with the transform alike).
@@ -93,6 +96,12 @@ SpacedLevels space_levels(std::span<const double> candidate_errors, double radiu
                        ? double(candidate_triangles[std::size_t(j)])
                        : double(n - std::size_t(j));  // no counts: later is coarser
   };
+  // The size rule, between a level and the one after it (j < 0: level 0).
+  const bool sized = !candidate_triangles.empty() && spacing_options.max_ratio < 1;
+  auto small_enough = [&](std::ptrdiff_t after, std::ptrdiff_t j) {
+    return !sized || (after < 0 && level0_triangles == 0) ||
+           triangles(j) <= spacing_options.max_ratio * triangles(after);
+  };
   const double kInf = std::numeric_limits<double>::infinity();
   std::vector<double> best(grid + 1, kInf);
   std::vector<std::size_t> next(grid + 1, SIZE_MAX);  // SIZE_MAX: shown until vanishing
@@ -102,7 +111,7 @@ SpacedLevels space_levels(std::span<const double> candidate_errors, double radiu
     const double here = triangles(j);
     if (end - double(g) >= kGridSteps) best[g] = here * (end - double(g));
     for (std::size_t h = g + kGridSteps; h <= grid; ++h) {
-      if (level[h] <= j || best[h] == kInf) continue;
+      if (level[h] <= j || best[h] == kInf || !small_enough(j, level[h])) continue;
       const double c = here * double(h - g) + best[h];
       if (c < best[g]) {
         best[g] = c;
@@ -114,7 +123,7 @@ SpacedLevels space_levels(std::span<const double> candidate_errors, double radiu
   std::size_t first = SIZE_MAX;
   double total = kInf;
   for (std::size_t g = 0; g <= grid; ++g) {
-    if (best[g] == kInf) continue;
+    if (best[g] == kInf || !small_enough(-1, level[g])) continue;
     const double c = double(level0_triangles ? level0_triangles : n + 1) * double(g) + best[g];
     if (c < total) {
       total = c;

@@ -41,9 +41,30 @@ std::vector<float> switching_ranges(std::span<const double> level_errors, double
 /// Default of SpacingOptions::spacing: a kept level is shown over at least a
 /// 1.25x distance interval (from d to 1.25 d or farther).
 inline constexpr double kDefaultLevelSpacing = 1.25;
+/// Default of SpacingOptions::max_ratio: a kept level has at most half the
+/// triangles of the one before it, so all simplified levels of a shape
+/// together hold no more triangles than level 0 (the output stays within
+/// about twice the input).
+inline constexpr double kDefaultLevelRatio = 0.5;
+
+struct SpacingOptions {
+  /// Each kept level is shown from D to at least spacing x D; <= 1: every
+  /// candidate is kept at its own distance (no spacing, no size rule).
+  double spacing = kDefaultLevelSpacing;
+  /// Triangles of a kept level <= max_ratio x those of the level before it
+  /// (level 0 for the first); >= 1: no size rule. Needs candidate counts.
+  double max_ratio = kDefaultLevelRatio;
+};
+
+/// Candidate levels 1..n of one shape, finer to coarser.
+struct LevelCandidates {
+  std::span<const double> errors;          ///< eps, model units
+  std::span<const std::size_t> triangles;  ///< their sizes; empty: later is smaller
+  std::size_t level0_triangles = 0;
+};
 
 struct SpacedLevel {
-  std::size_t candidate = 0;  ///< index into the candidate errors
+  std::size_t candidate = 0;  ///< index into the candidates
   /// The error whose switch_distance is this level's switching distance: at
   /// least the candidate's own error (switching later than its error allows
   /// is always safe), larger where the spacing pushes the switch outwards.
@@ -58,23 +79,18 @@ struct SpacedLevels {
   bool vanished = false;
 };
 
-/// Chooses, from candidate levels 1..n of one shape (finer to coarser, with
-/// their errors eps, model units, and triangle counts), the levels worth
-/// writing, and where each switches. Each kept level is shown over a distance
-/// interval of at least `spacing` x its start (from D to spacing x D or
-/// farther), the last one too before the object vanishes (the distance of
-/// vanishing_error); no level switches nearer than its own error allows
-/// (switching later is always safe). Among such choices it takes the one
-/// drawing the fewest triangles integrated over log distance (a shortest path
-/// over a geometric grid of 16 steps per spacing factor, from the first
-/// candidate's distance to the vanishing one). Errors are made non-decreasing
-/// first, as switching_ranges does. The choice does not depend on the
-/// transform scale (every distance scales with it). spacing <= 1 keeps every
-/// candidate below the vanishing distance at its own distance. Without
-/// counts (`candidate_triangles` empty), later candidates count as coarser.
-SpacedLevels space_levels(std::span<const double> candidate_errors, double radius,
-                          const RangeOptions& options, double spacing = kDefaultLevelSpacing,
-                          std::span<const std::size_t> candidate_triangles = {},
-                          std::size_t level0_triangles = 0);
+/// Chooses the candidate levels worth writing, and where each switches. Each
+/// kept level is shown over a distance interval of at least `spacing` x its
+/// start, the last one too before the object vanishes (the distance of
+/// vanishing_error), and keeps at most max_ratio of the triangles before it;
+/// no level switches nearer than its own error allows (switching later is
+/// always safe). Among such choices it takes the one drawing the fewest
+/// triangles integrated over log distance (a shortest path over a geometric
+/// grid of 16 steps per spacing factor, from the first candidate's distance
+/// to the vanishing one). Errors are made non-decreasing first, as
+/// switching_ranges does. The choice does not depend on the transform scale
+/// (every distance scales with it).
+SpacedLevels space_levels(const LevelCandidates& candidates, double radius,
+                          const RangeOptions& range, const SpacingOptions& options = {});
 
 }  // namespace lodforge

@@ -60,8 +60,8 @@ PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions
   for (const auto& t : mesh.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
   std::vector<float> xyz;
   for (const auto& p : mesh.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  DeviationMeter meter(mesh, {.samples = std::clamp<std::size_t>(20 * mesh.triangle_count(),
-                                                                 20000, 200000)});
+  DeviationMeter meter(
+      mesh, {.samples = std::clamp<std::size_t>(20 * mesh.triangle_count(), 20000, 200000)});
   double worst = 0;
   for (std::size_t target = indices.size() / 2; target >= 3; target /= 2) {
     std::vector<unsigned> out(indices.size());
@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: lod_outcome FILE...\n");
     return 2;
   }
-  fmt::print("| file | shapes | triangles drawn, lodforge | peer | ratio | output / input size |\n");
+  fmt::print(
+      "| file | shapes | triangles drawn, lodforge | peer | ratio | output / input size |\n");
   fmt::print("|---|---|---|---|---|---|\n");
   Outcome all;
   for (int a = 1; a < argc; ++a) {

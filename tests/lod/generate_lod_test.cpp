@@ -231,8 +231,9 @@ TEST(GenerateLod, PerFaceMaterialsBecomeIndexedAndSurviveSimplification) {
 // Coordinate3 that holds each position once.
 TEST(GenerateLod, LevelZeroIsTheInputAndLevelsShareTheirCoordinates) {
   constexpr int n = 24;
-  std::string text = "#VRML V1.0 ascii\nSeparator {\nShapeHints { faceType UNKNOWN_FACE_TYPE }\n"
-                     "Coordinate3 { point [\n";
+  std::string text =
+      "#VRML V1.0 ascii\nSeparator {\nShapeHints { faceType UNKNOWN_FACE_TYPE }\n"
+      "Coordinate3 { point [\n";
   for (int y = 0; y <= n; ++y)
     for (int x = 0; x <= n; ++x)
       text += fmt::format("{} {} {},\n", x, y, 2 * std::sin(x * 0.7) * std::cos(y * 0.5));
@@ -254,13 +255,12 @@ TEST(GenerateLod, LevelZeroIsTheInputAndLevelsShareTheirCoordinates) {
   };
   auto drawn = [](const scene::Scene& s, int level) {
     std::vector<Drawn> d;
-    scene::traverse(
-        s,
-        [&](const scene::ShapeVisit& v) {
-          if (v.shape.type == "IndexedFaceSet")
-            d.push_back({&v.shape, v.state.coordinate3, v.state.shape_hints});
-        },
-        {.lod_level = level});
+    scene::traverse(s,
+                    [&](const scene::ShapeVisit& v) {
+                      if (v.shape.type == "IndexedFaceSet")
+                        d.push_back({&v.shape, v.state.coordinate3, v.state.shape_hints});
+                    },
+                    {.lod_level = level});
     return d;
   };
   const auto input = drawn(in, 0), level0 = drawn(out, 0);

@@ -32,9 +32,9 @@ TEST(RelocateReferences, RelativeNamesFollowTheOutputFolder) {
   Scene s = vrml1::read_vrml1(kScene).scene;
   RelocateResult r = relocate_references(s, "/data/scenes", "/data/out/lod");
   EXPECT_EQ(r.rewritten, 3u);  // the shared texture once, c.jpg, the inline
-  EXPECT_EQ(names(s), (std::vector<std::string>{"../../scenes/textures/wood.png",
-                                                "http://example.com/a.png", "/abs/b.png",
-                                                "../../shared/c.jpg", "../../scenes/parts/wheel.wrl"}));
+  EXPECT_EQ(names(s), (std::vector<std::string>{
+                          "../../scenes/textures/wood.png", "http://example.com/a.png",
+                          "/abs/b.png", "../../shared/c.jpg", "../../scenes/parts/wheel.wrl"}));
 }
 
 TEST(RelocateReferences, SameFolderChangesNothing) {

@@ -263,8 +263,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
             const fs::path to = fs::path(target).parent_path();
             std::error_code ec;
             if (!to.empty() && (fs::create_directories(to, ec), ec))  // as --out-dir does
-              throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(),
-                                          ec.message()));
+              throw DataError(
+                  fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
             const auto moved =
                 scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
             if (moved.rewritten && !s->read.quiet)

@@ -285,8 +285,7 @@ class Pipeline {
     // to the origin (reducer flavour), or clean-and-reformat (--extract -1).
     if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
       j.writer = std::make_unique<LevelWriter>(j.geometry, j.state, opt_.no_lines);
-      const bool rebuild = j.geometry.repaired ||
-                           opt_.export_flavour == ExportFlavour::kReducer ||
+      const bool rebuild = j.geometry.repaired || opt_.export_flavour == ExportFlavour::kReducer ||
                            (opt_.extract && *opt_.extract < 0);
       if (rebuild) {
         j.level_nodes.push_back(j.writer->level(j.geometry.mesh, {}, {}));
@@ -369,12 +368,11 @@ class Pipeline {
     }
     RangeOptions ro = opt_.range;
     ro.camera_angle = float(camera_angle_);
-    SpacedLevels spaced =
-        space_levels({.errors = errors,
-                      .triangles = triangles,
-                      .level0_triangles =
-                          j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
-                     j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
+    SpacedLevels spaced = space_levels(
+        {.errors = errors,
+         .triangles = triangles,
+         .level0_triangles = j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
+        j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
     std::size_t kept = 0;
     for (const SpacedLevel& s : spaced.levels) {
       if (simplified_max && kept == simplified_max) break;
@@ -432,11 +430,11 @@ class Pipeline {
     };
     const std::string& t = j.shape->type;
     const Vec3 scale = t == "Sphere" ? Vec3{size("radius"), size("radius"), size("radius")}
-                       : t == "Cone" ? Vec3{size("bottomRadius"), size("height") / 2,
-                                            size("bottomRadius")}
-                                     : Vec3{size("radius"), size("height") / 2, size("radius")};
-    const bool scalable = scale.x > 0 && scale.y > 0 && std::isfinite(scale.x) &&
-                          std::isfinite(scale.y);
+                       : t == "Cone"
+                           ? Vec3{size("bottomRadius"), size("height") / 2, size("bottomRadius")}
+                           : Vec3{size("radius"), size("height") / 2, size("radius")};
+    const bool scalable =
+        scale.x > 0 && scale.y > 0 && std::isfinite(scale.x) && std::isfinite(scale.y);
     Node unit{.type = t};
     if (const scene::FieldValue* parts = j.shape->value("parts")) unit.set("parts", *parts);
     const Node& source = scalable ? unit : *j.shape;
@@ -457,7 +455,8 @@ class Pipeline {
     }
     auto level = make_node("Separator");
     auto s = make_node("Scale");
-    s->set("scaleFactor", scene::make_floats(FieldKind::kVec3f, false, {scale.x, scale.y, scale.z}));
+    s->set("scaleFactor",
+           scene::make_floats(FieldKind::kVec3f, false, {scale.x, scale.y, scale.z}));
     level->children = {s, shared};
     return level;
   }

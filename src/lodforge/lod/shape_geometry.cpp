@@ -449,8 +449,7 @@ struct LevelWriter::Impl {
   NodePtr coord_node, normal_node, tex_node;
 };
 
-LevelWriter::LevelWriter(const ShapeGeometry& g, const scene::TraversalState& state,
-                         bool no_lines)
+LevelWriter::LevelWriter(const ShapeGeometry& g, const scene::TraversalState& state, bool no_lines)
     : impl_(new Impl{g, no_lines, {}, {}, {}, {}, {}, {}, {}}) {
   using scene::FieldKind;
   auto& props = impl_->properties;
@@ -492,7 +491,9 @@ scene::NodePtr LevelWriter::level(const TriangleMesh& mesh,
   const ShapeGeometry& g = impl_->g;
   const bool no_lines = impl_->no_lines;
   auto coord_of = [&](std::uint32_t v) { return impl_->coords.add(&mesh.positions[v].x); };
-  auto normal_of = [&](std::uint32_t value) { return impl_->normals.add(&g.normal_values[value].x); };
+  auto normal_of = [&](std::uint32_t value) {
+    return impl_->normals.add(&g.normal_values[value].x);
+  };
   auto tex_of = [&](std::uint32_t value) { return impl_->texs.add(&g.texcoord_values[value].x); };
   auto origin = [&](std::uint32_t v) { return vertex_map.empty() ? v : vertex_map[v]; };
   auto origin_face = [&](std::size_t t) {
@@ -587,7 +588,8 @@ scene::NodePtr LevelWriter::level(const TriangleMesh& mesh,
 
   auto level = make_node("Separator");
   level->children = impl_->properties;
-  impl_->coord_node->set("point", scene::make_floats(FieldKind::kVec3f, true, impl_->coords.values));
+  impl_->coord_node->set("point",
+                         scene::make_floats(FieldKind::kVec3f, true, impl_->coords.values));
   if (impl_->normal_node)
     impl_->normal_node->set("vector",
                             scene::make_floats(FieldKind::kVec3f, true, impl_->normals.values));

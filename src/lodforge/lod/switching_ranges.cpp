@@ -36,9 +36,9 @@ std::vector<float> switching_ranges(std::span<const double> level_errors, double
 // steps per spacing factor). A level starting at grid point g is the coarsest
 // candidate allowed there (coarser is never worse for the distances; with the
 // size rule a finer one could leave a later level open that the coarsest
-// closes, which the grid does not try). best[g] = the fewest triangles drawn, integrated over log distance
-// (grid steps), from g to the vanishing distance, with the level of g shown
-// for at least one spacing factor. Level 0 is shown up to the first switch.
+// closes, which the grid does not try). best[g] = the fewest triangles drawn, integrated over log
+// distance (grid steps), from g to the vanishing distance, with the level of g shown for at least
+// one spacing factor. Level 0 is shown up to the first switch.
 SpacedLevels space_levels(const LevelCandidates& candidates, double radius,
                           const RangeOptions& options, const SpacingOptions& spacing_options) {
   const std::span<const double> candidate_errors = candidates.errors;
@@ -92,9 +92,9 @@ SpacedLevels space_levels(const LevelCandidates& candidates, double radius,
   const double end = std::log(vanish / d[0]) / step;  // the vanishing distance in grid steps
   auto triangles = [&](std::ptrdiff_t j) {
     return j < 0 ? double(level0_triangles)
-                 : std::size_t(j) < candidate_triangles.size()
-                       ? double(candidate_triangles[std::size_t(j)])
-                       : double(n - std::size_t(j));  // no counts: later is coarser
+           : std::size_t(j) < candidate_triangles.size()
+               ? double(candidate_triangles[std::size_t(j)])
+               : double(n - std::size_t(j));  // no counts: later is coarser
   };
   // The size rule, between a level and the one after it (j < 0: level 0).
   const bool sized = !candidate_triangles.empty() && spacing_options.max_ratio < 1;

@@ -29,8 +29,7 @@ fs::path normal_absolute(const fs::path& p) {
 
 }  // namespace
 
-RelocateResult relocate_references(Scene& scene, const fs::path& from_dir,
-                                   const fs::path& to_dir) {
+RelocateResult relocate_references(Scene& scene, const fs::path& from_dir, const fs::path& to_dir) {
   RelocateResult result;
   const fs::path from = normal_absolute(from_dir.empty() ? fs::path(".") : from_dir);
   const fs::path to = normal_absolute(to_dir.empty() ? fs::path(".") : to_dir);

@@ -252,19 +252,18 @@ void add_lod_command(CLI::App& app, Runner& run) {
           }
           std::string target = s->output;
           if (!s->out_dir.empty()) {
-            std::filesystem::create_directories(s->out_dir);
             std::string base =
                 input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
             if (base.ends_with(".gz")) base.resize(base.size() - 3);
             target = (std::filesystem::path(s->out_dir) / base).string();
           }
+          namespace fs = std::filesystem;
+          const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
+          std::error_code ec;
+          if (!to.empty() && (fs::create_directories(to, ec), ec))
+            throw DataError(
+                fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
           if (input != "-" && target != "-") {
-            namespace fs = std::filesystem;
-            const fs::path to = fs::path(target).parent_path();
-            std::error_code ec;
-            if (!to.empty() && (fs::create_directories(to, ec), ec))  // as --out-dir does
-              throw DataError(
-                  fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
             const auto moved =
                 scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
             if (moved.rewritten && !s->read.quiet)

@@ -32,14 +32,9 @@ namespace lodforge {
 namespace {
 
 using scene::FieldKind;
+using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
-
-NodePtr make_node(std::string type) {
-  auto n = std::make_shared<Node>();
-  n->type = std::move(type);
-  return n;
-}
 
 // Deep copy that keeps the sharing pattern.
 NodePtr clone(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& done) {

@@ -28,6 +28,7 @@ namespace lodforge {
 namespace {
 
 using scene::FieldValue;
+using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
 
@@ -411,24 +412,14 @@ struct IndexWriter {
   std::vector<std::int32_t> coord, normal, texcoord, material;
 };
 
-// Values numbered in first-use order, each once (by bit pattern).
-template <int N>
-struct ValuePool {
-  std::map<std::array<std::uint32_t, N>, std::int32_t> ids;
-  std::vector<float> values;
-  std::int32_t add(const float* v) {
-    std::array<std::uint32_t, N> key;
-    for (int k = 0; k < N; ++k) key[k] = bits(v[k]);
-    auto [it, fresh] = ids.try_emplace(key, std::int32_t(values.size() / N));
-    if (fresh) values.insert(values.end(), v, v + N);
-    return it->second;
-  }
-};
-
-NodePtr make_node(const char* type) {
-  auto n = std::make_shared<Node>();
-  n->type = type;
-  return n;
+// The values of a pool as one flat list (x y [z] per value).
+template <typename V>
+std::vector<float> flat(const std::vector<V>& values) {
+  constexpr std::size_t n = sizeof(V) / sizeof(float);
+  std::vector<float> out;
+  out.reserve(n * values.size());
+  for (const V& v : values) out.insert(out.end(), &v.x, &v.x + n);
+  return out;
 }
 
 NodePtr binding_node(const char* type, AttributeBinding b) {
@@ -443,14 +434,14 @@ NodePtr binding_node(const char* type, AttributeBinding b) {
 struct LevelWriter::Impl {
   const ShapeGeometry& g;
   bool no_lines;
-  ValuePool<3> coords, normals;
-  ValuePool<2> texs;
+  Deduper<Vec3, std::array<std::uint32_t, 3>> coords, normals;
+  Deduper<Vec2, std::array<std::uint32_t, 2>> texs;
   std::vector<NodePtr> properties;  // shared by every level, in order
   NodePtr coord_node, normal_node, tex_node;
 };
 
 LevelWriter::LevelWriter(const ShapeGeometry& g, const scene::TraversalState& state, bool no_lines)
-    : impl_(new Impl{g, no_lines, {}, {}, {}, {}, {}, {}, {}}) {
+    : impl_(new Impl{.g = g, .no_lines = no_lines}) {
   using scene::FieldKind;
   auto& props = impl_->properties;
   if (g.material_binding != AttributeBinding::kNone) {
@@ -490,11 +481,17 @@ scene::NodePtr LevelWriter::level(const TriangleMesh& mesh,
   using scene::FieldKind;
   const ShapeGeometry& g = impl_->g;
   const bool no_lines = impl_->no_lines;
-  auto coord_of = [&](std::uint32_t v) { return impl_->coords.add(&mesh.positions[v].x); };
-  auto normal_of = [&](std::uint32_t value) {
-    return impl_->normals.add(&g.normal_values[value].x);
+  auto add3 = [](auto& pool, const Vec3& v) {
+    return std::int32_t(pool.add(v, {bits(v.x), bits(v.y), bits(v.z)}));
   };
-  auto tex_of = [&](std::uint32_t value) { return impl_->texs.add(&g.texcoord_values[value].x); };
+  auto coord_of = [&](std::uint32_t v) { return add3(impl_->coords, mesh.positions[v]); };
+  auto normal_of = [&](std::uint32_t value) {
+    return add3(impl_->normals, g.normal_values[value]);
+  };
+  auto tex_of = [&](std::uint32_t value) {
+    const Vec2& t = g.texcoord_values[value];
+    return std::int32_t(impl_->texs.add(t, {bits(t.x), bits(t.y)}));
+  };
   auto origin = [&](std::uint32_t v) { return vertex_map.empty() ? v : vertex_map[v]; };
   auto origin_face = [&](std::size_t t) {
     return face_map.empty() ? std::uint32_t(t) : face_map[t];
@@ -589,12 +586,13 @@ scene::NodePtr LevelWriter::level(const TriangleMesh& mesh,
   auto level = make_node("Separator");
   level->children = impl_->properties;
   impl_->coord_node->set("point",
-                         scene::make_floats(FieldKind::kVec3f, true, impl_->coords.values));
+                         scene::make_floats(FieldKind::kVec3f, true, flat(impl_->coords.values)));
   if (impl_->normal_node)
-    impl_->normal_node->set("vector",
-                            scene::make_floats(FieldKind::kVec3f, true, impl_->normals.values));
+    impl_->normal_node->set(
+        "vector", scene::make_floats(FieldKind::kVec3f, true, flat(impl_->normals.values)));
   if (impl_->tex_node)
-    impl_->tex_node->set("point", scene::make_floats(FieldKind::kVec2f, true, impl_->texs.values));
+    impl_->tex_node->set("point",
+                         scene::make_floats(FieldKind::kVec2f, true, flat(impl_->texs.values)));
   auto add_set = [&](const char* type, IndexWriter& w) {
     if (w.coord.empty()) return;
     auto s = make_node(type);

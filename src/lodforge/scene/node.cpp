@@ -159,6 +159,12 @@ FieldValue make_bool(bool v) {
   return r;
 }
 
+NodePtr make_node(std::string type) {
+  auto n = std::make_shared<Node>();
+  n->type = std::move(type);
+  return n;
+}
+
 FieldValue make_enum(std::string v) {
   FieldValue r;
   r.type = {FieldKind::kEnum, false};

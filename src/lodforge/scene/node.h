@@ -120,6 +120,8 @@ FieldValue make_floats(FieldKind kind, bool multi, std::vector<float> v);
 FieldValue make_long(std::int32_t v);
 FieldValue make_longs(std::vector<std::int32_t> v);
 FieldValue make_bool(bool v);
+/// A new node of `type` without fields or children.
+NodePtr make_node(std::string type);
 FieldValue make_enum(std::string v);
 FieldValue make_string(std::string v);
 

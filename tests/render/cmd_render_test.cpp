@@ -4,8 +4,10 @@
 #include <stb_image.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "render/test_meshes.h"
@@ -27,9 +29,15 @@ class CmdRender : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  // Exit code of `lodforge render <args>`, output discarded.
-  int lodforge_render(const std::string& args) {
-    const int status = std::system((exe_ + " render " + args + " >/dev/null 2>&1").c_str());
+  // Exit code of `lodforge render <args>`; standard error into `err` if given.
+  int lodforge_render(const std::string& args, std::string* err = nullptr) {
+    const std::string err_file = dir_ + "/stderr.txt";
+    const int status =
+        std::system((exe_ + " render " + args + " >/dev/null 2>" + err_file).c_str());
+    if (err) {
+      std::ifstream in(err_file);
+      err->assign(std::istreambuf_iterator<char>(in), {});
+    }
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
   // An ASCII PLY of a cube with every vertex red.
@@ -107,6 +115,55 @@ TEST_F(CmdRender, RendersAVrmlSceneAndEachLodLevel) {
   EXPECT_EQ(all.width, 3 * 100 + 4 * 8);  // three levels side by side
   EXPECT_EQ(lodforge_render(scene + " -o " + sheet + " --levels --level 1"), 2);
   EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + dir_ + "/x.png --levels"), 1);
+}
+
+TEST_F(CmdRender, DistancesGiveARowPerDistanceOfLodChoiceBesideLevelZero) {
+  // Two LOD nodes 100 apart, a sphere switching to a small cube at 200. With
+  // --view 0,0 the eye is on +Z of the centre (50 0 0), so from d = 150 both
+  // are 158 away (spheres in both cells) and from d = 400 both are 403 away
+  // (cubes on the left, spheres on the right).
+  const std::string scene = dir_ + "/two_lods.wrl", png = dir_ + "/distances.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " DEF L LOD { range [200] Sphere { radius 5 }"
+                          " Cube { width 4 height 4 depth 4 } }\n"
+                          " Translation { translation 100 0 0 }\n USE L\n}\n";
+  ASSERT_EQ(
+      lodforge_render(scene + " -o " + png + " --size 200x200 --view 0,0 --distances 150,400"), 0);
+  const Image img = load(png);
+  EXPECT_EQ(img.width, 2 * 200 + 3 * 8);
+  // Per row: the picture, half a gap, two label lines of 12 pixels, a gap.
+  EXPECT_EQ(img.height, 8 + 2 * (200 + 4 + 2 * 12 + 8));
+  const auto cell = [&](int row, int column) {
+    Image c(200, 200);
+    for (int y = 0; y < 200; ++y)
+      for (int x = 0; x < 200; ++x)
+        std::copy_n(img.at(8 + column * 208 + x, 8 + row * 236 + y), 4, c.at(x, y));
+    return c;
+  };
+  EXPECT_GT(test::pixel_stats(cell(0, 0)).covered_fraction, 0.001);
+  EXPECT_EQ(cell(0, 0).pixels, cell(0, 1).pixels);  // nothing switched
+  EXPECT_NE(cell(1, 0).pixels, cell(1, 1).pixels);  // both switched to cubes
+  // Farther is smaller.
+  EXPECT_LT(test::pixel_stats(cell(1, 1)).covered_fraction,
+            test::pixel_stats(cell(0, 1)).covered_fraction / 2);
+}
+
+TEST_F(CmdRender, BadDistancesAreExitCode1WithAMessage) {
+  const std::string scene = dir_ + "/lod.wrl", png = dir_ + "/never.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nLOD { range [5] Sphere {} Cube {} }\n";
+  std::string err;
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances 2,far", &err), 1);
+  EXPECT_NE(err.find("--distances: 'far' is not a number"), std::string::npos) << err;
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances=2,-1", &err), 1);
+  EXPECT_NE(err.find("-1 is not a distance > 0"), std::string::npos) << err;
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances 0", &err), 1);
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances 1,,2", &err), 1);
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances ''", &err), 1);
+  EXPECT_NE(err.find("the list is empty"), std::string::npos) << err;
+  EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + png + " --distances 2"), 1);
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances 2 --levels"), 2);
+  EXPECT_EQ(lodforge_render(scene + " -o " + png + " --distances 2 --level 1"), 2);
+  EXPECT_FALSE(fs::exists(png));
 }
 
 TEST_F(CmdRender, ColouredComparisonShowsWhereTheErrorIs) {

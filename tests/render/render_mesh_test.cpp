@@ -187,6 +187,31 @@ TEST(RenderMesh, LookingStraightDownWorks) {
   EXPECT_GT(s.covered_fraction, 0.2);
 }
 
+TEST(RenderMesh, ExplicitCameraShowsTheTruePerspective) {
+  // A unit sphere seen from d with a vertical angle of 45 degrees: a disc of
+  // radius focal * tan(asin(1 / d)) pixels, focal = (height / 2) / tan(22.5).
+  const TriangleMesh s = sphere();
+  const auto from = [&](Vec3 eye, Vec3 target = {}) {
+    return pixel_stats(
+        render_mesh(s,
+                    {.width = 200, .height = 100, .camera = LookAt{.eye = eye, .target = target}})
+            .image);
+  };
+  const auto disc = [](double d) {
+    const double r = 50 / std::tan(kPi / 8) * std::tan(std::asin(1 / d));
+    return kPi * r * r / (200 * 100);
+  };
+  const auto near = from(view_direction(0, 0) * 10), far = from({0, 0, 20});
+  EXPECT_NEAR(near.covered_fraction, disc(10), 0.1 * disc(10));
+  EXPECT_NEAR(far.covered_fraction, disc(20), 0.15 * disc(20));
+  EXPECT_NEAR(near.center_x, 100, 1);
+  EXPECT_NEAR(near.center_y, 50, 1);
+  // Looking to the right of the sphere puts it left of the centre.
+  EXPECT_LT(from({0, 0, 10}, {2, 0, 0}).center_x, 80);
+  // Straight down is defined too.
+  EXPECT_NEAR(from({0, 10, 0}).covered_fraction, disc(10), 0.1 * disc(10));
+}
+
 TEST(RenderMesh, BadDataThrowsDataError) {
   TriangleMesh m = cube();
   m.triangles.push_back({0, 1, 99});

@@ -15,17 +15,18 @@ struct Seen {
   const Node* camera;
 };
 
-std::vector<Seen> visit_all(const std::string& body, int lod_level = 0) {
+std::vector<Seen> visit_all(const std::string& body, const TraverseOptions& options = {}) {
   auto r = vrml1::read_vrml1("#VRML V1.0 ascii\n" + body);
   static std::vector<vrml1::ReadResult> keep;  // the nodes must outlive the visit
   keep.push_back(std::move(r));
   std::vector<Seen> out;
-  traverse(keep.back().scene,
-           [&](const ShapeVisit& v) {
-             out.push_back({v.shape.type, v.state.transform.transform_point({0, 0, 0}),
-                            v.state.material ? v.state.material->name : "", v.camera});
-           },
-           {.lod_level = lod_level});
+  traverse(
+      keep.back().scene,
+      [&](const ShapeVisit& v) {
+        out.push_back({v.shape.type, v.state.transform.transform_point({0, 0, 0}),
+                       v.state.material ? v.state.material->name : "", v.camera});
+      },
+      options);
   return out;
 }
 
@@ -92,9 +93,30 @@ TEST(Traverse, SwitchFollowsWhichChild) {
 
 TEST(Traverse, LodLevelChoosesTheChildClampedToTheLast) {
   const std::string lod = "LOD { range [10, 20] Cube {} Sphere {} Cone {} }";
-  EXPECT_EQ(visit_all(lod, 0).at(0).type, "Cube");
-  EXPECT_EQ(visit_all(lod, 1).at(0).type, "Sphere");
-  EXPECT_EQ(visit_all(lod, 9).at(0).type, "Cone");
+  EXPECT_EQ(visit_all(lod, {.lod_level = 0}).at(0).type, "Cube");
+  EXPECT_EQ(visit_all(lod, {.lod_level = 1}).at(0).type, "Sphere");
+  EXPECT_EQ(visit_all(lod, {.lod_level = 9}).at(0).type, "Cone");
+}
+
+TEST(Traverse, ViewpointMakesEachLodChooseByItsOwnDistance) {
+  // The centre (1 0 0) lands at (3 0 0) in world space: distances are taken
+  // from there. Child 0 below 10, child 1 in [10, 20), child 2 from 20 on.
+  const std::string lod = R"(Separator { Translation { translation 2 0 0 }
+      LOD { range [10, 20] center 1 0 0 Cube {} Sphere {} Cone {} } })";
+  const auto at = [&](float x) { return visit_all(lod, {.viewpoint = Vec3{x, 0, 0}}).at(0).type; };
+  EXPECT_EQ(at(3), "Cube");
+  EXPECT_EQ(at(12.99f), "Cube");
+  EXPECT_EQ(at(13), "Sphere");  // exactly range[0] away
+  EXPECT_EQ(at(-16.9f), "Sphere");
+  EXPECT_EQ(at(23), "Cone");
+  EXPECT_EQ(at(1e6f), "Cone");
+  // More ranges than children: clamped to the last child. No range: child 0.
+  EXPECT_EQ(visit_all("LOD { range [1, 2, 3] Cube {} Sphere {} }", {.viewpoint = Vec3{0, 0, 9}})
+                .at(0)
+                .type,
+            "Sphere");
+  EXPECT_EQ(visit_all("LOD { Cube {} Sphere {} }", {.viewpoint = Vec3{0, 0, 9}}).at(0).type,
+            "Cube");
 }
 
 TEST(Traverse, FirstPerspectiveCameraIsReported) {

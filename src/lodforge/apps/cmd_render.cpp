@@ -1,18 +1,22 @@
-// `lodforge render SCENE_OR_MESH -o OUT.png [--level K | --levels] [--size WxH]
-// [--view azimuth,elevation] [--no-colors] [--wireframe] [--flat]`: a headless
-// picture of a mesh file (PLY, OBJ, OFF, STL) with its vertex colours, so a
-// `compare --colored` output shows where the error is, or of a VRML 1.0 scene
-// (flattened at LOD level K), or with --levels a contact sheet of every LOD
-// level side by side with its triangle count and switch distance under it
-// (the original's Figure 5.5).
+// `lodforge render SCENE_OR_MESH -o OUT.png [--level K | --levels |
+// --distances d1,d2,...] [--size WxH] [--view azimuth,elevation] [--no-colors]
+// [--wireframe] [--flat]`: a headless picture of a mesh file (PLY, OBJ, OFF,
+// STL) with its vertex colours, so a `compare --colored` output shows where the
+// error is, or of a VRML 1.0 scene (flattened at LOD level K), or with --levels
+// a contact sheet of every LOD level side by side with its triangle count
+// under it (the original's Figure 5.5), or with --distances what a browser
+// shows from each distance (every LOD choosing by its own distance) beside the
+// same view at full detail, so popping shows.
 #include <fmt/core.h>
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
@@ -23,6 +27,7 @@
 #include "lodforge/render/render_mesh.h"
 #include "lodforge/render/write_png.h"
 #include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/schema.h"
 
 namespace lodforge::apps {
 namespace {
@@ -55,25 +60,101 @@ bool parse_view(const std::string& text, float& azimuth, float& elevation) {
   }
 }
 
-// One panel per LOD level of a scene, all seen by the same camera.
-template <typename Settings>
-int render_levels(const Settings& s, const RenderOptions& options) {
-  if (!is_vrml_path(s.input))
-    throw DataError(fmt::format("{}: --levels needs a VRML 1.0 scene with LOD nodes", s.input));
-  vrml1::ReadResult r = read_scene(s.input, {});
-  SceneLevels levels = scene_levels(r.scene);
-  std::vector<TriangleMesh> meshes;
-  std::vector<ContactSheetPanel> panels;
-  for (std::size_t k = 0; k < levels.count; ++k)
-    meshes.push_back(scene::flatten_scene(r.scene, {.lod_level = int(k)}));
-  for (std::size_t k = 0; k < levels.count; ++k) {
-    float from = k == 0 ? 0.f : (k - 1 < levels.ranges.size() ? levels.ranges[k - 1] : 0.f);
-    panels.push_back({&meshes[k], lod_level_labels(k, meshes[k].triangle_count(), from)});
+// "2,10.5,40" -> the distances, each finite and > 0. Throws DataError (exit
+// 1) naming the bad item.
+std::vector<double> parse_distances(const std::string& text) {
+  const auto bad = [](std::string_view why) {
+    return DataError(fmt::format(
+        "--distances: {}; expected positive numbers separated by commas, e.g. 2,10,40", why));
+  };
+  if (text.empty()) throw bad("the list is empty");
+  std::vector<double> out;
+  for (std::size_t begin = 0; begin <= text.size();) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string_view item = std::string_view(text).substr(begin, end - begin);
+    double d = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), d);
+    if (item.empty() || ec != std::errc{} || ptr != item.data() + item.size() || !std::isfinite(d))
+      throw bad(fmt::format("'{}' is not a number", item));
+    if (d <= 0) throw bad(fmt::format("{} is not a distance > 0", item));
+    out.push_back(d);
+    begin = end + 1;
   }
-  const ContactSheetResult sheet = render_contact_sheet(panels, {.panel = options});
-  write_png(sheet.image, s.output);
-  fmt::print(stderr, "render: {} ({}x{}, {} levels)\n", s.output, sheet.image.width,
-             sheet.image.height, levels.count);
+  return out;
+}
+
+// The scene of a contact sheet showing its LOD nodes.
+scene::Scene read_lod_scene(const std::string& path, std::string_view option) {
+  if (!is_vrml_path(path))
+    throw DataError(fmt::format("{}: {} needs a VRML 1.0 scene with LOD nodes", path, option));
+  return read_scene(path, {}).scene;
+}
+
+void write_sheet(std::span<const ContactSheetPanel> panels, const ContactSheetOptions& options,
+                 const std::string& output, std::string_view what) {
+  const ContactSheetResult sheet = render_contact_sheet(panels, options);
+  write_png(sheet.image, output);
+  fmt::print(stderr, "render: {} ({}x{}, {})\n", output, sheet.image.width, sheet.image.height,
+             what);
+}
+
+// One panel per LOD level of a scene, all seen by the same camera.
+int render_levels(const std::string& input, const std::string& output,
+                  const RenderOptions& options) {
+  const scene::Scene scene = read_lod_scene(input, "--levels");
+  const std::size_t count = lod_level_count(scene);
+  std::vector<TriangleMesh> meshes;
+  for (std::size_t k = 0; k < count; ++k)
+    meshes.push_back(scene::flatten_scene(scene, {.lod_level = int(k)}));
+  std::vector<ContactSheetPanel> panels;
+  for (std::size_t k = 0; k < count; ++k)
+    panels.push_back({&meshes[k], lod_labels(meshes[k].triangle_count(), k)});
+  write_sheet(panels, {.panel = options}, output, fmt::format("{} levels", count));
+  return 0;
+}
+
+// The vertical angle of view: the scene's first PerspectiveCamera's
+// heightAngle, else the VRML default, pi/4.
+float height_angle(const scene::Scene& scene) {
+  const scene::Node* camera = nullptr;
+  scene::traverse(scene, [&](const scene::ShapeVisit& v) {
+    if (!camera) camera = v.camera;
+  });
+  const scene::FieldValue* a = camera ? scene::field_or_default(*camera, "heightAngle") : nullptr;
+  return a && !a->floats.empty() && a->floats[0] > 0 ? a->floats[0] : float(kPi / 4);
+}
+
+// One row per distance: the camera that far from the scene's bounding-box
+// centre along the --view direction, looking at the centre; on the left every
+// LOD choosing its child by its own distance from that eye, on the right every
+// LOD at child 0. Each row's cells share its camera, and no cell is re-framed,
+// so the scene shrinks with distance as it does in a browser.
+int render_distances(const std::string& input, const std::string& output,
+                     const std::vector<double>& distances, const RenderOptions& options) {
+  const scene::Scene scene = read_lod_scene(input, "--distances");
+  const TriangleMesh level0 = scene::flatten_scene(scene, {.lod_level = 0});
+  const FrameSphere bounds = bounding_sphere(level0);
+  if (bounds.radius <= 0)
+    throw DataError(fmt::format("{}: the scene has no triangles or lines to render", input));
+  const Vec3 towards_eye = view_direction(options.azimuth, options.elevation);
+  const float angle = height_angle(scene);
+  std::vector<TriangleMesh> chosen;
+  std::vector<LookAt> cameras;
+  for (const double d : distances) {
+    cameras.push_back({.eye = bounds.center + towards_eye * float(d),
+                       .target = bounds.center,
+                       .height_angle = angle});
+    chosen.push_back(scene::flatten_scene(scene, {.viewpoint = cameras.back().eye}));
+  }
+  std::vector<ContactSheetPanel> panels;
+  for (std::size_t i = 0; i < distances.size(); ++i) {
+    panels.push_back({&chosen[i],
+                      lod_labels(chosen[i].triangle_count(), std::nullopt, distances[i]),
+                      cameras[i]});
+    panels.push_back({&level0, lod_labels(level0.triangle_count(), 0, distances[i]), cameras[i]});
+  }
+  write_sheet(panels, {.panel = options, .columns = 2}, output,
+              fmt::format("{} distances", distances.size()));
   return 0;
 }
 
@@ -90,6 +171,7 @@ void add_render_command(CLI::App& app, Runner& run) {
     bool flat = false;
     int level = 0;
     bool levels = false;
+    std::string distances;
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd =
@@ -98,9 +180,17 @@ void add_render_command(CLI::App& app, Runner& run) {
       ->required();
   auto* level = cmd->add_option("--level", s->level, "LOD level to render (scenes; 0 = finest)")
                     ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--levels", s->levels,
-                "Contact sheet of every LOD level with triangles and switch distance (scenes)")
-      ->excludes(level);
+  auto* levels = cmd->add_flag("--levels", s->levels,
+                               "Contact sheet of every LOD level with its triangle count (scenes)")
+                     ->excludes(level);
+  auto* distances =
+      cmd->add_option(
+             "--distances", s->distances,
+             "Comma-separated camera distances from the scene's centre, e.g. 2,10,40: one "
+             "row each, every LOD choosing by its own distance beside every LOD at child 0 "
+             "(scenes)")
+          ->excludes(level)
+          ->excludes(levels);
   cmd->add_option("-o,--output", s->output, "Output PNG file (- = stdout)")->required();
   cmd->add_option("--size", s->size, "Picture size in pixels, WxH (each 1..8192)")
       ->capture_default_str()
@@ -126,15 +216,17 @@ void add_render_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--no-colors", s->no_colors, "Ignore the mesh's vertex colours");
   cmd->add_flag("--wireframe", s->wireframe, "Draw triangle edges over the surface");
   cmd->add_flag("--flat", s->flat, "Flat shading (one normal per triangle)");
-  cmd->callback([s, &run] {
-    run = [s] {
+  cmd->callback([s, &run, distances] {
+    run = [s, by_distance = distances->count() > 0] {
       RenderOptions options;
       parse_size(s->size, options.width, options.height);  // validated by CLI11
       parse_view(s->view, options.azimuth, options.elevation);
       options.use_colors = !s->no_colors;
       options.wireframe = s->wireframe;
       options.shading = s->flat ? Shading::kFlat : Shading::kSmooth;
-      if (s->levels) return render_levels(*s, options);
+      if (s->levels) return render_levels(s->input, s->output, options);
+      if (by_distance)
+        return render_distances(s->input, s->output, parse_distances(s->distances), options);
       const TriangleMesh mesh = load_geometry(s->input, s->level);
       if (mesh.triangles.empty() && mesh.lines.empty())
         throw DataError(fmt::format("{}: the mesh has no triangles or lines to render", s->input));

@@ -7,7 +7,6 @@
 #include "lodforge/apps/common_options.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
-#include "lodforge/scene/schema.h"
 
 namespace lodforge::apps {
 
@@ -28,8 +27,8 @@ TriangleMesh load_geometry(const std::string& path, int lod_level, bool quiet) {
   return m;
 }
 
-SceneLevels scene_levels(const scene::Scene& scene) {
-  SceneLevels best;
+std::size_t lod_level_count(const scene::Scene& scene) {
+  std::size_t count = 1;
   std::unordered_set<const scene::Node*> seen;
   std::vector<const scene::Node*> stack;
   for (const auto& r : scene.roots) stack.push_back(r.get());
@@ -37,14 +36,10 @@ SceneLevels scene_levels(const scene::Scene& scene) {
     const scene::Node* n = stack.back();
     stack.pop_back();
     if (!seen.insert(n).second) continue;
-    if (n->type == "LOD" && n->children.size() > best.count) {
-      best.count = n->children.size();
-      const scene::FieldValue* range = scene::field_or_default(*n, "range");
-      best.ranges = range ? range->floats : std::vector<float>{};
-    }
+    if (n->type == "LOD") count = std::max(count, n->children.size());
     for (const auto& c : n->children) stack.push_back(c.get());
   }
-  return best;
+  return count;
 }
 
 }  // namespace lodforge::apps

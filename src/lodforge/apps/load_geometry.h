@@ -17,13 +17,8 @@ bool is_vrml_path(const std::string& path);
 /// (warnings on stderr unless `quiet`). Throws DataError.
 TriangleMesh load_geometry(const std::string& path, int lod_level = 0, bool quiet = false);
 
-/// The LOD levels of a scene: the number of levels (the most children of any
-/// LOD node; 1 if there is none) and the switch distances of the LOD node with
-/// the most levels (its `range`).
-struct SceneLevels {
-  std::size_t count = 1;
-  std::vector<float> ranges;
-};
-SceneLevels scene_levels(const scene::Scene& scene);
+/// The number of LOD levels of a scene: the most children of any LOD node (1
+/// if there is none).
+std::size_t lod_level_count(const scene::Scene& scene);
 
 }  // namespace lodforge::apps

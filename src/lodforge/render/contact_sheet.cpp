@@ -110,6 +110,8 @@ ContactSheetResult render_contact_sheet(std::span<const ContactSheetPanel> panel
   result.panel_height = panel_options.height;
 
   const int n = static_cast<int>(panels.size());
+  const int columns = options.columns > 0 ? std::min(options.columns, n) : n;
+  const int rows = (n + columns - 1) / columns;
   const int gap = std::max(0, options.gap);
   const int scale =
       options.text_scale > 0
@@ -119,20 +121,22 @@ ContactSheetResult render_contact_sheet(std::span<const ContactSheetPanel> panel
   for (const auto& panel : panels) max_lines = std::max(max_lines, panel.labels.size());
   const int line_height = kLineHeight * scale;
   const int label_height = static_cast<int>(max_lines) * line_height;
+  const int row_height = panel_options.height + (max_lines ? gap / 2 + label_height : 0) + gap;
 
   const Vec3& bg = panel_options.background;
-  result.panel_top = gap;
-  Image sheet(n * panel_options.width + (n + 1) * gap,
-              gap + panel_options.height + (max_lines ? gap / 2 + label_height : 0) + gap, bg.x,
+  Image sheet(columns * panel_options.width + (columns + 1) * gap, gap + rows * row_height, bg.x,
               bg.y, bg.z);
   const TriangleMesh empty;
   for (int i = 0; i < n; ++i) {
     const ContactSheetPanel& panel = panels[static_cast<std::size_t>(i)];
-    const int x = gap + i * (panel_options.width + gap);
+    const int x = gap + (i % columns) * (panel_options.width + gap);
+    const int top = gap + (i / columns) * row_height;
     result.panel_x.push_back(x);
-    sheet.blit(render_mesh(panel.mesh ? *panel.mesh : empty, panel_options).image, x,
-               result.panel_top);
-    int y = result.panel_top + panel_options.height + gap / 2;
+    result.panel_y.push_back(top);
+    RenderOptions own = panel_options;
+    if (panel.camera) own.camera = panel.camera;
+    sheet.blit(render_mesh(panel.mesh ? *panel.mesh : empty, own).image, x, top);
+    int y = top + panel_options.height + gap / 2;
     for (const auto& label : panel.labels) {
       const std::string text = printable(label);
       const int width = text_width(text) * scale;
@@ -145,12 +149,13 @@ ContactSheetResult render_contact_sheet(std::span<const ContactSheetPanel> panel
   return result;
 }
 
-std::vector<std::string> lod_level_labels(std::size_t level, std::size_t triangles,
-                                          double switch_distance) {
-  std::vector<std::string> labels{fmt::format("level {}", level),
-                                  fmt::format("{} triangles", triangles)};
-  if (level > 0) labels.push_back(fmt::format("from {:.3g}", switch_distance));
-  return labels;
+std::vector<std::string> lod_labels(std::size_t triangles, std::optional<std::size_t> child,
+                                    std::optional<double> distance) {
+  const std::string shown =
+      child ? fmt::format("every LOD at child {}", *child) : "each LOD by its distance";
+  const std::string tris = fmt::format("{} tris", triangles);
+  if (!distance) return {shown, tris};
+  return {fmt::format("d {:g}: {}", *distance, tris), shown};
 }
 
 }  // namespace lodforge

@@ -48,6 +48,8 @@ constexpr float kFrameMargin = 0.04f;
 // Lines are drawn over a surface at the same depth: they win within this
 // fraction of the framed sphere's radius.
 constexpr float kLineDepthBias = 0.01f;
+constexpr float kMinAngle = static_cast<float>(kPi / 180);        // 1 degree
+constexpr float kMaxAngle = static_cast<float>(170 * kPi / 180);  // 170 degrees
 
 void validate(const TriangleMesh& mesh) {
   const std::size_t nv = mesh.positions.size();
@@ -82,22 +84,37 @@ struct Camera {
   }
 };
 
+// The framing camera looks at the frame's centre from just far enough for the
+// sphere to fill the narrower image angle; an explicit camera is taken as
+// given. Y is up in both: right = forward x Y, which the framing camera takes
+// from the azimuth, (cos az, 0, -sin az), so that looking straight down keeps
+// the orientation --view asks for.
 Camera make_camera(const FrameSphere& frame, const RenderOptions& o, int w, int h) {
-  const double az = o.azimuth * kPi / 180, el = std::clamp(o.elevation, -90.f, 90.f) * kPi / 180;
-  const float half_fov = static_cast<float>(std::clamp(o.field_of_view, 1.f, 170.f) * kPi / 360);
-  const float radius = frame.radius > 0 ? frame.radius : 1.f;
-  const float distance = radius * (1 + kFrameMargin) / std::sin(half_fov);
   Camera c;
-  const Vec3 to_eye{static_cast<float>(std::cos(el) * std::sin(az)),
-                    static_cast<float>(std::sin(el)),
-                    static_cast<float>(std::cos(el) * std::cos(az))};
-  c.eye = frame.center + to_eye * distance;
-  c.forward = -to_eye;
-  // The right vector depends on the azimuth only, so looking straight down or
-  // up (elevation +-90) is well defined.
-  c.right = {static_cast<float>(std::cos(az)), 0, static_cast<float>(-std::sin(az))};
+  float half_angle = 0, distance = 0;
+  if (o.camera) {
+    half_angle = std::clamp(o.camera->height_angle, kMinAngle, kMaxAngle) / 2;
+    const Vec3 view = o.camera->target - o.camera->eye;
+    distance = length(view);
+    c.eye = o.camera->eye;
+    c.forward = distance > 0 ? view / distance : Vec3{0, 0, -1};
+    const Vec3 right = cross(c.forward, {0, 1, 0});
+    c.right = length(right) > 1e-6f ? right / length(right) : Vec3{1, 0, 0};
+  } else {
+    const double az = o.azimuth * kPi / 180;
+    half_angle = static_cast<float>(std::clamp(o.field_of_view, 1.f, 170.f) * kPi / 360);
+    const float radius = frame.radius > 0 ? frame.radius : 1.f;
+    distance = radius * (1 + kFrameMargin) / std::sin(half_angle);
+    const Vec3 to_eye = view_direction(o.azimuth, o.elevation);
+    c.eye = frame.center + to_eye * distance;
+    c.forward = -to_eye;
+    c.right = {static_cast<float>(std::cos(az)), 0, static_cast<float>(-std::sin(az))};
+  }
   c.up = cross(c.right, c.forward);
-  c.focal = 0.5f * static_cast<float>(std::min(w, h)) / std::tan(half_fov);
+  // The framing camera fits the narrower image angle; a VRML camera's
+  // heightAngle is the vertical one.
+  const float fitted_side = static_cast<float>(o.camera ? h : std::min(w, h));
+  c.focal = 0.5f * fitted_side / std::tan(half_angle);
   c.cx = 0.5f * static_cast<float>(w);
   c.cy = 0.5f * static_cast<float>(h);
   c.near = 1e-4f * distance;
@@ -267,6 +284,12 @@ Vec3 clamp01(const Vec3& c) {
 }
 
 }  // namespace
+
+Vec3 view_direction(float azimuth, float elevation) {
+  const double az = azimuth * kPi / 180, el = std::clamp(elevation, -90.f, 90.f) * kPi / 180;
+  return {static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)),
+          static_cast<float>(std::cos(el) * std::cos(az))};
+}
 
 FrameSphere bounding_sphere(const TriangleMesh& mesh) {
   std::vector<char> used(mesh.positions.size(), 0);

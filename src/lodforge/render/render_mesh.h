@@ -8,8 +8,11 @@
 /// just contains the sphere, so the whole mesh is in view and centred for any
 /// azimuth and elevation. Azimuth 0, elevation 0 is the VRML default view
 /// (camera on +Z looking towards -Z); positive azimuth orbits the camera
-/// towards +X, positive elevation raises it (looking down).
+/// towards +X, positive elevation raises it (looking down). An explicit
+/// camera (RenderOptions::camera) replaces this framing where pictures must
+/// show the true perspective from a given place.
 #include <cstddef>
+#include <optional>
 
 #include "lodforge/core/math.h"
 #include "lodforge/mesh/triangle_mesh.h"
@@ -32,6 +35,20 @@ struct FrameSphere {
   float radius = 0;
 };
 
+/// An explicit perspective camera, Y up in the picture (when looking straight
+/// up or down, +X is right).
+struct LookAt {
+  Vec3 eye;     ///< world space
+  Vec3 target;  ///< the point at the centre of the picture; must differ from `eye`
+  /// Radians, the full vertical angle of view (VRML PerspectiveCamera
+  /// heightAngle), clamped to 1..170 degrees.
+  float height_angle = static_cast<float>(kPi / 4);
+};
+
+/// The unit vector from the framed centre towards the eye for an azimuth and
+/// elevation in degrees, as RenderOptions reads them: (0, 0) gives +Z.
+Vec3 view_direction(float azimuth, float elevation);
+
 struct RenderOptions {
   int width = 640;                          ///< pixels, 1..16384
   int height = 480;                         ///< pixels, 1..16384
@@ -48,6 +65,10 @@ struct RenderOptions {
   /// Sphere to frame; radius <= 0 (the default) frames the mesh's own bounding
   /// sphere. Pictures that must compare in size (a contact sheet) share one.
   FrameSphere frame;
+  /// When set, this camera is used as it is: azimuth, elevation,
+  /// field_of_view and the framing are ignored (`frame` only scales the depth
+  /// bias of lines), so the mesh may be small or partly out of the picture.
+  std::optional<LookAt> camera;
   /// Anti-aliasing: the picture is rendered at supersample x the size and
   /// averaged down. 1 = off; 2 (the default) is smooth enough for documents.
   /// Lowered automatically when width * height * supersample^2 exceeds 64 M.

@@ -13,7 +13,7 @@ TriangleMesh flatten_scene(const Scene& scene, const FlattenOptions& options, Lo
                all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
              for (const auto& l : m.lines) all.lines.push_back({l[0] + base, l[1] + base});
            },
-           {.lod_level = options.lod_level});
+           {.lod_level = options.lod_level, .viewpoint = options.viewpoint});
   return all;
 }
 

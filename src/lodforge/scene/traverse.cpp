@@ -84,8 +84,7 @@ class Walker {
           node(*n.children[std::size_t(which)], s, std::size_t(which));
         }
       } else if (n.type == "LOD") {
-        std::size_t k = std::min<std::size_t>(std::size_t(std::max(options_.lod_level, 0)),
-                                              n.children.size() - 1);
+        const std::size_t k = lod_child(n, state);
         node(*n.children[k], s, k);
       } else {
         for (std::size_t i = 0; i < n.children.size(); ++i) node(*n.children[i], s, i);
@@ -102,6 +101,21 @@ class Walker {
       children(state);
     }
     path_.pop_back();
+  }
+
+  // The child a LOD node shows (see TraverseOptions::viewpoint). `range` is
+  // ascending by the specification, so the child is the number of ranges <= d.
+  std::size_t lod_child(const Node& n, const TraversalState& state) const {
+    std::size_t k = std::size_t(std::max(options_.lod_level, 0));
+    if (options_.viewpoint) {
+      const float d =
+          length(state.transform.transform_point(vec3_of(n, "center")) - *options_.viewpoint);
+      const FieldValue* range = field_or_default(n, "range");
+      k = range ? std::size_t(std::upper_bound(range->floats.begin(), range->floats.end(), d) -
+                              range->floats.begin())
+                : 0;
+    }
+    return std::min(k, n.children.size() - 1);
   }
 
   const std::function<void(const ShapeVisit&)>& visit_;

@@ -7,8 +7,9 @@
 /// Group semantics: Separator, WWWAnchor, LOD and WWWInline save and restore
 /// the state; TransformSeparator saves only the transform; Group and Switch
 /// pass state on. Switch follows whichChild (-1 none, -3 all); LOD takes the
-/// child chosen by `lod_level` (clamped to its last child).
+/// child chosen by TraverseOptions (clamped to its last child).
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "lodforge/core/math.h"
@@ -41,7 +42,13 @@ struct ShapeVisit {
 };
 
 struct TraverseOptions {
-  int lod_level = 0;  ///< which child of each LOD node to traverse
+  int lod_level = 0;  ///< which child of each LOD node to traverse, without a viewpoint
+  /// The eye in world space. When set, each LOD node chooses its child by its
+  /// own distance d from the eye to its `center` (transformed to world space
+  /// by the current transform), as a VRML 1.0 browser does: child 0 for
+  /// d < range[0], child i for range[i-1] <= d < range[i], the last child
+  /// beyond the last range; clamped to the last child. `lod_level` is ignored.
+  std::optional<Vec3> viewpoint;
 };
 
 /// True for the node types the traversal reports as shapes.

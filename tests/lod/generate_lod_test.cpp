@@ -10,6 +10,7 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include "lodforge/scene/flatten_scene.h"
@@ -20,6 +21,7 @@ namespace lodforge {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::scene_of;
 
 scene::Scene read(const std::string& text) {
@@ -352,6 +354,50 @@ TEST(GenerateLod, InstancesOfAUsedGroupAreCounted) {
   EXPECT_EQ(r.triangles_by_distance.front().second, 3 * s.levels[0].triangles);
   // Far enough away every instance is gone.
   EXPECT_EQ(r.triangles_by_distance.back().second, 0u);
+}
+
+// A group USEd under other property nodes (here: another Coordinate3 before
+// each use, in one parent) gets LODs for each context; uses in a context met
+// before share that context's LOD.
+TEST(GenerateLod, SharedGroupGetsLodsForEveryPropertyContext) {
+  constexpr int n = 16;
+  auto points = [&](const char* def, float dx) {
+    std::string t = fmt::format("DEF {} Coordinate3 {{ point [\n", def);
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x)
+        t += fmt::format("{} {} {},\n", x + dx, y, 2 * std::sin(x * 0.7 + dx) * std::cos(y * 0.5));
+    return t + "] }\n";
+  };
+  std::string text = "#VRML V1.0 ascii\nSeparator {\n" + points("A", 0) +
+                     "DEF G Group { IndexedFaceSet { coordIndex [\n";
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x;
+      text += fmt::format("{}, {}, {}, -1, {}, {}, {}, -1,\n", a, a + 1, a + n + 2, a, a + n + 2,
+                          a + n + 1);
+    }
+  text += "] } }\n" + points("B", 100) + "USE G\nUSE A\nUSE G\n}\n";
+  const scene::Scene in = read(text);
+  LodResult r = generate_lod(in, {.measure_samples = 20000});
+  ASSERT_EQ(r.shapes.size(), 2u);
+  std::vector<std::size_t> occurrences = {r.shapes[0].occurrences, r.shapes[1].occurrences};
+  std::sort(occurrences.begin(), occurrences.end());
+  EXPECT_EQ(occurrences, (std::vector<std::size_t>{1, 2}));
+  for (const Diagnostic& d : r.log.entries())
+    EXPECT_THAT(d.text, Not(HasSubstr("different properties")));
+  const scene::Scene out = read(vrml1::write_vrml1(r.scene));
+  EXPECT_EQ(scene::flatten_scene(out, {.lod_level = 0}).triangle_count(),
+            scene::flatten_scene(in, {}).triangle_count());
+  // Every level is drawn where its context puts it: some at x < 50 (A, twice),
+  // some at x > 50 (B).
+  for (std::size_t k = 1; k < std::min(r.shapes[0].levels.size(), r.shapes[1].levels.size()); ++k) {
+    const TriangleMesh level = scene::flatten_scene(out, {.lod_level = int(k)});
+    std::size_t a = 0, b = 0;
+    for (const Vec3& p : level.positions) (p.x < 50 ? a : b) += 1;
+    EXPECT_GT(a, 0u) << "level " << k;
+    EXPECT_GT(b, 0u) << "level " << k;
+  }
+  testing::expect_indices_in_range(out);
 }
 
 // Whole chains spaced by what a viewer notices: the bunny-like smooth sphere

@@ -1,7 +1,9 @@
 // The LODCreator pipeline (original thesis §4, Figure 4.1; SPEC §2):
 //  1. copy the scene (sharing kept), find the camera height angle;
-//  2. traverse it and collect every shape occurrence with its state; group
-//     occurrences into jobs (same shape node under the same property nodes);
+//  2. copy each shared group for every further property context it is used
+//     in (unshare_contexts.h); traverse the scene and collect every shape
+//     occurrence with its state; group occurrences into jobs (same shape node
+//     under the same property nodes);
 //  3. per job, in parallel: read the geometry (bindings converted, attributes
 //     de-duplicated), make the levels, measure each level's error;
 //  4. per occurrence: switching ranges from the errors and the occurrence's
@@ -22,6 +24,7 @@
 #include "lodforge/lod/join_nodes.h"
 #include "lodforge/lod/measure_deviation.h"
 #include "lodforge/lod/shape_geometry.h"
+#include "lodforge/lod/unshare_contexts.h"
 #include "lodforge/metrics/compare_meshes.h"
 #include "lodforge/scene/schema.h"
 #include "lodforge/scene/shape_mesh.h"
@@ -36,16 +39,6 @@ using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
 
-// Deep copy that keeps the sharing pattern.
-NodePtr clone(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& done) {
-  auto it = done.find(n.get());
-  if (it != done.end()) return it->second;
-  auto c = std::make_shared<Node>(*n);
-  done[n.get()] = c;
-  for (auto& child : c->children) child = clone(child, done);
-  return c;
-}
-
 std::string type_key(const std::string& node_type) {
   if (node_type == "IndexedFaceSet") return "polygon";
   if (node_type == "IndexedLineSet") return "line";
@@ -59,14 +52,11 @@ bool is_lod_shape(const std::string& t) {
          t == "Cone" || t == "Cylinder";
 }
 
-// The property nodes a shape's geometry depends on.
+// A shape node and the property nodes its geometry depends on.
 struct JobKey {
   const Node* shape;
-  const Node *coords, *normal, *texcoord, *material, *mbind, *nbind, *hints, *texture;
-  auto tie() const {
-    return std::tie(shape, coords, normal, texcoord, material, mbind, nbind, hints, texture);
-  }
-  bool operator<(const JobKey& o) const { return tie() < o.tie(); }
+  PropertyContext context;
+  auto operator<=>(const JobKey&) const = default;
 };
 
 struct Occurrence {
@@ -133,7 +123,7 @@ class Pipeline {
   Pipeline(const scene::Scene& input, const LodOptions& options) : opt_(options) {
     std::unordered_map<const Node*, NodePtr> done;
     result_.scene.header = "#VRML V1.0 ascii";
-    for (const auto& r : input.roots) result_.scene.roots.push_back(clone(r, done));
+    for (const auto& r : input.roots) result_.scene.roots.push_back(scene::copy_subtree(r, done));
   }
 
   LodResult run() {
@@ -142,6 +132,8 @@ class Pipeline {
           join_nodes(result_.scene, {.max_faces = opt_.join_max_faces}, result_.log);
       result_.joined = js.joined;
     }
+    unshare_property_contexts(result_.scene,
+                              [](const Node& shape) { return is_lod_shape(shape.type); });
     collect();
     const int threads = opt_.threads > 0 ? opt_.threads : 0;
     std::optional<tbb::global_control> limit;
@@ -170,10 +162,7 @@ class Pipeline {
     scene::traverse(result_.scene, [&](const scene::ShapeVisit& v) {
       if (!camera && v.camera) camera = v.camera;
       if (!is_lod_shape(v.shape.type)) return;
-      const auto& s = v.state;
-      JobKey key{&v.shape,   s.coordinate3,      s.normal,         s.texture_coordinate2,
-                 s.material, s.material_binding, s.normal_binding, s.shape_hints,
-                 s.texture2};
+      const JobKey key{&v.shape, PropertyContext::of(v.state)};
       auto [jit, fresh] = job_of.try_emplace(key, jobs_.size());
       if (fresh) {
         jobs_.emplace_back();

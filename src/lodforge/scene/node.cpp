@@ -159,6 +159,15 @@ FieldValue make_bool(bool v) {
   return r;
 }
 
+NodePtr copy_subtree(const NodePtr& node, std::unordered_map<const Node*, NodePtr>& done) {
+  auto [it, fresh] = done.try_emplace(node.get());
+  if (!fresh) return it->second;
+  auto copy = std::make_shared<Node>(*node);
+  it->second = copy;
+  for (auto& child : copy->children) child = copy_subtree(child, done);
+  return copy;
+}
+
 NodePtr make_node(std::string type) {
   auto n = std::make_shared<Node>();
   n->type = std::move(type);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace lodforge::scene {
@@ -113,6 +114,11 @@ struct Scene {
 /// Deep structural equality: types, names, fields, children and the sharing
 /// pattern (a node shared in one graph must be shared the same way in the other).
 bool equal(const Scene& a, const Scene& b);
+
+/// A deep copy of `node` and everything below it that keeps the sharing
+/// pattern: a node reached twice is copied once (`done` maps originals to
+/// their copies; pass the same map to copy several roots of one graph).
+NodePtr copy_subtree(const NodePtr& node, std::unordered_map<const Node*, NodePtr>& done);
 
 /// Convenience builders for typed values.
 FieldValue make_float(float v);

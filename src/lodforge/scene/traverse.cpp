@@ -34,7 +34,7 @@ class Walker {
   void node(const Node& n, TraversalState& state, std::size_t index) {
     const std::string& t = n.type;
     if (is_shape_type(t)) {
-      visit_(ShapeVisit{n, state, camera_, path_, index});
+      visit_(ShapeVisit{n, state, camera_, path_, index, path_index_});
       return;
     }
     if (t == "Coordinate3")
@@ -61,12 +61,12 @@ class Walker {
                t == "Rotation" || t == "Scale") {
       state.transform = state.transform * local_transform(n);
     } else if (!n.children.empty()) {
-      group(n, state);
+      group(n, state, index);
     }
   }
 
  private:
-  void group(const Node& n, TraversalState& state) {
+  void group(const Node& n, TraversalState& state, std::size_t index) {
     const NodeSpec* spec = find_node_spec(n.type);
     bool separator = n.type == "WWWInline" || (spec && spec->separator);
     if (!spec && !n.is_a.empty()) {
@@ -74,6 +74,7 @@ class Walker {
       separator = base && base->separator;
     }
     path_.push_back(&n);
+    path_index_.push_back(index);
     auto children = [&](TraversalState& s) {
       if (n.type == "Switch") {
         const FieldValue* w = field_or_default(n, "whichChild");
@@ -101,6 +102,7 @@ class Walker {
       children(state);
     }
     path_.pop_back();
+    path_index_.pop_back();
   }
 
   // The child a LOD node shows (see TraverseOptions::viewpoint). `range` is
@@ -122,6 +124,7 @@ class Walker {
   const TraverseOptions& options_;
   const Node* camera_ = nullptr;
   std::vector<const Node*> path_;
+  std::vector<std::size_t> path_index_;
 };
 
 }  // namespace

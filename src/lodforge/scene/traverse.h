@@ -10,6 +10,7 @@
 /// child chosen by TraverseOptions (clamped to its last child).
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "lodforge/core/math.h"
@@ -39,6 +40,10 @@ struct ShapeVisit {
   /// Where the shape is: its index in path.back()->children, or in
   /// Scene::roots when the path is empty.
   std::size_t child_index = 0;
+  /// Where each path node is: path_index[i] is the index of path[i] in
+  /// path[i-1]->children (path_index[0]: in Scene::roots). Tells apart two
+  /// uses of one shared node by the same parent.
+  std::span<const std::size_t> path_index = {};
 };
 
 struct TraverseOptions {

@@ -65,7 +65,7 @@ const scene::Scene& bench_scene() {
         // Keep only parts the pipeline can take (broken geometry is skipped).
         scene::Scene probe;
         probe.roots = {part};
-        generate_lod(probe, {.method = LodMethod::kCluster, .min_diff = 1.0f, .threads = 1});
+        generate_lod(probe, {.method = SimplifyMethod::kCluster, .min_diff = 1.0f, .threads = 1});
         root->children.push_back(part);
       } catch (const std::exception&) {
       }

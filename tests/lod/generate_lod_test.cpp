@@ -50,7 +50,8 @@ void expect_errors_bounded(const LodResult& r, const scene::Scene& out, double e
 
 TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {
   const std::string text = scene_of(test::make_icosphere(4), "Scale { scaleFactor 2 2 2 }");
-  for (LodMethod m : {LodMethod::kQem, LodMethod::kCluster, LodMethod::kDecimate}) {
+  for (SimplifyMethod m :
+       {SimplifyMethod::kQem, SimplifyMethod::kCluster, SimplifyMethod::kDecimate}) {
     LodOptions o{.method = m, .measure_samples = 20000};
     LodResult r = generate_lod(read(text), o);
     ASSERT_EQ(r.shapes.size(), 1u);

@@ -71,9 +71,9 @@ struct Settings {
 
 LodOptions lod_options(const Settings& s) {
   LodOptions o;
-  o.method = s.method == "cluster"    ? LodMethod::kCluster
-             : s.method == "decimate" ? LodMethod::kDecimate
-                                      : LodMethod::kQem;
+  o.method = s.method == "cluster"    ? SimplifyMethod::kCluster
+             : s.method == "decimate" ? SimplifyMethod::kDecimate
+                                      : SimplifyMethod::kQem;
   o.range.error_range = float(s.error_range_pct / 100.0);
   if (s.camera_angle > 0) {
     o.range.camera_angle = float(s.camera_angle);

@@ -42,7 +42,7 @@ struct ShapeTypeSettings {
 };
 
 struct LodOptions {
-  LodMethod method = LodMethod::kQem;
+  SimplifyMethod method = SimplifyMethod::kQem;
   RangeOptions range;               ///< error range p and camera height angle
   bool camera_angle_given = false;  ///< else: the first PerspectiveCamera's, else range's
   /// Candidate levels: each <= (1 - min_diff) of the previous candidate.

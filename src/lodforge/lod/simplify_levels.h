@@ -6,17 +6,13 @@
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/simplify/level_chain.h"
 #include "lodforge/simplify/simplify_result.h"
 
 namespace lodforge {
 
-enum class LodMethod { kCluster, kDecimate, kQem };
-
-/// "cluster", "decimate", "qem".
-const char* to_string(LodMethod method);
-
 struct LevelChainOptions {
-  LodMethod method = LodMethod::kQem;
+  SimplifyMethod method = SimplifyMethod::kQem;
   float min_diff = 0.2f;       ///< each level <= (1 - min_diff) x the previous one
   std::size_t max_levels = 0;  ///< simplified levels at most (0: until exhausted)
   /// Explicit triangle counts per level instead of the min-diff progression
@@ -45,12 +41,10 @@ struct MeasuredLevel {
 /// [20 000, 200 000] (every vertex is sampled as well).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
-/// Levels 1..n of `mesh` (level 0 is `mesh` itself), each at most (1 -
-/// min_diff) x the triangles of the level before it (a simplifier's level that
-/// misses the step is skipped, not the end of the chain). Stops when the
-/// simplifier can remove nothing more, when nothing is left (an empty level is
-/// never returned), or at max_levels; the last level's stop_reason says which
-/// (kTargetReached: the smallest target, a few triangles, was met).
+/// Levels 1..n of `mesh` (level 0 is `mesh` itself) by simplify_chain (the
+/// chain contract of simplify/level_chain.h): each at most (1 - min_diff) x
+/// the triangles of the level before it, or the explicit triangle targets,
+/// down to a few triangles; each with its error measured against level 0.
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options);
 

@@ -48,8 +48,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -1771,16 +1773,18 @@ std::size_t triangle_goal(const SimplifyTarget& target, std::size_t input) {
 
 std::vector<SimplifyResult> quadric_collapse_chain(
     const TriangleMesh& mesh, const QuadricCollapseOptions& options,
-    const std::vector<std::size_t>& triangle_targets) {
+    const std::function<std::optional<std::size_t>(std::size_t level, std::size_t previous)>&
+        next_target) {
   std::vector<SimplifyResult> results;
-  results.reserve(triangle_targets.size());
-  if (triangle_targets.empty()) return results;
-  Collapser collapser(mesh, options);
   const std::size_t input = mesh.triangles.size();
+  std::optional<std::size_t> next = next_target(0, input);
+  if (!next) return results;
+  Collapser collapser(mesh, options);
   bool stopped = false;
   StopReason last_reason = StopReason::kNoReduction;
   std::string last_detail;
-  for (std::size_t target : triangle_targets) {
+  while (next) {
+    const std::size_t target = *next;
     if (!stopped) {
       if (target >= input && !std::isfinite(options.target.max_error)) {
         last_reason = StopReason::kNoReduction;
@@ -1796,8 +1800,25 @@ std::vector<SimplifyResult> quadric_collapse_chain(
     SimplifyResult r = collapser.snapshot();
     r.stop_reason = last_reason;
     r.stop_detail = last_detail;
+    const std::size_t reached = r.mesh.triangles.size();
     results.push_back(std::move(r));
+    if (stopped) break;
+    next = next_target(results.size(), reached);
   }
+  return results;
+}
+
+std::vector<SimplifyResult> quadric_collapse_chain(
+    const TriangleMesh& mesh, const QuadricCollapseOptions& options,
+    const std::vector<std::size_t>& triangle_targets) {
+  std::vector<SimplifyResult> results = quadric_collapse_chain(
+      mesh, options, [&](std::size_t level, std::size_t) -> std::optional<std::size_t> {
+        if (level < triangle_targets.size()) return triangle_targets[level];
+        return std::nullopt;
+      });
+  // After an early stop, the remaining targets get the last mesh again.
+  while (!results.empty() && results.size() < triangle_targets.size())
+    results.push_back(results.back());
   return results;
 }
 

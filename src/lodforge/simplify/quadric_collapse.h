@@ -64,6 +64,8 @@
 /// model's unit: a copy scaled by a power of two gives the same triangles,
 /// with positions and error scaled exactly.
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"
@@ -121,5 +123,15 @@ SimplifyResult quadric_collapse(const TriangleMesh& mesh,
 std::vector<SimplifyResult> quadric_collapse_chain(
     const TriangleMesh& mesh, const QuadricCollapseOptions& options,
     const std::vector<std::size_t>& triangle_targets);
+
+/// The same collapse sequence with each target chosen from what the levels
+/// before it reached: `next_target(k, previous)` gives level k's triangle
+/// target from the triangles of level k - 1 (for k = 0: the input's), or
+/// nullopt to end the chain. The chain also ends after a level whose run
+/// stopped early (its stop_reason says why).
+std::vector<SimplifyResult> quadric_collapse_chain(
+    const TriangleMesh& mesh, const QuadricCollapseOptions& options,
+    const std::function<std::optional<std::size_t>(std::size_t level, std::size_t previous)>&
+        next_target);
 
 }  // namespace lodforge

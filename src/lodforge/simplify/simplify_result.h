@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"
@@ -48,5 +49,9 @@ struct SimplifyResult {
   StopReason stop_reason = StopReason::kNoReduction;
   std::string stop_detail;  ///< a human sentence, e.g. "every remaining edge is a border"
 };
+
+/// Throws DataError (naming `who`) when a triangle or line index of `mesh` is
+/// out of range or a coordinate a triangle or line uses is not finite.
+void check_simplify_input(const TriangleMesh& mesh, std::string_view who);
 
 }  // namespace lodforge

@@ -409,6 +409,7 @@ class Decimator {
 
 Decimator::Decimator(const TriangleMesh& mesh, const VertexDecimationOptions& options)
     : input_(mesh), options_(options), cos_feature_(std::cos(options.feature_angle)) {
+  check_simplify_input(mesh, "vertex_decimation");
   // Equal positions and attributes: one attribute vertex.
   WeldResult w1 = weld(mesh, {.match_attributes = true, .remove_degenerate = true});
   av_input_.assign(w1.mesh.positions.size(), kNone);

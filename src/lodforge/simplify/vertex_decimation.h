@@ -144,7 +144,8 @@ inline constexpr std::size_t kMaxDecimationValence = 64;
 /// the plane/line distances of the vertices removed beneath each triangle),
 /// not a measurement and not a proven bound: on the Stanford bunny it is 4 to 5
 /// times the measured Hausdorff distance (50 %: 1.1e-3 vs 2.1e-4).
-/// `stop_detail` says why vertices could not be removed.
+/// `stop_detail` says why vertices could not be removed. Throws DataError
+/// when an index is out of range or a used coordinate is not finite.
 SimplifyResult vertex_decimation(const TriangleMesh& mesh,
                                  const VertexDecimationOptions& options = {});
 

@@ -87,7 +87,12 @@ TEST_F(OutputPathsCli, DevicesFifosSocketsAndDirectoriesAreRefusedBeforeWriting)
   for (const Writer& w : writers()) {
     for (test::Special kind : test::kRefusedKinds) {
       const std::string node = path(std::string("node") + w.extension);
-      ASSERT_TRUE(test::make_special(node, kind)) << test::kind_text(kind);
+      if (!test::make_special(node, kind)) {
+        // mknod needs privileges (the test runs have them as root); the other
+        // kinds are still checked.
+        ASSERT_EQ(kind, test::Special::kNullDevice) << "cannot make " << test::kind_text(kind);
+        continue;
+      }
       SCOPED_TRACE(with_output(w.args, node) + ": " + test::kind_text(kind));
       const auto before = listing();
       // A FIFO is refused without being opened: the command must not block.

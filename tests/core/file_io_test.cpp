@@ -93,7 +93,12 @@ TEST_F(WriteFileAtomic, NodesThatAreNotRegularFilesAreRefusedAndStayWhatTheyWere
   for (test::Special kind : test::kRefusedKinds) {
     SCOPED_TRACE(test::kind_text(kind));
     const std::string p = path("node");
-    ASSERT_TRUE(test::make_special(p, kind));
+    if (!test::make_special(p, kind)) {
+      // mknod needs privileges (the test runs have them as root); the other
+      // kinds are still checked.
+      ASSERT_EQ(kind, test::Special::kNullDevice) << "cannot make " << test::kind_text(kind);
+      continue;
+    }
     try {
       write_file_atomic(p, "data");  // a FIFO would block if it were opened
       ADD_FAILURE() << "written";

@@ -27,15 +27,19 @@ inline std::string read_text(const std::string& path) {
 }
 
 /// Runs `lodforge ARGS` through the shell (ARGS is shell text), with optional
-/// standard input from a file.
-inline CommandResult run_lodforge(const std::string& args, const std::string& stdin_file = "") {
+/// standard input from a file. `stdout_to`, when given, is where standard
+/// output goes instead of being captured, as shell redirection text: a path,
+/// or "&N" for a descriptor the test process holds open.
+inline CommandResult run_lodforge(const std::string& args, const std::string& stdin_file = "",
+                                  const std::string& stdout_to = "") {
   namespace fs = std::filesystem;
   static int counter = 0;
   fs::path dir = fs::temp_directory_path() / ("lodforge_cli_" + std::to_string(getpid()));
   fs::create_directories(dir);
   std::string out = (dir / ("out" + std::to_string(counter))).string();
   std::string err = (dir / ("err" + std::to_string(counter++))).string();
-  std::string cmd = std::string(LODFORGE_EXE) + " " + args + " >" + out + " 2>" + err;
+  std::string cmd = std::string(LODFORGE_EXE) + " " + args + " >" +
+                    (stdout_to.empty() ? out : stdout_to) + " 2>" + err;
   if (!stdin_file.empty())
     cmd += " <" + stdin_file;
   else

@@ -15,6 +15,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/metrics/compare_meshes.h"
@@ -107,6 +109,10 @@ void add_compare_command(CLI::App& app, Runner& run) {
       ->check(CLI::PositiveNumber);
   cmd->callback([s, &run] {
     run = [s] {
+      std::vector<OutputPath> outputs;
+      if (!s->colored.empty()) outputs.push_back({s->colored, "the coloured mesh (--colored)"});
+      if (s->json) outputs.push_back({"-", "the JSON (--json)"});
+      check_output_paths(outputs, std::array{s->a, s->b});
       // Scenes are flattened in world space at the chosen LOD level.
       TriangleMesh a = load_geometry(s->a, s->level_a, s->json);
       TriangleMesh b = load_geometry(s->b, s->level_b, s->json);

@@ -2,8 +2,11 @@
 // cleanly formatted with the writer options.
 #include <fmt/core.h>
 
+#include <array>
+
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 
@@ -24,6 +27,8 @@ void add_format_command(CLI::App& app, Runner& run) {
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {
     run = [s] {
+      check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
+                         std::array{s->input});
       vrml1::ReadResult r = read_scene(s->input, s->read);
       vrml1::write_vrml1_file(r.scene, s->output, s->write);
       return 0;

@@ -11,6 +11,7 @@
 #include "lodforge/apps/common_options.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 
@@ -143,6 +144,27 @@ nlohmann::ordered_json stats_json(const std::string& file, const LodResult& r) {
   return j;
 }
 
+// Where the LOD scene of `input` goes: -o, or --out-dir/<input's name
+// without .gz>.
+std::string output_of(const std::string& input, const Settings& s) {
+  if (s.out_dir.empty()) return s.output;
+  std::string base = input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
+  if (base.ends_with(".gz")) base.resize(base.size() - 3);
+  return (std::filesystem::path(s.out_dir) / base).string();
+}
+
+// Refuses, before any scene is read, outputs that would replace an input,
+// land on one file twice (--out-dir and inputs of the same name) or share
+// standard output.
+void check_outputs(const Settings& s) {
+  std::vector<OutputPath> outputs;
+  for (const auto& input : s.inputs)
+    outputs.push_back({output_of(input, s), fmt::format("the LOD scene of {}",
+                                                        input == "-" ? "standard input" : input)});
+  if (!s.stats.empty()) outputs.push_back({s.stats, "the statistics (--stats)"});
+  check_output_paths(outputs, s.inputs);
+}
+
 void print_summary(const std::string& file, const LodResult& r) {
   std::size_t levels = 0, lods = 0;
   for (const auto& s : r.shapes) {
@@ -233,6 +255,7 @@ void add_lod_command(CLI::App& app, Runner& run) {
         shown.push_back(c);
       }
       LodOptions options = lod_options(*s);
+      check_outputs(*s);
       const bool tty = isatty(STDERR_FILENO);
       int failures = 0;
       nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();
@@ -250,13 +273,7 @@ void add_lod_command(CLI::App& app, Runner& run) {
                         std::find(shown.begin(), shown.end(), d.category) != shown.end();
             if (show && !s->read.quiet) print_diagnostic(d);
           }
-          std::string target = s->output;
-          if (!s->out_dir.empty()) {
-            std::string base =
-                input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
-            if (base.ends_with(".gz")) base.resize(base.size() - 3);
-            target = (std::filesystem::path(s->out_dir) / base).string();
-          }
+          const std::string target = output_of(input, *s);
           namespace fs = std::filesystem;
           const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
           std::error_code ec;

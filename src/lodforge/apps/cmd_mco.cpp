@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
@@ -93,6 +95,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
       ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
+      check_output_paths(std::array{OutputPath{b->output, "the model"}}, std::array{b->input});
       auto t0 = std::chrono::steady_clock::now();
       McBuildOptions options{
           .resolution = b->resolution,
@@ -154,6 +157,8 @@ void add_mco_command(CLI::App& app, Runner& run) {
   op->excludes(on);
   extract->callback([e, &run] {
     run = [e] {
+      check_output_paths(std::array{OutputPath{e->output, "the extracted mesh"}},
+                         std::array{e->input});
       // --priority N reads only what priorities 0..N need (the file is
       // progressive: a prefix, e.g. a partial download, is enough).
       McLodModel model = read_mco_file(e->input, {.max_priority = e->priority});
@@ -240,12 +245,19 @@ void add_mco_command(CLI::App& app, Runner& run) {
     run = [sc] {
       TriangleMesh mesh = load_geometry(sc->input);
       auto scans = scan_mesh(mesh, {.views = sc->views, .resolution = sc->resolution});
-      write_range_scans(scans, sc->output);
+      // The folder's files, checked before the first is written.
+      std::vector<OutputPath> outputs;
+      for (const auto& s : scans)
+        outputs.push_back({(std::filesystem::path(sc->output) / s.name).string(), "a scan"});
+      const std::string conf = "scans.conf";
+      outputs.push_back({(std::filesystem::path(sc->output) / conf).string(), "the list of scans"});
+      check_output_paths(outputs, std::array{sc->input});
+      write_range_scans(scans, sc->output, conf);
       std::size_t points = 0;
       for (const auto& s : scans) points += s.points.size();
-      fmt::print(stderr, "{}: {} scans of {}x{}, {} points{}, scans.conf\n", sc->output,
-                 scans.size(), sc->resolution, sc->resolution, points,
-                 mesh.has_colors() ? " (coloured)" : "");
+      fmt::print(stderr, "{}: {} scans of {}x{}, {} points{}, {}\n", sc->output, scans.size(),
+                 sc->resolution, sc->resolution, points, mesh.has_colors() ? " (coloured)" : "",
+                 conf);
       return 0;
     };
   });

@@ -9,6 +9,7 @@
 // same view at full detail, so popping shows.
 #include <fmt/core.h>
 
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/render/contact_sheet.h"
 #include "lodforge/render/render_mesh.h"
@@ -221,6 +223,7 @@ void add_render_command(CLI::App& app, Runner& run) {
       RenderOptions options;
       parse_size(s->size, options.width, options.height);  // validated by CLI11
       parse_view(s->view, options.azimuth, options.elevation);
+      check_output_paths(std::array{OutputPath{s->output, "the picture"}}, std::array{s->input});
       options.use_colors = !s->no_colors;
       options.wireframe = s->wireframe;
       options.shading = s->flat ? Shading::kFlat : Shading::kSmooth;

@@ -47,6 +47,7 @@
 // (vertex clustering's displacement overflows float beyond about 1e19).
 #include <fmt/core.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -57,6 +58,7 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
+#include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/simplify/quadric_collapse.h"
 #include "lodforge/simplify/vertex_clustering.h"
@@ -123,8 +125,6 @@ void check_usage(const SimplifySettings& s) {
     throw CLI::ValidationError("--triangles must be at least 1");
   if (s.max_error && !(*s.max_error >= 0 && std::isfinite(*s.max_error)))
     throw CLI::ValidationError(fmt::format("--error {} must be finite and >= 0", *s.max_error));
-  if (s.json && s.output == "-")
-    throw CLI::ValidationError("-o - and --json would both write to standard output");
   if (s.format.empty() && format_from_path(s.output) == MeshFormat::kAuto)
     throw CLI::ValidationError(fmt::format(
         "cannot tell the output format of '{}': use .ply, .obj, .off or .stl, or --format",
@@ -141,6 +141,9 @@ MeshFormat format_named(const std::string& name) {
 
 int run_simplify(const SimplifySettings& s) {
   check_usage(s);
+  std::vector<OutputPath> outputs = {{s.output, "the simplified mesh"}};
+  if (s.json) outputs.push_back({"-", "the JSON summary (--json)"});
+  check_output_paths(outputs, std::array{s.input});
   // VRML scenes are flattened to one world-space mesh (level 0 of any LOD).
   TriangleMesh mesh = load_geometry(s.input, 0, s.quiet || s.json);
   if (mesh.triangle_count() == 0)

@@ -3,13 +3,56 @@
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <new>
+#include <string>
+#include <system_error>
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/core/error.h"
 
+namespace {
+
+void print_stdout_error(const std::string& reason) {
+  fmt::print(stderr, "error: cannot write to standard output{}{}\n", reason.empty() ? "" : ": ",
+             reason);
+}
+
+// Runs the chosen command and turns what it throws into a message and an
+// exit code.
+int run_command(const lodforge::apps::Runner& run) {
+  try {
+    return run ? run() : 2;
+  } catch (const CLI::Error& e) {  // a usage problem found after parsing
+    fmt::print(stderr, "{}: {}\n", e.get_name(), e.what());
+    return 2;
+  } catch (const lodforge::DataError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    // fmt::print throws a system_error when a write to standard output fails.
+    const auto* failed = dynamic_cast<const std::system_error*>(&e);
+    if (failed && std::ferror(stdout))
+      print_stdout_error(failed->code().message());
+    else
+      fmt::print(stderr, "internal error: {}\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // A closed pipe on standard output is then a failed write, reported below
+  // with exit code 1, rather than a silent death by signal.
+  std::signal(SIGPIPE, SIG_IGN);
   using namespace lodforge::apps;
   CLI::App app{"lodforge: levels of detail for 3D scenes"};
   app.require_subcommand(1);
@@ -34,19 +77,15 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
-  try {
-    return run ? run() : 2;
-  } catch (const CLI::Error& e) {  // a usage problem found after parsing
-    fmt::print(stderr, "{}: {}\n", e.get_name(), e.what());
-    return 2;
-  } catch (const lodforge::DataError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 1;
-  } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "error: out of memory\n");
-    return 1;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "internal error: {}\n", e.what());
+  const int code = run_command(run);
+  // Every command's writes to standard output end here: what is still
+  // buffered must reach it, and a write that failed unnoticed (a full disk, a
+  // closed pipe) must not end in success.
+  if (code != 0) return code;  // the failure is reported already
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    print_stdout_error(errno ? std::strerror(errno) : "");
     return 1;
   }
+  return 0;
 }

@@ -14,6 +14,7 @@
 #include <iterator>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/output_path.h"
 
 namespace lodforge {
 
@@ -86,14 +87,17 @@ std::string read_file(const std::string& path) {
 
 void write_file_atomic(const std::string& path, std::string_view content) {
   if (path == "-") {
+    errno = 0;
     std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));
     std::cout.flush();
-    if (!std::cout) throw DataError("cannot write to standard output");
+    if (!std::cout)
+      throw DataError(fmt::format("cannot write to standard output: {}",
+                                  errno ? std::strerror(errno) : "write error"));
     return;
   }
-  namespace fs = std::filesystem;
-  fs::path target(path);
-  fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // A link's target is replaced, so the temporary file goes beside it.
+  const std::filesystem::path target = resolve_output_path(path);
+  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
   std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
   int fd = mkstemp(tmpl.data());
   if (fd < 0) throw DataError(fmt::format("{}: cannot create: {}", path, std::strerror(errno)));
@@ -109,12 +113,21 @@ void write_file_atomic(const std::string& path, std::string_view content) {
     }
     done += static_cast<std::size_t>(n);
   }
-  // Keep the usual permissions of a new file (mkstemp makes it 0600).
-  mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd, 0666 & ~mask);
-  if (::close(fd) != 0 || std::rename(tmpl.c_str(), path.c_str()) != 0) {
-    int err = errno;
+  // mkstemp makes the file 0600: a replaced file keeps its own mode, a new
+  // one gets the usual mode of a new file.
+  struct stat old {};
+  mode_t mode = 0;
+  if (::stat(target.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
+    mode = old.st_mode & 07777;
+  } else {
+    const mode_t mask = umask(0);
+    umask(mask);
+    mode = 0666 & ~mask;
+  }
+  int err = ::fchmod(fd, mode) == 0 ? 0 : errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err == 0 && std::rename(tmpl.c_str(), target.c_str()) != 0) err = errno;
+  if (err != 0) {
     ::unlink(tmpl.c_str());
     throw DataError(fmt::format("{}: cannot write: {}", path, std::strerror(err)));
   }

@@ -20,8 +20,12 @@ bool is_gzip(std::string_view data);
 /// Decompresses gzip data. Throws DataError naming `what` on a corrupt stream.
 std::string gunzip(std::string_view data, const std::string& what);
 
-/// Writes `content` to `path` atomically ("-" writes to standard output).
-/// Throws DataError if the file cannot be written.
+/// Writes `content` to `path` atomically ("-" writes to standard output and
+/// flushes it). A symbolic link stays a link: the file it ends at is replaced
+/// (resolve_output_path in output_path.h). A replaced file keeps its
+/// permission mode; a new file gets 0666 less the umask. Throws DataError if
+/// the path is a directory, device node, FIFO or socket (checked without
+/// opening it), or the file cannot be written.
 void write_file_atomic(const std::string& path, std::string_view content);
 
 }  // namespace lodforge

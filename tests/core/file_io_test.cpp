@@ -1,0 +1,115 @@
+// write_file_atomic: the file appears whole or not at all, links stay links,
+// a replaced file keeps its mode, and nodes that are not regular files are
+// never replaced.
+#include "lodforge/core/file_io.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/special_files.h"
+#include "lodforge/core/error.h"
+
+namespace lodforge {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class WriteFileAtomic : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("lodforge_file_io_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  static mode_t mode_of(const std::string& p) {
+    struct stat st {};
+    EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
+    return st.st_mode & 07777;
+  }
+  // Names in the folder (temporary files left behind would show here).
+  std::vector<std::string> listing(const std::string& sub = "") const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_ / sub))
+      names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  fs::path dir_;
+};
+
+TEST_F(WriteFileAtomic, NewFileGetsTheUmaskModeAndNoTemporaryIsLeft) {
+  const mode_t mask = ::umask(022);
+  write_file_atomic(path("a.txt"), "hello");
+  ::umask(mask);
+  EXPECT_EQ(read_file(path("a.txt")), "hello");
+  EXPECT_EQ(mode_of(path("a.txt")), 0644u);
+  EXPECT_THAT(listing(), ::testing::ElementsAre("a.txt"));
+}
+
+TEST_F(WriteFileAtomic, AReplacedFileKeepsItsMode) {
+  for (mode_t mode : {0600u, 0755u, 0640u}) {
+    std::ofstream(path("a.txt")) << "old";
+    fs::permissions(path("a.txt"), fs::perms(mode));
+    write_file_atomic(path("a.txt"), "new");
+    EXPECT_EQ(read_file(path("a.txt")), "new");
+    EXPECT_EQ(mode_of(path("a.txt")), mode);
+  }
+}
+
+TEST_F(WriteFileAtomic, ALinkStaysALinkAndItsTargetGetsTheContent) {
+  fs::create_directory(path("real"));
+  std::ofstream(path("real/target.txt")) << "old";
+  fs::permissions(path("real/target.txt"), fs::perms(0600));
+  fs::create_symlink("real/target.txt", path("link.txt"));
+  write_file_atomic(path("link.txt"), "new");
+  EXPECT_TRUE(fs::is_symlink(path("link.txt")));
+  EXPECT_EQ(fs::read_symlink(path("link.txt")), fs::path("real/target.txt"));
+  EXPECT_EQ(read_file(path("real/target.txt")), "new");
+  EXPECT_EQ(mode_of(path("real/target.txt")), 0600u);
+  // The temporary file was made beside the target, and is gone.
+  EXPECT_THAT(listing(), ::testing::ElementsAre("link.txt", "real"));
+  EXPECT_THAT(listing("real"), ::testing::ElementsAre("target.txt"));
+  // A dangling link creates its target.
+  fs::create_symlink("real/new.txt", path("dangling.txt"));
+  write_file_atomic(path("dangling.txt"), "made");
+  EXPECT_TRUE(fs::is_symlink(path("dangling.txt")));
+  EXPECT_EQ(read_file(path("real/new.txt")), "made");
+}
+
+TEST_F(WriteFileAtomic, NodesThatAreNotRegularFilesAreRefusedAndStayWhatTheyWere) {
+  for (test::Special kind : test::kRefusedKinds) {
+    SCOPED_TRACE(test::kind_text(kind));
+    const std::string p = path("node");
+    if (!test::make_special(p, kind)) {
+      // mknod needs privileges (the test runs have them as root); the other
+      // kinds are still checked.
+      ASSERT_EQ(kind, test::Special::kNullDevice) << "cannot make " << test::kind_text(kind);
+      continue;
+    }
+    try {
+      write_file_atomic(p, "data");  // a FIFO would block if it were opened
+      ADD_FAILURE() << "written";
+    } catch (const DataError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(p + ": is " + test::kind_text(kind)));
+    }
+    EXPECT_EQ(test::type_at(p), test::file_type_of(kind));
+    EXPECT_THAT(listing(), ::testing::ElementsAre("node"));
+    fs::remove(p);
+  }
+}
+
+}  // namespace
+}  // namespace lodforge

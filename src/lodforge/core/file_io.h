@@ -2,7 +2,8 @@
 /// Reading whole files (gzip-compressed ones transparently) and writing files
 /// atomically: output goes to a temporary file beside the target, which is
 /// renamed into place only when complete, so a failure never leaves a
-/// half-written file.
+/// half-written file. A target whose name ends in ".gz" is written
+/// gzip-compressed, so every writer of the toolkit writes gzip for such names.
 #include <functional>
 #include <string>
 #include <string_view>
@@ -20,8 +21,16 @@ bool is_gzip(std::string_view data);
 /// Decompresses gzip data. Throws DataError naming `what` on a corrupt stream.
 std::string gunzip(std::string_view data, const std::string& what);
 
-/// Writes `content` to `path` atomically ("-" writes to standard output).
-/// Throws DataError if the file cannot be written.
+/// Compresses `data` as one gzip member (zlib's default level; deterministic:
+/// no name and no time stamp in the header).
+std::string gzip(std::string_view data);
+
+/// True if `path` ends in ".gz" (any case): the name of a gzip file.
+bool is_gzip_path(std::string_view path);
+
+/// Writes `content` to `path` atomically ("-" writes to standard output,
+/// uncompressed). When `path` ends in ".gz" the file holds `content`
+/// gzip-compressed. Throws DataError if the file cannot be written.
 void write_file_atomic(const std::string& path, std::string_view content);
 
 }  // namespace lodforge

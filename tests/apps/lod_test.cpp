@@ -43,6 +43,31 @@ TEST_F(LodCli, OneSceneWithStatistics) {
   EXPECT_EQ(table.back()["triangles"].get<long>(), 0);
 }
 
+TEST_F(LodCli, GzOutputsAreGzip) {
+  // The folder t/ does not exist yet: lod creates it.
+  const std::string out = path("t/out.wrl.gz");
+  const std::string stats = path("t/stats.json.gz");
+  auto r = run_lodforge("lod " + std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + out +
+                        " --stats " + stats + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& p : {out, stats}) {
+    const std::string bytes = read_text(p);
+    ASSERT_GE(bytes.size(), 2u) << p;
+    EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f) << p;
+    EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b) << p;
+  }
+  // gzip itself reads them: VRML and JSON.
+  ASSERT_EQ(std::system(("gzip -dc " + out + " > " + path("out.wrl")).c_str()), 0);
+  EXPECT_TRUE(read_text(path("out.wrl")).starts_with("#VRML V1.0 ascii"));
+  EXPECT_THAT(read_text(path("out.wrl")), HasSubstr("LOD {"));
+  ASSERT_EQ(std::system(("gzip -dc " + stats + " > " + path("stats.json")).c_str()), 0);
+  EXPECT_TRUE(nlohmann::json::parse(read_text(path("stats.json"))).contains("shapes"));
+  // And the product reads the compressed scene back as the same scene.
+  auto gz = vrml1::read_vrml1_file(out);
+  auto plain = vrml1::read_vrml1_file(path("out.wrl"));
+  EXPECT_TRUE(scene::equal(gz.scene, plain.scene));
+}
+
 TEST_F(LodCli, SeveralScenesOneBrokenGoOnAndExitOne) {
   std::string good = write("good.wrl", "#VRML V1.0 ascii\nSeparator { Sphere {} }\n");
   std::string bad = write("bad.wrl",

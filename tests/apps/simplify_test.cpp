@@ -102,6 +102,22 @@ TEST_F(SimplifyCli, EveryMethodOnObjAndPlyReportsWhatItWrote) {
   }
 }
 
+TEST_F(SimplifyCli, GzOutputIsGzipInTheFormatOfTheRestOfTheName) {
+  std::string out = path("out.ply.gz");
+  auto r = run_lodforge("simplify " + path("sphere.obj") + " -o " + out + " --ratio 0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string bytes = testing::read_text(out);
+  ASSERT_GE(bytes.size(), 2u);
+  EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);
+  EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b);
+  // gzip itself reads it, and what it holds is a PLY file.
+  ASSERT_EQ(std::system(("gzip -dc " + out + " > " + path("out.ply")).c_str()), 0);
+  EXPECT_TRUE(testing::read_text(path("out.ply")).starts_with("ply\n"));
+  TriangleMesh written = read_mesh(out);
+  EXPECT_EQ(written.triangle_count(),
+            nlohmann::json::parse(r.out)["output_triangles"].get<std::size_t>());
+}
+
 TEST_F(SimplifyCli, TriangleCountIsAnUpperBoundForQem) {
   std::string out = path("t.ply");
   auto r =

@@ -7,9 +7,12 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/mesh/adjacency.h"
 #include "mesh/test_meshes.h"
 
@@ -412,6 +415,25 @@ TEST(MeshIo, WriteAndReadFiles) {
   }
   EXPECT_THROW(write_mesh(m, (dir / "s.xyz").string()), DataError);
   EXPECT_THROW(read_mesh((dir / "missing.ply").string()), DataError);
+}
+
+TEST(MeshIo, GzNamesAreWrittenCompressedInTheFormatOfTheRest) {
+  auto dir = std::filesystem::path(LODFORGE_BINARY_DIR) / "mesh_io_gz_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  TriangleMesh m = test::make_uv_sphere();
+  for (const char* name : {"s.ply.gz", "s.obj.gz", "s.off.gz", "s.stl.gz"}) {
+    std::string path = (dir / name).string();
+    write_mesh(m, path);
+    std::ifstream f(path, std::ios::binary);
+    std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+    ASSERT_TRUE(is_gzip(bytes)) << name;
+    EXPECT_EQ(gunzip(bytes, path), write_mesh_data(m, {.format = format_from_path(path)})) << name;
+    TriangleMesh r = read_mesh(path);
+    EXPECT_EQ(r.triangle_count(), m.triangle_count()) << name;
+    EXPECT_EQ(r.vertex_count(), m.vertex_count()) << name;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // ---- The real corpus ----------------------------------------------------------

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 
 namespace lodforge::vrml1 {
@@ -116,6 +117,26 @@ TEST(WriteVrml1, FileIsReplacedAtomicallyAndNeverHalfWritten) {
   std::string bad = (dir / "missing" / "out.wrl").string();
   EXPECT_THROW(write_vrml1_file(s, bad), DataError);
   EXPECT_FALSE(fs::exists(bad));
+  fs::remove_all(dir);
+}
+
+TEST(WriteVrml1, GzNameIsWrittenCompressed) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / ("lodforge_write_gz_test_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  scene::Scene s;
+  s.roots = {make("Separator")};
+  s.roots[0]->children = {make("Cube")};
+  std::string path = (dir / "out.wrl.gz").string();
+  write_vrml1_file(s, path);
+  std::ifstream f(path, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+  ASSERT_TRUE(is_gzip(bytes));
+  EXPECT_EQ(gunzip(bytes, path), write_vrml1(s));
+  auto back = read_vrml1_file(path);
+  ASSERT_EQ(back.scene.roots.size(), 1u);
+  EXPECT_EQ(back.scene.roots[0]->children.at(0)->type, "Cube");
   fs::remove_all(dir);
 }
 

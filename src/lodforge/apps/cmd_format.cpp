@@ -22,7 +22,8 @@ void add_format_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand("format", "Read a VRML 1.0 scene and write it back formatted");
   cmd->add_option("SCENE", s->input, "VRML 1.0 file (.wrl, .wrl.gz; - = stdin)")->required();
-  cmd->add_option("-o,--output", s->output, "Output file (- = stdout)")->required();
+  cmd->add_option("-o,--output", s->output, "Output file (- = stdout; .gz: gzip-compressed)")
+      ->required();
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {

@@ -185,7 +185,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand("lod", "Replace every shape of VRML 1.0 scenes by LOD nodes");
   cmd->add_option("SCENE", s->inputs, "VRML 1.0 files (- = stdin)")->required();
-  auto* out = cmd->add_option("-o,--output", s->output, "Output file (- = stdout), for one scene");
+  auto* out = cmd->add_option("-o,--output", s->output,
+                              "Output file (- = stdout; .gz: gzip-compressed), for one scene");
   auto* dir = cmd->add_option("--out-dir", s->out_dir, "Output folder, for several scenes");
   out->excludes(dir);
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
@@ -232,7 +233,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"spec", "performer", "reducer"}));
   cmd->add_option("--extract", s->extract, "Write only level K of every shape (-1: only clean)")
       ->check(CLI::Range(-1, 1000));
-  cmd->add_option("--stats", s->stats, "Write statistics as JSON to this file (- = stdout)");
+  cmd->add_option("--stats", s->stats,
+                  "Write statistics as JSON to this file (- = stdout; .gz: gzip-compressed)");
   cmd->add_option("--verbose", s->verbose,
                   "Show messages of these categories: coord, material, normal, texcoord, face, "
                   "line, join, triangulator")

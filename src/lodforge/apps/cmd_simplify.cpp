@@ -225,9 +225,10 @@ void add_simplify_command(CLI::App& app, Runner& run) {
   cmd->add_option("MESH", s->input,
                   "Input: PLY, OBJ, OFF, STL (optionally .gz) or VRML 1.0 (.wrl); - = stdin")
       ->required();
-  cmd->add_option("-o,--output", s->output,
-                  "Output mesh, written atomically; format from the extension "
-                  "(.ply, .obj, .off, .stl) or --format; - = stdout")
+  cmd->add_option(
+         "-o,--output", s->output,
+         "Output mesh, written atomically; format from the extension "
+         "(.ply, .obj, .off, .stl; x.ply.gz: PLY, gzip-compressed) or --format; - = stdout")
       ->required();
   cmd->add_option("--ratio", s->ratio, "Keep at most R x the input's triangles, R in (0, 1]");
   cmd->add_option("--triangles", s->triangles, "Keep at most N triangles (N >= 1)");

@@ -5,6 +5,8 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -57,6 +59,43 @@ std::string gunzip(std::string_view data, const std::string& what) {
   return out;
 }
 
+std::string gzip(std::string_view data) {
+  z_stream zs{};
+  // 15 + 16: the largest window, with a gzip header and trailer (zlib's deflateInit2).
+  if (deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw DataError("cannot start zlib");
+  std::string out;
+  out.resize(deflateBound(&zs, static_cast<uLong>(data.size())));
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  std::size_t consumed = 0;
+  int rc = Z_OK;
+  // avail_in and avail_out are 32-bit: feed data of any size in pieces.
+  constexpr std::size_t kPiece = std::size_t{1} << 30;
+  while (rc != Z_STREAM_END) {
+    std::size_t in_piece = std::min(data.size() - consumed, kPiece);
+    zs.avail_in = static_cast<uInt>(in_piece);
+    if (zs.total_out + (std::size_t{1} << 16) > out.size()) out.resize(out.size() * 2 + (1 << 16));
+    zs.next_out = reinterpret_cast<Bytef*>(out.data() + zs.total_out);
+    zs.avail_out = static_cast<uInt>(std::min(out.size() - zs.total_out, kPiece));
+    bool last = consumed + in_piece == data.size();
+    rc = deflate(&zs, last ? Z_FINISH : Z_NO_FLUSH);
+    consumed += in_piece - zs.avail_in;
+    if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR) {
+      deflateEnd(&zs);
+      throw DataError("gzip compression failed");
+    }
+  }
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+bool is_gzip_path(std::string_view path) {
+  return path.size() >= 3 && path[path.size() - 3] == '.' &&
+         std::tolower(static_cast<unsigned char>(path[path.size() - 2])) == 'g' &&
+         std::tolower(static_cast<unsigned char>(path[path.size() - 1])) == 'z';
+}
+
 std::string read_file(const std::string& path) {
   std::string data;
   if (path == "-") {
@@ -86,6 +125,11 @@ std::string read_file(const std::string& path) {
 }
 
 void write_file_atomic(const std::string& path, std::string_view content) {
+  std::string compressed;
+  if (path != "-" && is_gzip_path(path)) {
+    compressed = gzip(content);
+    content = compressed;
+  }
   if (path == "-") {
     errno = 0;
     std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));

@@ -2,7 +2,8 @@
 /// Reading whole files (gzip-compressed ones transparently) and writing files
 /// atomically: output goes to a temporary file beside the target, which is
 /// renamed into place only when complete, so a failure never leaves a
-/// half-written file.
+/// half-written file. A target whose name ends in ".gz" is written
+/// gzip-compressed, so every writer of the toolkit writes gzip for such names.
 #include <functional>
 #include <string>
 #include <string_view>
@@ -20,12 +21,20 @@ bool is_gzip(std::string_view data);
 /// Decompresses gzip data. Throws DataError naming `what` on a corrupt stream.
 std::string gunzip(std::string_view data, const std::string& what);
 
-/// Writes `content` to `path` atomically ("-" writes to standard output and
-/// flushes it). A symbolic link stays a link: the file it ends at is replaced
-/// (resolve_output_path in output_path.h). A replaced file keeps its
-/// permission mode; a new file gets 0666 less the umask. Throws DataError if
-/// the path is a directory, device node, FIFO or socket (checked without
-/// opening it), or the file cannot be written.
+/// Compresses `data` as one gzip member (zlib's default level; deterministic:
+/// no name and no time stamp in the header).
+std::string gzip(std::string_view data);
+
+/// True if `path` ends in ".gz" (any case): the name of a gzip file.
+bool is_gzip_path(std::string_view path);
+
+/// Writes `content` to `path` atomically ("-" writes to standard output,
+/// uncompressed, and flushes it). When `path` ends in ".gz" the file holds
+/// `content` gzip-compressed. A symbolic link stays a link: the file it ends
+/// at is replaced (resolve_output_path in output_path.h). A replaced file
+/// keeps its permission mode; a new file gets 0666 less the umask. Throws
+/// DataError if the path is a directory, device node, FIFO or socket (checked
+/// without opening it), or the file cannot be written.
 void write_file_atomic(const std::string& path, std::string_view content);
 
 }  // namespace lodforge

@@ -1,7 +1,8 @@
 #pragma once
 /// Reading and writing mesh files: PLY (ASCII and binary), OBJ, OFF, STL.
 /// The format is chosen by the file's extension (and, when reading, checked
-/// against its content). Polygons are triangulated on reading.
+/// against its content); a trailing ".gz" is not part of it: "x.ply.gz" is a
+/// PLY file, gzip-compressed. Polygons are triangulated on reading.
 #include <string>
 #include <string_view>
 
@@ -34,7 +35,8 @@ TriangleMesh read_mesh(const std::string& path, const MeshReadOptions& options =
 TriangleMesh read_mesh_data(std::string_view data, MeshFormat format,
                             const std::string& source_name, const MeshReadOptions& options = {});
 
-/// Writes a mesh atomically (temporary file, then rename). Throws DataError.
+/// Writes a mesh atomically (temporary file, then rename); a path ending in
+/// ".gz" is written gzip-compressed (write_file_atomic). Throws DataError.
 void write_mesh(const TriangleMesh& mesh, const std::string& path,
                 const MeshWriteOptions& options = {});
 
@@ -50,7 +52,7 @@ void write_mesh(const TriangleMesh& mesh, const std::string& path,
 /// an index is out of range.
 std::string write_mesh_data(const TriangleMesh& mesh, const MeshWriteOptions& options);
 
-/// The format a path's extension names (kAuto if none matches).
+/// The format a path's extension names, after dropping a ".gz" (kAuto if none matches).
 MeshFormat format_from_path(std::string_view path);
 
 }  // namespace lodforge

@@ -20,7 +20,8 @@ struct WriteOptions {
 std::string write_vrml1(const scene::Scene& scene, const WriteOptions& options = {});
 
 /// Writes the scene to `path` ("-" = standard output) through a temporary
-/// file that is renamed into place. Throws DataError if it cannot be written.
+/// file that is renamed into place; a path ending in ".gz" is written
+/// gzip-compressed. Throws DataError if it cannot be written.
 void write_vrml1_file(const scene::Scene& scene, const std::string& path,
                       const WriteOptions& options = {});
 

@@ -94,10 +94,12 @@ TEST_F(LodCli, BrokenInputsAreErrorsWithoutOutput) {
   for (const auto& [text, message] : cases) {
     std::string in = write("case" + std::to_string(n) + ".wrl", text);
     std::string out = path("case" + std::to_string(n++) + ".out.wrl");
-    auto r = run_lodforge("lod " + in + " -o " + out);
+    std::string stats = path("case" + std::to_string(n) + ".json");
+    auto r = run_lodforge("lod " + in + " -o " + out + " --stats " + stats);
     EXPECT_EQ(r.exit_code, 1) << text;
     EXPECT_THAT(r.err, HasSubstr(message));
     EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(stats)) << "statistics of a scene that failed";
   }
 }
 

@@ -299,7 +299,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
           ++failures;
         }
       }
-      if (!s->stats.empty()) {
+      // Statistics of the scenes that were written; none when none was.
+      if (!s->stats.empty() && !all_stats.empty()) {
         std::string text = (all_stats.size() == 1 ? all_stats[0] : all_stats).dump(2) + "\n";
         write_file_atomic(s->stats, text);
       }

@@ -103,6 +103,19 @@ TEST_F(LodCli, BrokenInputsAreErrorsWithoutOutput) {
   }
 }
 
+// NaN passes every comparison, so range checks alone let it through into the
+// written ranges; every numeric option refuses numbers that are not finite.
+TEST_F(LodCli, NumbersThatAreNotFiniteAreRefused) {
+  for (const std::string option :
+       {"--error-range nan", "--camera-angle inf", "--level-spacing NaN", "--min-diff -inf"}) {
+    const std::string out = path("nan.wrl");
+    auto r = run_lodforge("lod " + kPrimitives + " -o " + out + " " + option);
+    EXPECT_NE(r.exit_code, 0) << option;
+    EXPECT_THAT(r.err, HasSubstr("is not a finite number")) << option;
+    EXPECT_FALSE(fs::exists(out)) << option;
+  }
+}
+
 TEST_F(LodCli, EmptyFaceSetIsAWarningNamingItsLine) {
   std::string in = write("empty.wrl",
                          "#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [0 0 0] }\n"

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lodforge/apps/commands.h"
+#include "lodforge/apps/common_options.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
@@ -89,16 +90,20 @@ void add_compare_command(CLI::App& app, Runner& run) {
   cmd->add_option("A", s->a, "Reference: mesh (PLY, OBJ, OFF, STL) or VRML 1.0 scene")->required();
   cmd->add_option("B", s->b, "Mesh or scene to measure against A")->required();
   cmd->add_option("--level", s->level_b, "LOD level of B when B is a scene (default 0)")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--level-a", s->level_a, "LOD level of A when A is a scene (default 0)")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   cmd->add_option("--samples", s->samples,
                   "Area samples per direction (default: 10 x the larger triangle count, "
                   "at least 100000, at most 4000000)")
+      ->check(kFiniteNumber)
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", s->seed, "Seed of the sampling (default 1)");
   cmd->add_option("--threads", s->threads, "Worker threads (default: all cores)")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--smooth-normals", s->smooth_normals,
                 "Estimate missing vertex normals by averaging face normals (else face normals)");
@@ -106,6 +111,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
                   "Write A with per-vertex colours by deviation (blue 0, green half, red max)");
   cmd->add_option("--color-max", s->color_max,
                   "Deviation shown red (default: the largest vertex deviation)")
+      ->check(kFiniteNumber)
       ->check(CLI::PositiveNumber);
   cmd->callback([s, &run] {
     run = [s] {

@@ -194,25 +194,31 @@ void add_lod_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));
   cmd->add_option("--error-range", s->error_range_pct, "Allowed error in % of the screen height")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.0001, 100.0));
   cmd->add_option("--camera-angle", s->camera_angle,
                   "Camera height angle in radians (default: first PerspectiveCamera, else pi/4)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.0001, 3.14));
   cmd->add_option("--min-diff", s->min_diff_pct,
                   "Candidate levels: each keeps at most (100 - PCT) % of the previous")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(1.0, 100.0));
   cmd->add_option("--level-spacing", s->level_spacing,
                   "Automatic mode: keep a level only where it is shown over at least this "
                   "factor of distance (1 keeps every candidate)")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(1.0, 100.0));
   cmd->add_option("--level-ratio", s->level_ratio,
                   "Automatic mode: a level keeps at most this fraction of the triangles of the "
                   "level before it (1: no size rule)")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.01, 1.0));
   cmd->add_option("--levels", s->levels, "At most N levels per shape (original and empty included)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(2, 1000));
   cmd->add_option("--quality", s->quality,
                   "Manual mode per shape type: TYPE=N (0 empty, 1 no LOD, N levels); types "
@@ -227,11 +233,13 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--quad-split-angle", s->quad_split_angle,
                   "Split quads bent more than this (radians)")
       ->capture_default_str()
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 3.1416));
   cmd->add_option("--export", s->export_flavour, "LOD centre: spec, performer or reducer")
       ->capture_default_str()
       ->check(CLI::IsMember({"spec", "performer", "reducer"}));
   cmd->add_option("--extract", s->extract, "Write only level K of every shape (-1: only clean)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(-1, 1000));
   cmd->add_option("--stats", s->stats,
                   "Write statistics as JSON to this file (- = stdout; .gz: gzip-compressed)");
@@ -240,6 +248,7 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "line, join, triangulator")
       ->delimiter(',');
   cmd->add_option("--threads", s->threads, "Worker threads (0: all cores)")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lodforge/apps/commands.h"
+#include "lodforge/apps/common_options.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
@@ -74,6 +75,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
                    "Finest cells across the longest side (2..1000); 0 (default): about as many "
                    "triangles at full resolution as the input has (range scans: cells twice the "
                    "point spacing)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0, 1000))
       ->check([](const std::string& v) {
         return v == "1" ? std::string("use 0 (automatic) or 2..1000") : std::string();
@@ -92,6 +94,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
                   "levels' vertices move off it to where their triangles straddle the surface, "
                   "for a lower deviation)");
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
@@ -147,11 +150,14 @@ void add_mco_command(CLI::App& app, Runner& run) {
   extract->add_option("-o,--output", e->output, "Mesh to write (format from the extension)")
       ->required();
   auto* ot = extract->add_option("--triangles", e->triangles, "Triangle budget")
+                 ->check(kFiniteNumber)
                  ->check(CLI::NonNegativeNumber);
   auto* op =
       extract->add_option("--percent", e->percent, "Percent of the full-resolution triangles")
+          ->check(kFiniteNumber)
           ->check(CLI::Range(0.0, 100.0));
   auto* on = extract->add_option("--priority", e->priority, "Priority number N")
+                 ->check(kFiniteNumber)
                  ->check(CLI::NonNegativeNumber);
   ot->excludes(op)->excludes(on);
   op->excludes(on);
@@ -238,8 +244,10 @@ void add_mco_command(CLI::App& app, Runner& run) {
   scan->add_option("MESH", sc->input, "Mesh (PLY, OBJ, OFF, STL) or VRML 1.0 scene")->required();
   scan->add_option("-o,--output", sc->output, "Directory to write the scans to")->required();
   scan->add_option("--views", sc->views, "Viewing directions, spread on the sphere (1..1000)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(1, 1000));
   scan->add_option("--resolution", sc->resolution, "Grid points across each view (4..4096)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(4, 4096));
   scan->callback([sc, &run] {
     run = [sc] {

@@ -181,6 +181,7 @@ void add_render_command(CLI::App& app, Runner& run) {
   cmd->add_option("SCENE_OR_MESH", s->input, "VRML 1.0 scene or mesh file (PLY, OBJ, OFF, STL)")
       ->required();
   auto* level = cmd->add_option("--level", s->level, "LOD level to render (scenes; 0 = finest)")
+                    ->check(kFiniteNumber)
                     ->check(CLI::NonNegativeNumber);
   auto* levels = cmd->add_flag("--levels", s->levels,
                                "Contact sheet of every LOD level with its triangle count (scenes)")

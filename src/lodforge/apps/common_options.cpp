@@ -1,8 +1,31 @@
 #include "lodforge/apps/common_options.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
 #include <fmt/core.h>
 
 namespace lodforge::apps {
+
+const CLI::Validator kFiniteNumber(
+    [](std::string& text) -> std::string {
+      // Each comma-separated part of a list value, as a number if it is one.
+      std::size_t start = 0;
+      while (start <= text.size()) {
+        const std::size_t end = std::min(text.find(',', start), text.size());
+        const std::string part = text.substr(start, end - start);
+        char* stop = nullptr;
+        const double v = std::strtod(part.c_str(), &stop);
+        if (!part.empty() && stop && *stop == '\0' && !std::isfinite(v))
+          return fmt::format("'{}' is not a finite number", part);
+        start = end + 1;
+      }
+      return {};
+    },
+    "FINITE");
 
 void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s) {
   cmd.add_flag("--inline", s.read_inlines,

@@ -17,6 +17,10 @@ struct SceneReadSettings {
 
 /// --inline, --quiet.
 void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s);
+
+/// Refuses a number that is not finite ("nan", "inf", 1e999): CLI11's range
+/// checks compare, and NaN passes every comparison. Chained before them.
+extern const CLI::Validator kFiniteNumber;
 /// --floats-per-line, --ints-per-line, --no-tabs, --minimize.
 void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w);
 

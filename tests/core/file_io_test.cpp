@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/special_files.h"
+#include "core/temp_dir.h"
 #include "lodforge/core/error.h"
 
 namespace lodforge {
@@ -23,17 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-class WriteFileAtomic : public ::testing::Test {
+class WriteFileAtomic : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lodforge_file_io_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
   static mode_t mode_of(const std::string& p) {
     struct stat st {};
     EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
@@ -47,7 +39,6 @@ class WriteFileAtomic : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-  fs::path dir_;
 };
 
 TEST_F(WriteFileAtomic, NewFileGetsTheUmaskModeAndNoTemporaryIsLeft) {

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <random>
 
+#include "core/temp_dir.h"
 #include "lodforge/core/error.h"
 
 namespace lodforge {
@@ -20,15 +21,8 @@ std::string raw_bytes(const fs::path& p) {
   return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
-class FileIo : public ::testing::Test {
+class FileIo : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("lodforge_gzip_write_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
 };
 
 TEST(Gzip, RoundTripsEmptySmallAndLargeData) {

@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "core/special_files.h"
+#include "core/temp_dir.h"
 #include "lodforge/core/error.h"
 
 namespace lodforge {
@@ -20,21 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-class OutputPaths : public ::testing::Test {
+class OutputPaths : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lodforge_output_path_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(path(name)) << text;
-    return path(name);
-  }
   // The message check_output_paths throws, or "" when it accepts.
   static std::string refusal(std::initializer_list<OutputPath> outputs,
                              std::initializer_list<std::string> inputs) {
@@ -46,7 +34,6 @@ class OutputPaths : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
 };
 
 TEST_F(OutputPaths, RegularFilesAndNewPathsAreWrittenWhereNamed) {

@@ -9,8 +9,12 @@
 // instance count from lodforge's statistics. Also the output file's size
 // against the input's.
 //
-//   lod_outcome FILE...      (VRML 1.0 scenes; a mesh file (PLY, OBJ, ...) is
-//                             made a scene of one IndexedFaceSet first)
+//   lod_outcome [--curve] FILE...  (VRML 1.0 scenes; a mesh file (PLY, OBJ,
+//                                   ...) is made a scene of one IndexedFaceSet
+//                                   first)
+//
+// --curve also prints, per shape, both chains (triangles, switching distance
+// in radii) and the triangles each side draws at every sampled distance.
 //
 // Prints a Markdown table on stdout; ratio = lodforge / peer (target <= 0.7).
 #include <fmt/core.h>
@@ -88,7 +92,7 @@ struct Outcome {
   std::size_t shapes = 0;
 };
 
-Outcome measure(const std::string& path) {
+Outcome measure(const std::string& path, bool curve) {
   namespace fs = std::filesystem;
   const std::string ext = fs::path(path).extension().string();
   scene::Scene in;
@@ -119,17 +123,33 @@ Outcome measure(const std::string& path) {
     const PeerChain peer = peer_chain(m->second, s.radius, range);
     const double k = s.scale > 0 ? s.scale : 1.0;
     const double vanish = k * switch_distance(vanishing_error(s.radius), 1, s.radius, range);
+    if (curve) {
+      fmt::print(stderr, "{} line {}: radius {:.4g}, vanishing at {:.1f} r\n  lodforge:", path,
+                 s.line, s.radius, vanish / (k * s.radius));
+      for (std::size_t l = 0; l < s.levels.size(); ++l)
+        fmt::print(stderr, " {}@{:.2f}", s.levels[l].triangles,
+                   l == 0 ? 0.0 : s.ranges[l - 1] / (k * s.radius));
+      fmt::print(stderr, "\n  peer:    ");
+      for (std::size_t l = 0; l < peer.triangles.size(); ++l)
+        fmt::print(stderr, " {}@{:.2f}", peer.triangles[l], peer.distance[l] / s.radius);
+      fmt::print(stderr, "\n  d/r lodforge peer\n");
+    }
     for (int i = 0; i < kDistances; ++i) {
       const double d = k * s.radius * std::pow(kFarthest, double(i) / (kDistances - 1));
       // lodforge: the level whose range interval holds d (past the last: empty).
       std::size_t level = 0;
       while (level < s.ranges.size() && d >= s.ranges[level]) ++level;
-      if (level < s.levels.size()) o.lodforge += double(s.occurrences * s.levels[level].triangles);
+      const std::size_t ours = level < s.levels.size() ? s.levels[level].triangles : 0;
+      o.lodforge += double(s.occurrences * ours);
       // The peer: its coarsest level allowed at d, nothing past vanishing.
-      if (d >= vanish) continue;
-      std::size_t p = 0;
-      while (p + 1 < peer.distance.size() && k * peer.distance[p + 1] <= d) ++p;
-      o.peer += double(s.occurrences * peer.triangles[p]);
+      std::size_t theirs = 0;
+      if (d < vanish) {
+        std::size_t p = 0;
+        while (p + 1 < peer.distance.size() && k * peer.distance[p + 1] <= d) ++p;
+        theirs = peer.triangles[p];
+      }
+      o.peer += double(s.occurrences * theirs);
+      if (curve) fmt::print(stderr, "  {:.2f} {} {}\n", d / (k * s.radius), ours, theirs);
     }
   }
   return o;
@@ -138,18 +158,19 @@ Outcome measure(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    fmt::print(stderr, "usage: lod_outcome FILE...\n");
+  const bool curve = argc > 1 && std::string(argv[1]) == "--curve";
+  if (argc < 2 + int(curve)) {
+    fmt::print(stderr, "usage: lod_outcome [--curve] FILE...\n");
     return 2;
   }
   fmt::print(
       "| file | shapes | triangles drawn, lodforge | peer | ratio | output / input size |\n");
   fmt::print("|---|---|---|---|---|---|\n");
   Outcome all;
-  for (int a = 1; a < argc; ++a) {
+  for (int a = 1 + int(curve); a < argc; ++a) {
     Outcome o;
     try {
-      o = measure(argv[a]);
+      o = measure(argv[a], curve);
     } catch (const std::exception& e) {
       fmt::print(stderr, "{}: {}\n", argv[a], e.what());
       continue;

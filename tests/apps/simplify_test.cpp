@@ -96,7 +96,7 @@ TEST_F(SimplifyCli, EveryMethodOnObjAndPlyReportsWhatItWrote) {
       EXPECT_EQ(written.triangle_count(), got);
       EXPECT_EQ(written.vertex_count(), j["output_vertices"].get<std::size_t>());
       if (std::string(method) == "cluster") {
-        EXPECT_EQ(j["level"].get<std::size_t>() + 1, j["levels"].get<std::size_t>());
+        EXPECT_GE(j["simplifier_runs"].get<std::size_t>(), 1u);
       }
     }
   }

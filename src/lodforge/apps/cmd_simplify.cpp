@@ -15,24 +15,16 @@
 // | --ratio and --triangles       | usage error: one count only                    |
 // | none                          | usage error                                    |
 //
-// Methods and what "error" means (each is what the simplifier reports, in
-// model units; see the simplifiers' headers):
+// Methods (simplify/): qem = quadric_collapse, decimate = vertex_decimation
+// (both land at or just below a count), cluster = vertex_clustering (its
+// levels fall at octree depths; the first at or below the count is written
+// and stop_detail says how far below it is).
 //
-// | method   | function                 | count target              | error            |
-// |----------|--------------------------|---------------------------|------------------|
-// | qem      | quadric_collapse         | met exactly or just below | upper bound on   |
-// |          |                          |                           | one-sided        |
-// |          |                          |                           | Hausdorff, result|
-// |          |                          |                           | -> input         |
-// | decimate | vertex_decimation        | one vertex (about two     | Schroeder's      |
-// |          |                          | triangles) at a time, so  | accumulated      |
-// |          |                          | at or just below; no      | error (estimate) |
-// |          |                          | chain level needed        |                  |
-// | cluster  | vertex_clustering chain  | the first level AT OR     | largest vertex   |
-// |          |                          | BELOW the count (levels   | displacement     |
-// |          |                          | fall at the octree's own  | (not Hausdorff)  |
-// |          |                          | counts; the level above   |                  |
-// |          |                          | would exceed the count)   |                  |
+// "error" is the same for every method (lod/measured_simplify.h): the
+// measured largest distance from the result to the input, enlarged by the
+// pipeline's margin, so an upper bound on the one-sided Hausdorff distance;
+// --error E gives the smallest result found whose error is <= E. The
+// simplifier's own figure is kept as simplifier_estimate.
 //
 // Stopping short of the target (no allowed operation left) is a result, not
 // an error: exit 0, the reason in stop_reason / stop_detail.
@@ -40,11 +32,11 @@
 // JSON keys (stdout, --json): input, output, method, input_vertices,
 // input_triangles, target_triangles (null with --error alone), max_error
 // (null without --error), output_vertices, output_triangles, output_lines,
-// error, error_kind, stop_reason, stop_detail, time_ms (the simplification
-// alone: no file reading or writing; steady_clock), and for cluster `level`
-// and `levels` (the chosen chain level and how many were made). JSON has no
-// infinity: an error the simplifier reports as non-finite prints as null
-// (vertex clustering's displacement overflows float beyond about 1e19).
+// error, error_kind, hausdorff (two-sided, same margin), simplifier_estimate,
+// stop_reason, stop_detail, simplifier_runs, measurements, time_ms (the
+// simplification and its measurements: no file reading or writing;
+// steady_clock). JSON has no infinity: a figure that is not finite prints as
+// null (vertex clustering's displacement overflows float beyond about 1e19).
 #include <fmt/core.h>
 
 #include <array>
@@ -60,12 +52,22 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
-#include "lodforge/simplify/quadric_collapse.h"
-#include "lodforge/simplify/vertex_clustering.h"
-#include "lodforge/simplify/vertex_decimation.h"
+#include "lodforge/lod/measured_simplify.h"
+#include "lodforge/lod/simplify_levels.h"
 
 namespace lodforge::apps {
 namespace {
+
+std::string error_kind() {
+  return fmt::format(
+      "measured: largest distance from the result to the input, sampled and refined, x {} "
+      "(an upper bound that a denser measurement stays below)",
+      kErrorMargin);
+}
+
+nlohmann::ordered_json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
 
 struct SimplifySettings {
   std::string input;
@@ -80,36 +82,10 @@ struct SimplifySettings {
   bool quiet = false;
 };
 
-/// What the method's `error` is, for the JSON and the summary.
-const char* error_kind(const std::string& method) {
-  if (method == "qem") return "upper bound on the one-sided Hausdorff distance, result to input";
-  if (method == "decimate") return "accumulated Schroeder error (estimate)";
-  return "largest vertex displacement";
-}
-
-/// The simplified mesh and what the chain said about it.
-struct Outcome {
-  SimplifyResult result;
-  std::size_t level = 0;   ///< cluster: index of the chosen chain level
-  std::size_t levels = 0;  ///< cluster: number of levels made
-};
-
-Outcome run_method(const TriangleMesh& mesh, const SimplifySettings& s,
-                   const SimplifyTarget& target) {
-  Outcome o;
-  if (s.method == "qem") {
-    o.result = quadric_collapse(mesh, {.target = target});
-  } else if (s.method == "decimate") {
-    o.result = vertex_decimation(mesh, {.target = target});
-  } else {
-    // The chain ends at the first level at or below the count, or at the last
-    // level within the error budget: its last level is the answer.
-    std::vector<SimplifyResult> chain = vertex_clustering(mesh, {.target = target});
-    o.levels = chain.size();
-    o.level = chain.size() - 1;
-    o.result = std::move(chain.back());
-  }
-  return o;
+SimplifyMethod method_named(const std::string& name) {
+  if (name == "cluster") return SimplifyMethod::kCluster;
+  if (name == "decimate") return SimplifyMethod::kDecimate;
+  return SimplifyMethod::kQem;
 }
 
 /// Usage checks that need more than one option; throws CLI::ValidationError
@@ -155,10 +131,11 @@ int run_simplify(const SimplifySettings& s) {
   if (s.max_error) target.max_error = static_cast<float>(*s.max_error);
 
   auto start = std::chrono::steady_clock::now();
-  Outcome o = run_method(mesh, s, target);
+  const MeasuredSimplifyResult m =
+      simplify_measured(mesh, {.method = method_named(s.method), .target = target});
   double time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const SimplifyResult& r = o.result;
+  const SimplifyResult& r = m.result;
 
   write_mesh(r.mesh, s.output, {.format = format_named(s.format), .binary = !s.ascii});
 
@@ -176,15 +153,15 @@ int run_simplify(const SimplifySettings& s) {
     j["output_vertices"] = r.mesh.vertex_count();
     j["output_triangles"] = r.mesh.triangle_count();
     j["output_lines"] = r.mesh.lines.size();
-    j["error"] = r.error;
-    j["error_kind"] = error_kind(s.method);
+    j["error"] = finite_or_null(m.error);
+    j["error_kind"] = error_kind();
+    j["hausdorff"] = finite_or_null(m.hausdorff);
+    j["simplifier_estimate"] = finite_or_null(r.error);
     j["stop_reason"] = to_string(r.stop_reason);
     j["stop_detail"] = r.stop_detail;
+    j["simplifier_runs"] = m.simplifier_runs;
+    j["measurements"] = m.measurements;
     j["time_ms"] = time_ms;
-    if (s.method == "cluster") {
-      j["level"] = o.level;
-      j["levels"] = o.levels;
-    }
     fmt::print("{}\n", j.dump(2));
     return 0;
   }
@@ -195,10 +172,11 @@ int run_simplify(const SimplifySettings& s) {
              r.mesh.triangle_count(), r.mesh.vertex_count());
   if (!r.mesh.lines.empty()) fmt::print(stderr, ", {} line segments", r.mesh.lines.size());
   if (by_count) fmt::print(stderr, " (target {})", target.triangle_target(mesh.triangle_count()));
-  if (s.method == "cluster")
-    fmt::print(stderr, "; chain level {} (of levels 0-{})", o.level, o.levels - 1);
-  fmt::print(stderr, "\n  error {:.6g} ({})\n  stopped: {}: {}\n  time {:.1f} ms\n", r.error,
-             error_kind(s.method), to_string(r.stop_reason), r.stop_detail, time_ms);
+  fmt::print(stderr,
+             "\n  error {:.6g} ({})\n  two-sided Hausdorff {:.6g} (measured, same margin)\n"
+             "  stopped: {}: {}\n  time {:.1f} ms ({} simplifier runs, {} measurements)\n",
+             m.error, error_kind(), m.hausdorff, to_string(r.stop_reason), r.stop_detail, time_ms,
+             m.simplifier_runs, m.measurements);
   return 0;
 }
 
@@ -212,15 +190,15 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       "Targets: exactly one count (--ratio or --triangles) and/or --error; with a count and\n"
       "--error both limits apply and the first one met stops. Stopping short of the target\n"
       "(nothing left that may be removed) is not an error; the reason is reported.\n"
-      "Methods and the error they report (model units):\n"
-      "  qem       quadric edge collapse (best quality); count met at or just below;\n"
-      "            error = upper bound on the Hausdorff distance from the result to the input\n"
-      "  decimate  vertex decimation (Schroeder); removes one vertex at a time, so the count\n"
-      "            is met at or just below; error = accumulated Schroeder error (an estimate)\n"
-      "  cluster   octree vertex clustering; levels fall at the octree's own counts: the\n"
-      "            first level AT OR BELOW the count is written (its actual count reported);\n"
-      "            error = largest vertex displacement (not a Hausdorff bound)\n"
-      "time_ms (--json) covers the simplification alone, without reading or writing files.\n"
+      "Methods:\n"
+      "  qem       quadric edge collapse (best quality); count met at or just below\n"
+      "  decimate  vertex decimation (Schroeder); count met at or just below\n"
+      "  cluster   octree vertex clustering; its levels fall at octree depths: the first\n"
+      "            AT OR BELOW the count is written (how far below is reported)\n"
+      "error (model units, every method) = the measured largest distance from the result\n"
+      "to the input x 1.1, an upper bound on the one-sided Hausdorff distance; --error E\n"
+      "gives the smallest result found whose error is <= E (a measured search).\n"
+      "time_ms (--json) covers the simplification and its measurements, not file I/O.\n"
       "Exit codes: 0 done, 1 bad input (unreadable, empty surface), 2 bad usage.\n");
   cmd->add_option("MESH", s->input,
                   "Input: PLY, OBJ, OFF, STL (optionally .gz) or VRML 1.0 (.wrl); - = stdin")
@@ -233,8 +211,8 @@ void add_simplify_command(CLI::App& app, Runner& run) {
   cmd->add_option("--ratio", s->ratio, "Keep at most R x the input's triangles, R in (0, 1]");
   cmd->add_option("--triangles", s->triangles, "Keep at most N triangles (N >= 1)");
   cmd->add_option("--error", s->max_error,
-                  "Error budget in model units (see the methods below); alone: simplify as far "
-                  "as the budget allows");
+                  "Error budget in model units, against the measured error (below); alone: "
+                  "the smallest result found within it");
   cmd->add_option("--method", s->method, "cluster, decimate or qem (default qem)")
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));
   cmd->add_option("--format", s->format, "Output format: ply, obj, off or stl (default: extension)")

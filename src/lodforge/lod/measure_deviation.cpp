@@ -27,7 +27,7 @@ struct Side {
   std::unique_ptr<TriangleBvh> bvh;
 };
 
-Side make_side(const TriangleMesh& m, const DeviationOptions& o) {
+Side make_side(const TriangleMesh& m, const DeviationOptions& o, bool with_bvh = true) {
   Side s;
   s.mesh = &m;
   s.samples = sample_surface(m, {.count = o.samples,
@@ -35,7 +35,7 @@ Side make_side(const TriangleMesh& m, const DeviationOptions& o) {
                                  .vertices = true,
                                  .edge_count = o.samples / 4,
                                  .vertex_normals = false});
-  s.bvh = std::make_unique<TriangleBvh>(m);
+  if (with_bvh) s.bvh = std::make_unique<TriangleBvh>(m);
   return s;
 }
 
@@ -131,6 +131,12 @@ double DeviationMeter::hausdorff(const TriangleMesh& level) const {
   double ab = one_sided(impl_->reference, *other.bvh, impl_->options.refine);
   double ba = one_sided(other, *impl_->reference.bvh, impl_->options.refine);
   return std::max(ab, ba);
+}
+
+double DeviationMeter::distance_to_reference(const TriangleMesh& level) const {
+  if (impl_->reference.mesh->triangles.empty() || level.triangles.empty()) return 0.0;
+  const Side other = make_side(level, impl_->options, false);
+  return one_sided(other, *impl_->reference.bvh, impl_->options.refine);
 }
 
 }  // namespace lodforge

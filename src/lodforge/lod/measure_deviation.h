@@ -33,6 +33,11 @@ class DeviationMeter {
   /// units; 0 if either has no triangles.
   double hausdorff(const TriangleMesh& level) const;
 
+  /// One-sided: the largest distance from a point of `level` to the
+  /// reference, in model units; 0 if either has no triangles. Cheaper than
+  /// hausdorff() (no search structure of `level` is built).
+  double distance_to_reference(const TriangleMesh& level) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

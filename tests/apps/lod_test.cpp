@@ -165,5 +165,35 @@ TEST_F(LodCli, OptionsOfTheOriginalAreAccepted) {
   }
 }
 
+// The same warning at many places is printed once, with its count and first
+// place; -q keeps the one-line summary, --quiet=all prints nothing.
+TEST_F(LodCli, RepeatedWarningsAreGroupedAndQuietKeepsTheSummary) {
+  std::string scene = "#VRML V1.0 ascii\nSeparator {\n";
+  for (int i = 0; i < 5; ++i) scene += "Material { shininess 0.5 reflSpecular 0.1 }\nCube {}\n";
+  scene += "}\n";
+  const std::string in = path("warn.wrl");
+  std::ofstream(in) << scene;
+  auto r = run_lodforge("lod " + in + " -o " + path("out.wrl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("reflSpecular"));
+  EXPECT_THAT(r.err, HasSubstr("(5 times, first at " + in + ":3:"));
+  std::size_t mentions = 0;
+  for (std::size_t at = r.err.find("reflSpecular"); at != std::string::npos;
+       at = r.err.find("reflSpecular", at + 1))
+    ++mentions;
+  EXPECT_EQ(mentions, 1u) << r.err;
+
+  auto quiet = run_lodforge("lod " + in + " -o " + path("out.wrl") + " -q");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_THAT(quiet.err, ::testing::Not(HasSubstr("warning")));
+  EXPECT_THAT(quiet.err, HasSubstr("5 shapes"));
+  EXPECT_THAT(quiet.err, ::testing::Not(HasSubstr("triangles drawn")));
+
+  auto silent = run_lodforge("lod " + in + " -o " + path("out.wrl") + " --quiet=all");
+  ASSERT_EQ(silent.exit_code, 0) << silent.err;
+  EXPECT_EQ(silent.err, "");
+  EXPECT_EQ(run_lodforge("lod " + in + " -o " + path("out.wrl") + " --quiet=loud").exit_code, 2);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -24,8 +24,8 @@ const TriangleMesh& shared_mesh(const std::string& name) {
   auto it = cache.find(name);
   if (it == cache.end()) {
     const std::string path = std::string(LODFORGE_SHARED_DATA) + "/meshes/" + name;
-    it = cache.emplace(name, std::filesystem::exists(path) ? read_mesh(path) : TriangleMesh{})
-             .first;
+    it =
+        cache.emplace(name, std::filesystem::exists(path) ? read_mesh(path) : TriangleMesh{}).first;
   }
   return it->second;
 }
@@ -67,18 +67,19 @@ TEST_P(MeasuredErrorTest, ReportedErrorBoundsTheMeasuredDistanceTightly) {
   EXPECT_GE(m.hausdorff, m.error);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SharedMeshes, MeasuredErrorTest,
-    testing::Combine(testing::Values("cow.obj", "fandisk.obj", "teapot.obj"),
-                     testing::Values(SimplifyMethod::kQem, SimplifyMethod::kDecimate,
-                                     SimplifyMethod::kCluster),
-                     testing::Values(0.5f, 0.1f, 0.01f)),
-    [](const testing::TestParamInfo<Case>& info) {
-      std::string n = std::get<0>(info.param);
-      n = n.substr(0, n.find('.'));
-      const int pct = int(std::lround(100 * std::get<2>(info.param)));
-      return n + "_" + to_string(std::get<1>(info.param)) + "_" + std::to_string(pct) + "pct";
-    });
+INSTANTIATE_TEST_SUITE_P(SharedMeshes, MeasuredErrorTest,
+                         testing::Combine(testing::Values("cow.obj", "fandisk.obj", "teapot.obj"),
+                                          testing::Values(SimplifyMethod::kQem,
+                                                          SimplifyMethod::kDecimate,
+                                                          SimplifyMethod::kCluster),
+                                          testing::Values(0.5f, 0.1f, 0.01f)),
+                         [](const testing::TestParamInfo<Case>& info) {
+                           std::string n = std::get<0>(info.param);
+                           n = n.substr(0, n.find('.'));
+                           const int pct = int(std::lround(100 * std::get<2>(info.param)));
+                           return n + "_" + to_string(std::get<1>(info.param)) + "_" +
+                                  std::to_string(pct) + "pct";
+                         });
 
 class ErrorBudgetTest : public testing::TestWithParam<std::tuple<std::string, SimplifyMethod>> {};
 
@@ -99,8 +100,7 @@ TEST_P(ErrorBudgetTest, SmallestResultWithinTheBudget) {
   SimplifyTarget by_error;
   by_error.max_error = float(1.02 * tenth_error);
   const double budget = by_error.max_error;
-  const MeasuredSimplifyResult m =
-      simplify_measured(input, {.method = method, .target = by_error});
+  const MeasuredSimplifyResult m = simplify_measured(input, {.method = method, .target = by_error});
   EXPECT_LE(m.error, budget);
   EXPECT_EQ(m.result.stop_reason, StopReason::kErrorBudgetReached) << m.result.stop_detail;
   EXPECT_GE(m.error, independent(input, m.result.mesh).b_to_a.max);

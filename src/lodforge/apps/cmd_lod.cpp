@@ -165,7 +165,8 @@ void check_outputs(const Settings& s) {
   check_output_paths(outputs, s.inputs);
 }
 
-void print_summary(const std::string& file, const LodResult& r) {
+// One line, and the triangles-by-distance table when `table`.
+void print_summary(const std::string& file, const LodResult& r, bool table) {
   std::size_t levels = 0, lods = 0;
   for (const auto& s : r.shapes) {
     if (s.ranges.empty()) continue;
@@ -174,6 +175,7 @@ void print_summary(const std::string& file, const LodResult& r) {
   }
   fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
              file, r.shapes.size(), lods, levels, r.camera_angle);
+  if (!table) return;
   fmt::print(stderr, "  distance      triangles drawn\n");
   for (const auto& [d, t] : r.triangles_by_distance)
     fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
@@ -273,16 +275,19 @@ void add_lod_command(CLI::App& app, Runner& run) {
       for (const auto& input : s->inputs) {
         try {
           vrml1::ReadResult r = read_scene(input, s->read);
-          if (tty)
+          if (tty && !s->read.silent)
             options.progress = [&](std::size_t done, std::size_t total) {
               fmt::print(stderr, "\r{}: shape {}/{}", input, done, total);
               if (done == total) fmt::print(stderr, "\r\033[K");
             };
           LodResult result = generate_lod(r.scene, options);
-          for (const auto& d : result.log.entries()) {
-            bool show = d.level != LogLevel::kMessage ||
-                        std::find(shown.begin(), shown.end(), d.category) != shown.end();
-            if (show && !s->read.quiet) print_diagnostic(d);
+          if (!s->read.quiet) {
+            std::vector<Diagnostic> show;
+            for (const auto& d : result.log.entries())
+              if (d.level != LogLevel::kMessage ||
+                  std::find(shown.begin(), shown.end(), d.category) != shown.end())
+                show.push_back(d);
+            print_diagnostics(show);
           }
           const std::string target = output_of(input, *s);
           namespace fs = std::filesystem;
@@ -300,7 +305,7 @@ void add_lod_command(CLI::App& app, Runner& run) {
                          to.empty() ? "." : to.string());
           }
           vrml1::write_vrml1_file(result.scene, target, s->write);
-          if (!s->read.quiet) print_summary(input, result);
+          if (!s->read.silent) print_summary(input, result, !s->read.quiet);
           all_stats.push_back(stats_json(input, result));
         } catch (const DataError& e) {
           fmt::print(stderr, "error: {}{}\n",

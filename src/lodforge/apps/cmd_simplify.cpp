@@ -51,9 +51,9 @@
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
-#include "lodforge/mesh/mesh_io.h"
 #include "lodforge/lod/measured_simplify.h"
 #include "lodforge/lod/simplify_levels.h"
+#include "lodforge/mesh/mesh_io.h"
 
 namespace lodforge::apps {
 namespace {

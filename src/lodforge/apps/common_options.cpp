@@ -3,8 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <string_view>
+#include <utility>
 
 #include <fmt/core.h>
 
@@ -30,7 +34,13 @@ const CLI::Validator kFiniteNumber(
 void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s) {
   cmd.add_flag("--inline", s.read_inlines,
                "Also read the local files of WWWInline nodes (never over a network)");
-  cmd.add_flag("-q,--quiet", s.quiet, "Do not print warnings");
+  cmd.add_flag("-q{warnings},--quiet{warnings}", s.quiet_mode,
+               "No warnings (the one-line summary stays); --quiet=all: nothing but errors")
+      ->check(CLI::IsMember({"warnings", "all"}))
+      ->each([&s](const std::string& v) {
+        s.quiet = true;
+        s.silent = s.silent || v == "all";
+      });
 }
 
 void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w) {
@@ -48,12 +58,59 @@ void print_diagnostic(const Diagnostic& d) {
   fmt::print(stderr, "{}: {}\n", to_string(d.level), d.text);
 }
 
+namespace {
+
+// "FILE:LINE: " or "FILE:LINE:COLUMN: " at the start of a message: its length
+// and the location without the trailing ": " (0 and "" when there is none).
+std::pair<std::size_t, std::string_view> location_prefix(std::string_view text) {
+  for (std::size_t colon = text.find(':'); colon != std::string_view::npos;
+       colon = text.find(':', colon + 1)) {
+    std::size_t i = colon + 1, numbers = 0;
+    while (numbers < 2 && i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
+      while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+      ++numbers;
+      if (i < text.size() && text[i] == ':' && i + 1 < text.size() &&
+          std::isdigit(static_cast<unsigned char>(text[i + 1])))
+        ++i;
+      else
+        break;
+    }
+    if (numbers > 0 && text.substr(i).starts_with(": ")) return {i + 2, text.substr(0, i)};
+  }
+  return {0, {}};
+}
+
+}  // namespace
+
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
+  struct Group {
+    const Diagnostic* first;
+    std::size_t count = 0;
+  };
+  std::vector<Group> groups;
+  std::map<std::pair<LogLevel, std::string_view>, std::size_t> index;
+  for (const Diagnostic& d : diagnostics) {
+    const std::string_view message = std::string_view(d.text).substr(location_prefix(d.text).first);
+    auto [it, fresh] = index.try_emplace({d.level, message}, groups.size());
+    if (fresh) groups.push_back({&d});
+    ++groups[it->second].count;
+  }
+  for (const Group& g : groups) {
+    if (g.count == 1) {
+      print_diagnostic(*g.first);
+      continue;
+    }
+    const auto [length, where] = location_prefix(g.first->text);
+    fmt::print(stderr, "{}: {} ({} times, first at {})\n", to_string(g.first->level),
+               std::string_view(g.first->text).substr(length), g.count, where);
+  }
+}
+
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s) {
   vrml1::ReadOptions opt;
   opt.read_inlines = s.read_inlines;
   vrml1::ReadResult r = vrml1::read_vrml1_file(path, opt);
-  if (!s.quiet)
-    for (const auto& d : r.log.entries()) print_diagnostic(d);
+  if (!s.quiet) print_diagnostics(r.log.entries());
   return r;
 }
 

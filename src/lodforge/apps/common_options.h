@@ -3,6 +3,7 @@
 /// and printing the library's diagnostics.
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "lodforge/core/log.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
@@ -12,10 +13,12 @@ namespace lodforge::apps {
 
 struct SceneReadSettings {
   bool read_inlines = false;
-  bool quiet = false;  ///< no warnings on stderr
+  bool quiet = false;      ///< no warnings on stderr (-q, --quiet)
+  bool silent = false;     ///< nothing on stderr but errors (--quiet=all)
+  std::string quiet_mode;  ///< the value given to --quiet ("warnings" or "all")
 };
 
-/// --inline, --quiet.
+/// --inline, -q/--quiet[=all].
 void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s);
 
 /// Refuses a number that is not finite ("nan", "inf", 1e999): CLI11's range
@@ -26,6 +29,16 @@ void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w);
 
 /// Prints a diagnostic on stderr as "warning: text".
 void print_diagnostic(const Diagnostic& d);
+/// Prints diagnostics on stderr, the same message repeated at several places
+/// once: "warning: MESSAGE (210 times, first at FILE:LINE:COLUMN)". Messages
+/// are compared without their leading "FILE:LINE[:COLUMN]: " location, and
+/// printed in the order of their first occurrence.
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
+/// Prints diagnostics on stderr, the same message repeated at several places
+/// once: "warning: MESSAGE (210 times, first at FILE:LINE:COLUMN)". Messages
+/// are compared without their leading "FILE:LINE[:COLUMN]: " location, and
+/// printed in the order of their first occurrence.
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
 
 /// Reads a VRML 1.0 scene, printing warnings on stderr unless quiet.
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);

@@ -21,9 +21,12 @@ TriangleMesh load_geometry(const std::string& path, int lod_level, bool quiet) {
   vrml1::ReadResult r = read_scene(path, {.quiet = quiet});
   Log log;
   TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
-  if (!quiet)
+  if (!quiet) {
+    std::vector<Diagnostic> warnings;
     for (const auto& d : log.entries())
-      if (d.level != LogLevel::kMessage) print_diagnostic(d);
+      if (d.level != LogLevel::kMessage) warnings.push_back(d);
+    print_diagnostics(warnings);
+  }
   return m;
 }
 

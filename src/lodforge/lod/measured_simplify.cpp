@@ -142,7 +142,8 @@ class Search {
       best.result.stop_detail = "nothing can be removed";
       return best;
     }
-    const bool reached_end = best.result.mesh.triangle_count() == levels.back().mesh.triangle_count();
+    const bool reached_end =
+        best.result.mesh.triangle_count() == levels.back().mesh.triangle_count();
     if (!reached_end && options_.method != SimplifyMethod::kCluster) {
       constexpr double kStep = 0.917004043204671;  // 2^(-1/8)
       double count = double(best.result.mesh.triangle_count());
@@ -162,13 +163,14 @@ class Search {
     if (reached_end && beyond == 0) return best;  // the chain's end is within the budget
     best.result.stop_reason = StopReason::kErrorBudgetReached;
     best.result.stop_detail =
-        beyond ? fmt::format("{} triangles measure {:.6g} (within {:.6g}); {} triangles measured "
-                             "{:.6g}",
-                             best.result.mesh.triangle_count(), best.error, budget, beyond,
-                             beyond_error)
-               : fmt::format("{} triangles measure {:.6g} (within {:.6g}); every smaller result "
-                             "tried measured more",
-                             best.result.mesh.triangle_count(), best.error, budget);
+        beyond ? fmt::format(
+                     "{} triangles measure {:.6g} (within {:.6g}); {} triangles measured "
+                     "{:.6g}",
+                     best.result.mesh.triangle_count(), best.error, budget, beyond, beyond_error)
+               : fmt::format(
+                     "{} triangles measure {:.6g} (within {:.6g}); every smaller result "
+                     "tried measured more",
+                     best.result.mesh.triangle_count(), best.error, budget);
     return best;
   }
 

@@ -61,6 +61,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
     bool close_holes = false;
     bool surface_vertices = false;
     std::string metric = "area";
+    SceneReadSettings read;
   };
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
@@ -96,6 +97,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
+  add_expansion_options(*build, b->read);
   build->callback([b, &run] {
     run = [b] {
       check_output_paths(std::array{OutputPath{b->output, "the model"}}, std::array{b->input});
@@ -120,7 +122,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
             scans.size(), points, r.stats.band_points, r.stats.carved_points,
             r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
       } else {
-        TriangleMesh mesh = load_geometry(b->input);
+        TriangleMesh mesh = load_geometry(b->input, 0, b->read);
         r = build_mc_octree(mesh, options);
         what = fmt::format("{} triangles", mesh.triangle_count());
       }
@@ -237,6 +239,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
   struct Scan {
     std::string input, output;
     int views = 6, resolution = 256;
+    SceneReadSettings read;
   };
   auto sc = std::make_shared<Scan>();
   CLI::App* scan = mco->add_subcommand(
@@ -249,9 +252,10 @@ void add_mco_command(CLI::App& app, Runner& run) {
   scan->add_option("--resolution", sc->resolution, "Grid points across each view (4..4096)")
       ->check(kFiniteNumber)
       ->check(CLI::Range(4, 4096));
+  add_expansion_options(*scan, sc->read);
   scan->callback([sc, &run] {
     run = [sc] {
-      TriangleMesh mesh = load_geometry(sc->input);
+      TriangleMesh mesh = load_geometry(sc->input, 0, sc->read);
       auto scans = scan_mesh(mesh, {.views = sc->views, .resolution = sc->resolution});
       // The folder's files, checked before the first is written.
       std::vector<OutputPath> outputs;

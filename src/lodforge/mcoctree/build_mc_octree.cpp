@@ -60,6 +60,7 @@
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mcoctree/sign_components.h"
 #include "lodforge/mesh/adjacency.h"
+#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/weld.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 #include "lodforge/metrics/triangle_bvh.h"
@@ -1853,8 +1854,10 @@ int scan_resolution(const std::vector<RangeScan>& scans, const Box3& bounds) {
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   Vec3 size = bounds.size();
   double extent = std::max({size.x, size.y, size.z});
-  return static_cast<int>(
-      std::clamp(std::lround(extent / (2.0 * spacing[spacing.size() / 2])), 2L, 1000L));
+  // Clamped before rounding: a stray point far from its row can make the
+  // ratio huge.
+  const double cells = extent / (2.0 * spacing[spacing.size() / 2]);
+  return cells >= 2 ? static_cast<int>(std::lround(std::min(cells, 1000.0))) : 2;
 }
 
 // The options both builders share: throws std::invalid_argument for a
@@ -1873,8 +1876,7 @@ std::unique_ptr<tbb::global_control> checked_thread_limit(const McBuildOptions& 
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options) {
   auto limit = checked_thread_limit(options);
   if (mesh.triangles.empty()) throw DataError("mcoctree: the mesh has no triangles");
-  for (const auto& p : mesh.positions)
-    if (!is_finite(p)) throw DataError("mcoctree: the mesh has a non-finite coordinate");
+  check_coordinate_range(mesh, "mcoctree: the mesh");
   McBuildResult result;
   auto t0 = Clock::now();
   // Pseudo-normals need shared vertices: weld exact duplicates (OBJ seams, STL soup).
@@ -1955,6 +1957,12 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuildOptions& options) {
   auto limit = checked_thread_limit(options);
   if (scans.empty()) throw DataError("mcoctree: no range scans");
+  for (const auto& s : scans) {
+    std::vector<Vec3> world;
+    world.reserve(s.points.size());
+    for (const auto& p : s.points) world.push_back(s.to_world(p));
+    check_coordinate_range(world, s.name);
+  }
   McBuildResult result;
   auto t0 = Clock::now();
   ScanField field(scans);

@@ -102,8 +102,9 @@ struct McBuildResult {
 /// input's rims to within about a cell, at every level; closed inputs invent
 /// nothing and stay closed.
 ///
-/// Throws DataError for a mesh without triangles, with non-finite
-/// coordinates, with all vertices at one point, or whose surface crosses no
+/// Throws DataError for a mesh without triangles, with coordinates outside
+/// the range of check_coordinate_range (non-finite, huge or a tiny model),
+/// with all vertices at one point, or whose surface crosses no
 /// lattice edge; std::invalid_argument for a resolution out of range.
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options = {});
 
@@ -127,8 +128,8 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
-/// size, a non-finite coordinate; std::invalid_argument for a resolution out
-/// of range.
+/// size, a world coordinate outside the range of check_coordinate_range;
+/// std::invalid_argument for a resolution out of range.
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
                               const McBuildOptions& options = {});
 

@@ -4,6 +4,7 @@
 /// up to four lengths (squared areas) must stay finite and above the
 /// denormals: that holds for models at most kMaxCoordinate from the origin
 /// and at least kMinExtent across.
+#include <span>
 #include <string>
 
 #include "lodforge/mesh/triangle_mesh.h"
@@ -18,5 +19,7 @@ inline constexpr float kMinExtent = 1e-7f;
 /// the positions are not all at one point and their bounding box is less
 /// than kMinExtent across on every axis.
 void check_coordinate_range(const TriangleMesh& mesh, const std::string& name);
+/// The same for any set of points.
+void check_coordinate_range(std::span<const Vec3> points, const std::string& name);
 
 }  // namespace lodforge

@@ -50,6 +50,17 @@ bool is_range_input(const std::string& path) {
 
 }  // namespace
 
+// Runs `f`, naming `input` in the message of a DataError that does not.
+template <class F>
+auto named(const std::string& input, F&& f) {
+  try {
+    return f();
+  } catch (const DataError& e) {
+    if (std::string_view(e.what()).starts_with(input)) throw;
+    throw DataError(input + ": " + e.what());
+  }
+}
+
 void add_mco_command(CLI::App& app, Runner& run) {
   CLI::App* mco = app.add_subcommand("mco", "Marching-cube octree: continuous levels of detail");
   mco->require_subcommand(1);
@@ -61,6 +72,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
     bool close_holes = false;
     bool surface_vertices = false;
     std::string metric = "area";
+    double max_memory_gib = double(kDefaultMemoryBudget >> 30);
     SceneReadSettings read;
   };
   auto b = std::make_shared<Build>();
@@ -98,6 +110,12 @@ void add_mco_command(CLI::App& app, Runner& run) {
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   add_expansion_options(*build, b->read);
+  build
+      ->add_option("--max-memory", b->max_memory_gib,
+                   "Refuse a build estimated to take more memory than this, in GiB (0 = no limit)")
+      ->capture_default_str()
+      ->check(kFiniteNumber)
+      ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
       check_output_paths(std::array{OutputPath{b->output, "the model"}}, std::array{b->input});
@@ -107,7 +125,8 @@ void add_mco_command(CLI::App& app, Runner& run) {
           .threads = b->threads,
           .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
           .metric = b->metric == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea,
-          .place_coarse_vertices = !b->surface_vertices};
+          .place_coarse_vertices = !b->surface_vertices,
+          .max_memory = static_cast<std::uint64_t>(b->max_memory_gib * double(1 << 30))};
       McBuildResult r;
       std::string what;
       if (is_range_input(b->input)) {
@@ -115,7 +134,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
         std::size_t points = 0;
         for (const auto& sc : scans)
           for (auto g : sc.grid) points += g >= 0;
-        r = build_mc_octree(scans, options);
+        r = named(b->input, [&] { return build_mc_octree(scans, options); });
         what = fmt::format(
             "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
             "filled, {} bubbles dropped)",
@@ -123,7 +142,13 @@ void add_mco_command(CLI::App& app, Runner& run) {
             r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
       } else {
         TriangleMesh mesh = load_geometry(b->input, 0, b->read);
-        r = build_mc_octree(mesh, options);
+        if (const double bytes = mc_build_bytes(mesh.bounds(), b->resolution);
+            bytes > double(std::uint64_t{1} << 30))
+          fmt::print(stderr,
+                     "warning: {}: the lattice at resolution {} takes about {:.1f} GiB; the build "
+                     "may take minutes\n",
+                     b->input, b->resolution, bytes / double(std::uint64_t{1} << 30));
+        r = named(b->input, [&] { return build_mc_octree(mesh, options); });
         what = fmt::format("{} triangles", mesh.triangle_count());
       }
       McLodModel model = compile_mc_lod(r.tree);

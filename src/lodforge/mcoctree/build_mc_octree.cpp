@@ -39,6 +39,7 @@
 //     splits, with the same triangulation the extraction uses.
 #include "lodforge/mcoctree/build_mc_octree.h"
 
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -1871,7 +1872,23 @@ std::unique_ptr<tbb::global_control> checked_thread_limit(const McBuildOptions& 
                                                static_cast<std::size_t>(options.threads));
 }
 
+void check_build_budget(const Box3& box, int resolution, const McBuildOptions& options) {
+  check_memory_budget(mc_build_bytes(box, resolution), options.max_memory,
+                      fmt::format("mcoctree: the lattice at resolution {}", resolution),
+                      "use a lower resolution");
+}
+
 }  // namespace
+
+double mc_build_bytes(const Box3& box, int resolution) {
+  constexpr double kBytesPerPoint = 5;
+  const Vec3 size = box.size();
+  const double extent = std::max({size.x, size.y, size.z});
+  if (!(extent > 0) || resolution <= 0) return 0;
+  double points = 1;
+  for (int a = 0; a < 3; ++a) points *= double(size[a]) / extent * resolution + 3;
+  return kBytesPerPoint * points;
+}
 
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options) {
   auto limit = checked_thread_limit(options);
@@ -1903,6 +1920,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   // calls bvh() and re-enter the call_once.)
   tbb::task_group hierarchy;
   if (sd.has_rims()) hierarchy.run([&] { sd.bvh(); });
+  check_build_budget(sd.mesh().bounds(), result.stats.resolution, options);
   Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);
   hierarchy.wait();
   result.stats.seconds_signs = since(t0);
@@ -1968,6 +1986,7 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   ScanField field(scans);
   result.stats.resolution =
       options.resolution ? options.resolution : scan_resolution(scans, field.bounds());
+  check_build_budget(field.bounds(), result.stats.resolution, options);
   Lattice lat = make_scan_lattice(field, scans, result.stats.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "lodforge/core/memory_budget.h"
 #include "lodforge/mcoctree/mc_octree.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/triangle_mesh.h"
@@ -60,7 +61,15 @@ struct McBuildOptions {
   /// full-resolution triangle at run time. false: every vertex of every level
   /// is a finest crossing, on the input surface.
   bool place_coarse_vertices = true;
+  /// The build may take at most this many bytes, as mc_build_bytes estimates
+  /// them before the lattice is allocated (DataError if more). 0: no limit.
+  std::uint64_t max_memory = kDefaultMemoryBudget;
 };
+
+/// The memory a build of the lattice over `box` at `resolution` takes, about
+/// 5 bytes per lattice point (signs, distances, the tree; a 948-triangle
+/// mesh at resolution 1000: 4.6 GB measured, 4.7 GiB estimated).
+double mc_build_bytes(const Box3& box, int resolution);
 
 struct McBuildStats {
   std::size_t band_points = 0;      ///< lattice points with an exact signed distance

@@ -175,7 +175,9 @@ class EarClipper {
 // at the corners that can block an ear, the non-convex ones, found through a
 // uniform grid. A convex polygon has none, so it takes O(n); a polygon with
 // r non-convex corners spread evenly takes about O(n) ear tests of O(1 + r/n)
-// grid entries each. Corners only turn from non-convex to convex as ears go,
+// grid entries each. The worst case stays quadratic: ears whose boxes span
+// many non-convex corners (a comb whose teeth stand on one long straight
+// edge of collinear corners). Corners only turn from non-convex to convex as ears go,
 // so the grid is built once, and an entry found stale (its corner clipped or
 // convex) is dropped from its cell.
 class GridEarClipper {
@@ -218,7 +220,10 @@ class GridEarClipper {
       --remaining;
       for (std::uint32_t k : {a, c})
         if (blocking_[k] && convex(k)) blocking_[k] = 0;
-      v = c;
+      // Walking on past c keeps the ears local (each turn clips about every
+      // other corner); staying at a or c would make a fan of ever larger
+      // triangles around it, and a vertex of huge valence.
+      v = next_[c];
       tried = 0;
     }
     emit(prev_[v], v, next_[v], out);

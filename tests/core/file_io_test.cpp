@@ -41,6 +41,23 @@ class WriteFileAtomic : public testing::TempDirTest {
   }
 };
 
+// A stream that inflates past its cap (a gzip bomb) is refused with the
+// sizes; one within the cap reads back.
+TEST(Gunzip, InflationIsCapped) {
+  const std::string spaces(std::size_t{1} << 20, ' ');
+  const std::string packed = gzip(spaces);  // about a thousand times smaller
+  EXPECT_EQ(gunzip(packed, "s.gz", spaces.size()), spaces);
+  try {
+    gunzip(packed, "s.gz", spaces.size() - 1);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("s.gz: the gzip data inflates to more than 0 MiB"));
+    EXPECT_THAT(e.what(), HasSubstr("refused as a possible gzip bomb"));
+  }
+  EXPECT_EQ(max_inflated_size(1000), std::size_t{64} << 20);
+  EXPECT_EQ(max_inflated_size(std::size_t{10} << 20), std::size_t{640} << 20);
+}
+
 TEST_F(WriteFileAtomic, NewFileGetsTheUmaskModeAndNoTemporaryIsLeft) {
   const mode_t mask = ::umask(022);
   write_file_atomic(path("a.txt"), "hello");

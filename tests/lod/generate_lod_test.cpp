@@ -72,6 +72,24 @@ TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {
   }
 }
 
+// A shape too large for float distances would get an infinite switching
+// range, which is not a VRML number: refused with the shape's line.
+TEST(GenerateLod, InfiniteSwitchingRangesAreRefused) {
+  for (const char* shape :
+       {"Cylinder { radius 1e38 }",
+        "Coordinate3 { point [0 0 0, 1e38 0 0, 0 1 0] } IndexedFaceSet { coordIndex [0, 1, 2] }"}) {
+    try {
+      generate_lod(read(std::string("#VRML V1.0 ascii\nSeparator {\n") + shape + " }\n"),
+                   {.measure_samples = 2000});
+      ADD_FAILURE() << "no error for " << shape;
+    } catch (const DataError& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("line 3: "));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("is inf (the shape's bounding radius is inf); "
+                                                 "ranges must be finite"));
+    }
+  }
+}
+
 TEST(GenerateLod, BunnySceneLevelsStayWithinTheErrorRangeOnScreen) {
   const std::string path = std::string(LODFORGE_SHARED_DATA) + "/meshes/bun_zipper.ply";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;

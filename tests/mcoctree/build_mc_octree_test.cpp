@@ -1,5 +1,6 @@
 #include "lodforge/mcoctree/build_mc_octree.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,6 +114,27 @@ TEST(BuildMcOctree, BadInput) {
   EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1}), std::invalid_argument);
   EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1001}),
                std::invalid_argument);
+}
+
+// Coordinates out of the supported range, and a lattice past the memory
+// budget, are refused before the work (with the estimate).
+TEST(BuildMcOctree, RangeAndBudgetAreCheckedFirst) {
+  for (float scale : {1e38f, 1e-38f}) {
+    auto t = test::make_tetrahedron();
+    for (auto& p : t.positions) p = p * scale;
+    EXPECT_THROW(build_mc_octree(t), DataError);
+  }
+  const auto t = test::make_tetrahedron();
+  const double bytes = mc_build_bytes(t.bounds(), 1000);
+  EXPECT_GT(bytes, 4.5e9);
+  EXPECT_LT(bytes, 5.5e9);
+  try {
+    build_mc_octree(t, {.resolution = 1000, .max_memory = std::uint64_t{1} << 30});
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("the lattice at resolution 1000 needs about 4.7 GiB, "
+                                             "more than the memory budget of 1 GiB"));
+  }
 }
 
 // An icosphere without its top (z > 0.5): a round hole, rim at z ~ 0.5.

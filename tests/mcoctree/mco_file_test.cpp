@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "lodforge/core/error.h"
@@ -155,6 +156,16 @@ TEST(McoFile, InconsistentDataAreRejected) {
   McLodModel until = t;
   until.cells[until.cell_count() - 1].until = 0;
   reseal_and_expect(until, "cell out of range");
+  // Numbers that are not numbers never reach an extracted mesh.
+  for (float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    McLodModel vertex = t;
+    vertex.positions[vertex.positions.size() / 2].y = bad;
+    reseal_and_expect(vertex, "vertex position not finite");
+    McLodModel origin = t;
+    origin.origin.x = bad;
+    reseal_and_expect(origin, "the lattice origin or cell size is not a finite number");
+  }
 }
 
 // Random damage to the data of a chunk, re-sealed so that the checksum does

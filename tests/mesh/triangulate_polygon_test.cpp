@@ -228,5 +228,34 @@ TEST(TriangulatePolygon, LargeCircleIsFast) {
   EXPECT_NEAR(signed_area(p, r, {0, 0, 1}), polygon_area(p), 1e-4);
 }
 
+// Polygons of 100 000 corners (one polygon of a huge OBJ face): a circle
+// (convex), a star (every other corner reflex), random radii, and a comb of
+// 5 000 long teeth (20 000 corners: its bottom edge of collinear corners is
+// the quadratic case) all triangulate completely, with the polygon's area.
+TEST(TriangulatePolygon, HugePolygonsAreComplete) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> radius(0.5f, 1.0f);
+  for (int shape = 0; shape < 4; ++shape) {
+    const int n = shape == 3 ? 20'000 : 100'000;
+    std::vector<Vec3> p;
+    for (int i = 0; i < n; ++i) {
+      if (shape == 3) {  // tooth i / 4: up, across, down
+        const int t = i % 4;
+        p.push_back({float(i / 4) + (t >= 2 ? 0.5f : 0.f), (t == 1 || t == 2) ? 10.f : 0.f, 0});
+        continue;
+      }
+      const float r = shape == 0 ? 1.f : shape == 1 ? (i % 2 ? 0.5f : 1.f) : radius(rng);
+      const double a = 2 * kPi * i / n;
+      p.push_back({float(r * std::cos(a)), float(r * std::sin(a)), 0});
+    }
+    if (shape == 3) p.insert(p.end(), {{float(n / 4), -5, 0}, {0, -5, 0}});
+    auto r = triangulate_polygon(p);
+    expect_valid(p, r);
+    EXPECT_FALSE(r.not_simple) << "shape " << shape;
+    const double area = polygon_area(p);
+    EXPECT_NEAR(signed_area(p, r, {0, 0, 1}), area, 1e-4 * std::abs(area)) << "shape " << shape;
+  }
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -8,6 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
@@ -37,6 +38,22 @@ TEST(CompareMeshes, IdenticalMeshesAreExactlyZero) {
     EXPECT_EQ(r.hausdorff, 0);
     for (float v : r.vertex_deviation) EXPECT_EQ(v, 0);
   }
+}
+
+// A sample count whose samples cannot fit the memory budget is refused
+// before anything is allocated, with the estimate.
+TEST(CompareMeshes, SamplesBeyondTheMemoryBudgetAreRefused) {
+  const TriangleMesh m = unit_cube();
+  try {
+    compare_meshes(m, m, {.samples = std::numeric_limits<std::size_t>::max()});
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("comparing with 18446744073709551615 area samples "
+                                               "per direction needs about 2.2e+12 GiB"));
+  }
+  // 1000 samples within a budget of 1 MiB pass; 10 000 (1.3 MB) do not.
+  EXPECT_NO_THROW(compare_meshes(m, m, {.samples = 1000, .max_memory = 1 << 20}));
+  EXPECT_THROW(compare_meshes(m, m, {.samples = 10'000, .max_memory = 1 << 20}), DataError);
 }
 
 TEST(CompareMeshes, IdenticalMeshesWithVertexNormals) {

@@ -83,6 +83,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
     std::string colored;
     double color_max = 0;
     int level_a = 0, level_b = 0;
+    SceneReadSettings read;
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand(
@@ -113,6 +114,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
                   "Deviation shown red (default: the largest vertex deviation)")
       ->check(kFiniteNumber)
       ->check(CLI::PositiveNumber);
+  add_expansion_options(*cmd, s->read);
   cmd->callback([s, &run] {
     run = [s] {
       std::vector<OutputPath> outputs;
@@ -120,8 +122,10 @@ void add_compare_command(CLI::App& app, Runner& run) {
       if (s->json) outputs.push_back({"-", "the JSON (--json)"});
       check_output_paths(outputs, std::array{s->a, s->b});
       // Scenes are flattened in world space at the chosen LOD level.
-      TriangleMesh a = load_geometry(s->a, s->level_a, s->json);
-      TriangleMesh b = load_geometry(s->b, s->level_b, s->json);
+      SceneReadSettings read = s->read;
+      read.quiet = s->json;
+      TriangleMesh a = load_geometry(s->a, s->level_a, read);
+      TriangleMesh b = load_geometry(s->b, s->level_b, read);
       CompareResult r = compare_meshes(a, b,
                                        {.samples = s->samples,
                                         .seed = s->seed,

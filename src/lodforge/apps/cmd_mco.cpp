@@ -50,6 +50,17 @@ bool is_range_input(const std::string& path) {
 
 }  // namespace
 
+// Runs `f`, naming `input` in the message of a DataError that does not.
+template <class F>
+auto named(const std::string& input, F&& f) {
+  try {
+    return f();
+  } catch (const DataError& e) {
+    if (std::string_view(e.what()).starts_with(input)) throw;
+    throw DataError(input + ": " + e.what());
+  }
+}
+
 void add_mco_command(CLI::App& app, Runner& run) {
   CLI::App* mco = app.add_subcommand("mco", "Marching-cube octree: continuous levels of detail");
   mco->require_subcommand(1);
@@ -61,6 +72,8 @@ void add_mco_command(CLI::App& app, Runner& run) {
     bool close_holes = false;
     bool surface_vertices = false;
     std::string metric = "area";
+    double max_memory_gib = double(kDefaultMemoryBudget >> 30);
+    SceneReadSettings read;
   };
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
@@ -96,6 +109,13 @@ void add_mco_command(CLI::App& app, Runner& run) {
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
+  add_expansion_options(*build, b->read);
+  build
+      ->add_option("--max-memory", b->max_memory_gib,
+                   "Refuse a build estimated to take more memory than this, in GiB (0 = no limit)")
+      ->capture_default_str()
+      ->check(kFiniteNumber)
+      ->check(CLI::NonNegativeNumber);
   build->callback([b, &run] {
     run = [b] {
       check_output_paths(std::array{OutputPath{b->output, "the model"}}, std::array{b->input});
@@ -105,7 +125,8 @@ void add_mco_command(CLI::App& app, Runner& run) {
           .threads = b->threads,
           .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
           .metric = b->metric == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea,
-          .place_coarse_vertices = !b->surface_vertices};
+          .place_coarse_vertices = !b->surface_vertices,
+          .max_memory = static_cast<std::uint64_t>(b->max_memory_gib * double(1 << 30))};
       McBuildResult r;
       std::string what;
       if (is_range_input(b->input)) {
@@ -113,15 +134,21 @@ void add_mco_command(CLI::App& app, Runner& run) {
         std::size_t points = 0;
         for (const auto& sc : scans)
           for (auto g : sc.grid) points += g >= 0;
-        r = build_mc_octree(scans, options);
+        r = named(b->input, [&] { return build_mc_octree(scans, options); });
         what = fmt::format(
             "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
             "filled, {} bubbles dropped)",
             scans.size(), points, r.stats.band_points, r.stats.carved_points,
             r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
       } else {
-        TriangleMesh mesh = load_geometry(b->input);
-        r = build_mc_octree(mesh, options);
+        TriangleMesh mesh = load_geometry(b->input, 0, b->read);
+        if (const double bytes = mc_build_bytes(mesh.bounds(), b->resolution);
+            bytes > double(std::uint64_t{1} << 30))
+          fmt::print(stderr,
+                     "warning: {}: the lattice at resolution {} takes about {:.1f} GiB; the build "
+                     "may take minutes\n",
+                     b->input, b->resolution, bytes / double(std::uint64_t{1} << 30));
+        r = named(b->input, [&] { return build_mc_octree(mesh, options); });
         what = fmt::format("{} triangles", mesh.triangle_count());
       }
       McLodModel model = compile_mc_lod(r.tree);
@@ -237,6 +264,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
   struct Scan {
     std::string input, output;
     int views = 6, resolution = 256;
+    SceneReadSettings read;
   };
   auto sc = std::make_shared<Scan>();
   CLI::App* scan = mco->add_subcommand(
@@ -249,9 +277,10 @@ void add_mco_command(CLI::App& app, Runner& run) {
   scan->add_option("--resolution", sc->resolution, "Grid points across each view (4..4096)")
       ->check(kFiniteNumber)
       ->check(CLI::Range(4, 4096));
+  add_expansion_options(*scan, sc->read);
   scan->callback([sc, &run] {
     run = [sc] {
-      TriangleMesh mesh = load_geometry(sc->input);
+      TriangleMesh mesh = load_geometry(sc->input, 0, sc->read);
       auto scans = scan_mesh(mesh, {.views = sc->views, .resolution = sc->resolution});
       // The folder's files, checked before the first is written.
       std::vector<OutputPath> outputs;

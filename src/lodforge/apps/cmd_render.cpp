@@ -86,10 +86,11 @@ std::vector<double> parse_distances(const std::string& text) {
 }
 
 // The scene of a contact sheet showing its LOD nodes.
-scene::Scene read_lod_scene(const std::string& path, std::string_view option) {
+scene::Scene read_lod_scene(const std::string& path, std::string_view option,
+                            const SceneReadSettings& read) {
   if (!is_vrml_path(path))
     throw DataError(fmt::format("{}: {} needs a VRML 1.0 scene with LOD nodes", path, option));
-  return read_scene(path, {}).scene;
+  return read_scene(path, read).scene;
 }
 
 void write_sheet(std::span<const ContactSheetPanel> panels, const ContactSheetOptions& options,
@@ -101,9 +102,9 @@ void write_sheet(std::span<const ContactSheetPanel> panels, const ContactSheetOp
 }
 
 // One panel per LOD level of a scene, all seen by the same camera.
-int render_levels(const std::string& input, const std::string& output,
-                  const RenderOptions& options) {
-  const scene::Scene scene = read_lod_scene(input, "--levels");
+int render_levels(const std::string& input, const std::string& output, const RenderOptions& options,
+                  const SceneReadSettings& read) {
+  const scene::Scene scene = read_lod_scene(input, "--levels", read);
   const std::size_t count = lod_level_count(scene);
   std::vector<TriangleMesh> meshes;
   for (std::size_t k = 0; k < count; ++k)
@@ -132,8 +133,9 @@ float height_angle(const scene::Scene& scene) {
 // LOD at child 0. Each row's cells share its camera, and no cell is re-framed,
 // so the scene shrinks with distance as it does in a browser.
 int render_distances(const std::string& input, const std::string& output,
-                     const std::vector<double>& distances, const RenderOptions& options) {
-  const scene::Scene scene = read_lod_scene(input, "--distances");
+                     const std::vector<double>& distances, const RenderOptions& options,
+                     const SceneReadSettings& read) {
+  const scene::Scene scene = read_lod_scene(input, "--distances", read);
   const TriangleMesh level0 = scene::flatten_scene(scene, {.lod_level = 0});
   const FrameSphere bounds = bounding_sphere(level0);
   if (bounds.radius <= 0)
@@ -174,6 +176,7 @@ void add_render_command(CLI::App& app, Runner& run) {
     int level = 0;
     bool levels = false;
     std::string distances;
+    SceneReadSettings read;
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd =
@@ -219,6 +222,7 @@ void add_render_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--no-colors", s->no_colors, "Ignore the mesh's vertex colours");
   cmd->add_flag("--wireframe", s->wireframe, "Draw triangle edges over the surface");
   cmd->add_flag("--flat", s->flat, "Flat shading (one normal per triangle)");
+  add_expansion_options(*cmd, s->read);
   cmd->callback([s, &run, distances] {
     run = [s, by_distance = distances->count() > 0] {
       RenderOptions options;
@@ -228,10 +232,11 @@ void add_render_command(CLI::App& app, Runner& run) {
       options.use_colors = !s->no_colors;
       options.wireframe = s->wireframe;
       options.shading = s->flat ? Shading::kFlat : Shading::kSmooth;
-      if (s->levels) return render_levels(s->input, s->output, options);
+      if (s->levels) return render_levels(s->input, s->output, options, s->read);
       if (by_distance)
-        return render_distances(s->input, s->output, parse_distances(s->distances), options);
-      const TriangleMesh mesh = load_geometry(s->input, s->level);
+        return render_distances(s->input, s->output, parse_distances(s->distances), options,
+                                s->read);
+      const TriangleMesh mesh = load_geometry(s->input, s->level, s->read);
       if (mesh.triangles.empty() && mesh.lines.empty())
         throw DataError(fmt::format("{}: the mesh has no triangles or lines to render", s->input));
       const RenderResult r = render_mesh(mesh, options);

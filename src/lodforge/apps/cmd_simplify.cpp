@@ -80,6 +80,7 @@ struct SimplifySettings {
   bool ascii = false;
   bool json = false;
   bool quiet = false;
+  SceneReadSettings read;
 };
 
 SimplifyMethod method_named(const std::string& name) {
@@ -121,7 +122,10 @@ int run_simplify(const SimplifySettings& s) {
   if (s.json) outputs.push_back({"-", "the JSON summary (--json)"});
   check_output_paths(outputs, std::array{s.input});
   // VRML scenes are flattened to one world-space mesh (level 0 of any LOD).
-  TriangleMesh mesh = load_geometry(s.input, 0, s.quiet || s.json);
+  TriangleMesh mesh = load_geometry(s.input, 0,
+                                    {.quiet = s.quiet || s.json,
+                                     .max_instances = s.read.max_instances,
+                                     .max_triangles = s.read.max_triangles});
   if (mesh.triangle_count() == 0)
     throw DataError(fmt::format("{}: the surface is empty (no triangles to simplify)", s.input));
 
@@ -220,6 +224,7 @@ void add_simplify_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--ascii", s->ascii, "ASCII PLY / STL (default binary)");
   cmd->add_flag("--json", s->json, "Print the JSON summary on stdout (no human text)");
   cmd->add_flag("-q,--quiet", s->quiet, "No summary and no reader warnings on stderr");
+  add_expansion_options(*cmd, s->read);
   cmd->callback([s, &run] { run = [s] { return run_simplify(*s); }; });
 }
 

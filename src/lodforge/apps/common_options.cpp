@@ -41,6 +41,22 @@ void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s) {
         s.quiet = true;
         s.silent = s.silent || v == "all";
       });
+  add_expansion_options(cmd, s);
+}
+
+void add_expansion_options(CLI::App& cmd, SceneReadSettings& s) {
+  cmd.add_option("--max-instances", s.max_instances,
+                 "Refuse a scene that expands to more node instances than this (each USE and "
+                 "each inline repeats a subtree; 0 = no limit)")
+      ->capture_default_str()
+      ->check(kFiniteNumber)
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("--max-triangles", s.max_triangles,
+                 "Refuse a scene whose expanded shapes draw more triangles than this (estimated "
+                 "while reading; 0 = no limit)")
+      ->capture_default_str()
+      ->check(kFiniteNumber)
+      ->check(CLI::NonNegativeNumber);
 }
 
 void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w) {
@@ -109,6 +125,8 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s) {
   vrml1::ReadOptions opt;
   opt.read_inlines = s.read_inlines;
+  opt.max_instances = s.max_instances;
+  opt.max_triangles = s.max_triangles;
   vrml1::ReadResult r = vrml1::read_vrml1_file(path, opt);
   if (!s.quiet) print_diagnostics(r.log.entries());
   return r;

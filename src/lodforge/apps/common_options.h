@@ -2,6 +2,7 @@
 /// Options shared by several subcommands: reading scenes, the writer options,
 /// and printing the library's diagnostics.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,15 @@ struct SceneReadSettings {
   bool quiet = false;      ///< no warnings on stderr (-q, --quiet)
   bool silent = false;     ///< nothing on stderr but errors (--quiet=all)
   std::string quiet_mode;  ///< the value given to --quiet ("warnings" or "all")
+  /// vrml1::ReadOptions::max_instances and max_triangles.
+  std::uint64_t max_instances = vrml1::ReadOptions{}.max_instances;
+  std::uint64_t max_triangles = vrml1::ReadOptions{}.max_triangles;
 };
 
-/// --inline, -q/--quiet[=all].
+/// --inline, -q/--quiet[=all], and the expansion limits below.
 void add_scene_read_options(CLI::App& cmd, SceneReadSettings& s);
+/// --max-instances, --max-triangles: for every command that reads scenes.
+void add_expansion_options(CLI::App& cmd, SceneReadSettings& s);
 
 /// Refuses a number that is not finite ("nan", "inf", 1e999): CLI11's range
 /// checks compare, and NaN passes every comparison. Chained before them.

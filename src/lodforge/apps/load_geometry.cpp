@@ -5,6 +5,7 @@
 #include <unordered_set>
 
 #include "lodforge/apps/common_options.h"
+#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
 
@@ -16,17 +17,23 @@ bool is_vrml_path(const std::string& path) {
   return p.ends_with(".wrl") || p.ends_with(".wrl.gz") || p.ends_with(".vrml");
 }
 
-TriangleMesh load_geometry(const std::string& path, int lod_level, bool quiet) {
-  if (!is_vrml_path(path)) return read_mesh(path);
-  vrml1::ReadResult r = read_scene(path, {.quiet = quiet});
+TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneReadSettings& read) {
+  const std::string name = path == "-" ? "<stdin>" : path;
+  if (!is_vrml_path(path)) {
+    TriangleMesh m = read_mesh(path);
+    check_coordinate_range(m, name);
+    return m;
+  }
+  vrml1::ReadResult r = read_scene(path, read);
   Log log;
   TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
-  if (!quiet) {
+  if (!read.quiet) {
     std::vector<Diagnostic> warnings;
     for (const auto& d : log.entries())
       if (d.level != LogLevel::kMessage) warnings.push_back(d);
     print_diagnostics(warnings);
   }
+  check_coordinate_range(m, name);
   return m;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "lodforge/apps/common_options.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/scene/node.h"
 
@@ -14,8 +15,10 @@ namespace lodforge::apps {
 bool is_vrml_path(const std::string& path);
 
 /// Reads a mesh file, or a VRML scene flattened at LOD level `lod_level`
-/// (warnings on stderr unless `quiet`). Throws DataError.
-TriangleMesh load_geometry(const std::string& path, int lod_level = 0, bool quiet = false);
+/// (warnings on stderr unless `read.quiet`). Throws DataError, also for
+/// coordinates out of the range of check_coordinate_range.
+TriangleMesh load_geometry(const std::string& path, int lod_level = 0,
+                           const SceneReadSettings& read = {});
 
 /// The number of LOD levels of a scene: the most children of any LOD node (1
 /// if there is none).

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -25,21 +26,36 @@ bool is_gzip(std::string_view data) {
          static_cast<unsigned char>(data[1]) == 0x8b;
 }
 
-std::string gunzip(std::string_view data, const std::string& what) {
+std::size_t max_inflated_size(std::size_t compressed) {
+  constexpr std::size_t kRatio = 64, kFloor = std::size_t{64} << 20;
+  return compressed > SIZE_MAX / kRatio ? SIZE_MAX : std::max(kRatio * compressed, kFloor);
+}
+
+std::string gunzip(std::string_view data, const std::string& what, std::size_t max_size) {
+  if (max_size == 0) max_size = max_inflated_size(data.size());
   z_stream zs{};
   if (inflateInit2(&zs, 15 + 32) != Z_OK) throw DataError(what + ": cannot start zlib");
   std::string out;
-  out.resize(std::max<std::size_t>(data.size() * 4, 1 << 16));
+  out.resize(std::min(std::max<std::size_t>(data.size() * 4, 1 << 16), max_size + 1));
   zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
   zs.avail_in = static_cast<uInt>(data.size());
   std::size_t produced = 0;
   int rc = Z_OK;
   while (true) {
-    if (produced == out.size()) out.resize(out.size() * 2);
+    // avail_out is 32-bit: grow in pieces of at most 1 GiB.
+    if (produced == out.size())
+      out.resize(std::min({out.size() * 2, out.size() + (std::size_t{1} << 30), max_size + 1}));
     zs.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
-    zs.avail_out = static_cast<uInt>(out.size() - produced);
+    zs.avail_out = static_cast<uInt>(std::min(out.size() - produced, std::size_t{1} << 30));
     rc = inflate(&zs, Z_NO_FLUSH);
-    produced = out.size() - zs.avail_out;
+    produced = static_cast<std::size_t>(reinterpret_cast<char*>(zs.next_out) - out.data());
+    if (produced > max_size) {
+      inflateEnd(&zs);
+      throw DataError(fmt::format(
+          "{}: the gzip data inflates to more than {} MiB ({} times its "
+          "{} bytes); refused as a possible gzip bomb",
+          what, max_size >> 20, max_size / std::max<std::size_t>(data.size(), 1), data.size()));
+    }
     if (rc == Z_STREAM_END) {
       // Concatenated gzip members are legal; continue with the next one.
       if (zs.avail_in > 0 && is_gzip({reinterpret_cast<const char*>(zs.next_in), zs.avail_in})) {

@@ -4,6 +4,7 @@
 /// renamed into place only when complete, so a failure never leaves a
 /// half-written file. A target whose name ends in ".gz" is written
 /// gzip-compressed, so every writer of the toolkit writes gzip for such names.
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -11,15 +12,22 @@
 namespace lodforge {
 
 /// Reads a whole file, or standard input for "-". Data that starts with the
-/// gzip magic bytes is decompressed. Throws DataError if it cannot be read or
-/// the compressed stream is corrupt.
+/// gzip magic bytes is decompressed (at most max_inflated_size of it). Throws
+/// DataError if it cannot be read or the compressed stream is corrupt.
 std::string read_file(const std::string& path);
 
 /// True if `data` starts with the gzip magic bytes.
 bool is_gzip(std::string_view data);
 
-/// Decompresses gzip data. Throws DataError naming `what` on a corrupt stream.
-std::string gunzip(std::string_view data, const std::string& what);
+/// The most a gzip stream of `compressed` bytes may inflate to: 64 times its
+/// size, and at least 64 MiB. Real scenes and meshes compress 3 to 20 times;
+/// a "gzip bomb" (gigabytes of spaces) 1000 times.
+std::size_t max_inflated_size(std::size_t compressed);
+
+/// Decompresses gzip data. Throws DataError naming `what` on a corrupt
+/// stream, or when the data inflates to more than `max_size` bytes (0:
+/// max_inflated_size(data.size())).
+std::string gunzip(std::string_view data, const std::string& what, std::size_t max_size = 0);
 
 /// Compresses `data` as one gzip member (zlib's default level; deterministic:
 /// no name and no time stamp in the header).

@@ -498,6 +498,14 @@ class Pipeline {
       for (std::size_t i = 1; i < ranges.size(); ++i)
         if (ranges[i] <= ranges[i - 1]) ranges[i] = std::nextafter(ranges[i - 1], INFINITY);
     }
+    // A range is a VRML number: infinity (a shape too large for float
+    // distances) cannot be written.
+    for (float r : ranges)
+      if (!std::isfinite(r))
+        throw DataError(
+            fmt::format("line {}: {}: a switching distance of its levels is {} (the "
+                        "shape's bounding radius is {:g}); ranges must be finite",
+                        j.shape->first_line, j.shape->type, r, j.radius * o.scale));
     lod->set("range", scene::make_floats(FieldKind::kFloat, true, ranges));
     if (opt_.export_flavour == ExportFlavour::kSpec) {
       lod->set("center",

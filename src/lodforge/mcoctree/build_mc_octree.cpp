@@ -39,6 +39,7 @@
 //     splits, with the same triangulation the extraction uses.
 #include "lodforge/mcoctree/build_mc_octree.h"
 
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -60,6 +61,7 @@
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mcoctree/sign_components.h"
 #include "lodforge/mesh/adjacency.h"
+#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/weld.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 #include "lodforge/metrics/triangle_bvh.h"
@@ -1853,8 +1855,10 @@ int scan_resolution(const std::vector<RangeScan>& scans, const Box3& bounds) {
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   Vec3 size = bounds.size();
   double extent = std::max({size.x, size.y, size.z});
-  return static_cast<int>(
-      std::clamp(std::lround(extent / (2.0 * spacing[spacing.size() / 2])), 2L, 1000L));
+  // Clamped before rounding: a stray point far from its row can make the
+  // ratio huge.
+  const double cells = extent / (2.0 * spacing[spacing.size() / 2]);
+  return cells >= 2 ? static_cast<int>(std::lround(std::min(cells, 1000.0))) : 2;
 }
 
 // The options both builders share: throws std::invalid_argument for a
@@ -1868,13 +1872,28 @@ std::unique_ptr<tbb::global_control> checked_thread_limit(const McBuildOptions& 
                                                static_cast<std::size_t>(options.threads));
 }
 
+void check_build_budget(const Box3& box, int resolution, const McBuildOptions& options) {
+  check_memory_budget(mc_build_bytes(box, resolution), options.max_memory,
+                      fmt::format("mcoctree: the lattice at resolution {}", resolution),
+                      "use a lower resolution");
+}
+
 }  // namespace
+
+double mc_build_bytes(const Box3& box, int resolution) {
+  constexpr double kBytesPerPoint = 5;
+  const Vec3 size = box.size();
+  const double extent = std::max({size.x, size.y, size.z});
+  if (!(extent > 0) || resolution <= 0) return 0;
+  double points = 1;
+  for (int a = 0; a < 3; ++a) points *= double(size[a]) / extent * resolution + 3;
+  return kBytesPerPoint * points;
+}
 
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options) {
   auto limit = checked_thread_limit(options);
   if (mesh.triangles.empty()) throw DataError("mcoctree: the mesh has no triangles");
-  for (const auto& p : mesh.positions)
-    if (!is_finite(p)) throw DataError("mcoctree: the mesh has a non-finite coordinate");
+  check_coordinate_range(mesh, "mcoctree: the mesh");
   McBuildResult result;
   auto t0 = Clock::now();
   // Pseudo-normals need shared vertices: weld exact duplicates (OBJ seams, STL soup).
@@ -1901,6 +1920,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   // calls bvh() and re-enter the call_once.)
   tbb::task_group hierarchy;
   if (sd.has_rims()) hierarchy.run([&] { sd.bvh(); });
+  check_build_budget(sd.mesh().bounds(), result.stats.resolution, options);
   Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);
   hierarchy.wait();
   result.stats.seconds_signs = since(t0);
@@ -1955,11 +1975,18 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuildOptions& options) {
   auto limit = checked_thread_limit(options);
   if (scans.empty()) throw DataError("mcoctree: no range scans");
+  for (const auto& s : scans) {
+    std::vector<Vec3> world;
+    world.reserve(s.points.size());
+    for (const auto& p : s.points) world.push_back(s.to_world(p));
+    check_coordinate_range(world, s.name);
+  }
   McBuildResult result;
   auto t0 = Clock::now();
   ScanField field(scans);
   result.stats.resolution =
       options.resolution ? options.resolution : scan_resolution(scans, field.bounds());
+  check_build_budget(field.bounds(), result.stats.resolution, options);
   Lattice lat = make_scan_lattice(field, scans, result.stats.resolution, result.stats);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();

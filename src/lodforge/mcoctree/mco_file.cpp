@@ -18,6 +18,7 @@
 #include "lodforge/mcoctree/mco_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "lodforge/core/error.h"
@@ -88,6 +89,8 @@ Header read_header(std::string_view data, McLodModel& m, const std::string& name
   if (verify && fnv1a(data.substr(0, kHeader - 8)) != checksum)
     throw fail("checksum mismatch in the header");
   if (h.depth > 20) throw fail("depth " + std::to_string(h.depth) + " out of range");
+  if (!is_finite(m.origin) || !std::isfinite(m.cell_size) || !(m.cell_size >= 0))
+    throw fail("the lattice origin or cell size is not a finite number");
   constexpr std::uint64_t kMax = UINT32_MAX - 16;  // indices and sentinels fit in u32
   if (h.nv > kMax || h.nc > kMax || h.ni > kMax || h.nt > kMax || h.nl >= h.nc + 1)
     throw fail("counts out of range");
@@ -256,6 +259,8 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
                   std::uint32_t n;
                   get(p);
                   get(n);
+                  // A NaN or infinite vertex would reach every extracted mesh.
+                  if (!is_finite(p)) throw bad("vertex position not finite");
                   m.positions.push_back(p);
                   m.normals.push_back(n);
                   if (colored) {

@@ -63,7 +63,8 @@ struct McoReadOptions {
 /// Parses a model (or its first priorities); `name` is used in messages.
 /// Throws DataError ("name: ...") for a wrong magic, an unknown version, a
 /// file truncated before the data asked for, a checksum mismatch, indices out
-/// of range, intervals out of order, or triangle counts that disagree with
+/// of range, a vertex position or lattice origin that is not finite,
+/// intervals out of order, or triangle counts that disagree with
 /// the accumulation table (so extraction can trust it). A model read up to N
 /// extracts exactly the meshes of the whole model at priorities 0..N.
 McLodModel read_mco_data(std::string_view data, const std::string& name,

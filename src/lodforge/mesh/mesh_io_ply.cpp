@@ -112,6 +112,7 @@ struct Element {
   ElementKind kind = ElementKind::kOther;
   std::vector<Property> props;
   int line = 0;
+  std::uint64_t roles_taken = 0;  ///< bit r: a property has role r already
 };
 
 enum class Encoding { kAscii, kLittle, kBig };
@@ -235,8 +236,13 @@ Header parse_header(std::string_view data, const std::string& file, Log* log) {
           is_float(p.type))
         in.fail_at(t.data(),
                    fmt::format("expected an integer type for '{}', got {}", name, in.describe(t)));
-      for (const Property& q : e.props)
-        if (q.role != kSkip && q.role == p.role) p.role = kSkip;  // first one wins
+      // The first property of a role wins; a set of roles keeps headers of
+      // many properties linear.
+      if (p.role != kSkip) {
+        const std::uint64_t bit = std::uint64_t{1} << p.role;
+        if (e.roles_taken & bit) p.role = kSkip;
+        e.roles_taken |= bit;
+      }
       e.props.push_back(std::move(p));
     } else if (key == "end_header") {
       in.next_line();

@@ -5,9 +5,12 @@
 // planar polygons and a least-squares-like average for bent ones, and always
 // points so that the polygon winds counter-clockwise around it. The polygon is
 // projected onto that plane and cut into ears (Meisters, "Polygons have ears",
-// 1975). Among all current ears the best-shaped one is clipped, which avoids
-// the slivers of first-ear clipping; ear flags are updated only for the two
-// neighbours of a clipped corner, so the whole run is O(n^2).
+// 1975). Up to kBestEarLimit corners, among all current ears the best-shaped
+// one is clipped, which avoids the slivers of first-ear clipping; ear flags
+// are updated only for the two neighbours of a clipped corner, so the run is
+// O(n^2). Larger polygons: a convex one is cut in O(n) (triangulate_convex),
+// any other by first-ear clipping with a grid of the corners that can block
+// an ear (GridEarClipper).
 //
 // Quads follow SPEC §2 (the original LODCreator rule):
 //
@@ -75,6 +78,10 @@ double quality(const P2& a, const P2& b, const P2& c) {
              (c.y - b.y) * (c.y - b.y) + (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y);
   return s > 0 ? 2.0 * std::sqrt(3.0) * area2 / s : 0.0;
 }
+
+// Up to this many corners the best-shaped ear is clipped each time (O(n^2));
+// beyond, the first ear met (GridEarClipper).
+constexpr std::size_t kBestEarLimit = 256;
 
 class EarClipper {
  public:
@@ -162,6 +169,204 @@ class EarClipper {
   std::vector<double> score_;
 };
 
+// Ear clipping for large polygons, after Held's FIST ("FIST: Fast
+// Industrial-Strength Triangulation of Polygons", 2001) and earcut: ears are
+// taken as a walk around the polygon meets them, and an ear test looks only
+// at the corners that can block an ear, the non-convex ones, found through a
+// uniform grid. A convex polygon has none, so it takes O(n); a polygon with
+// r non-convex corners spread evenly takes about O(n) ear tests of O(1 + r/n)
+// grid entries each. The worst case stays quadratic: ears whose boxes span
+// many non-convex corners (a comb whose teeth stand on one long straight
+// edge of collinear corners). Corners only turn from non-convex to convex as ears go,
+// so the grid is built once, and an entry found stale (its corner clipped or
+// convex) is dropped from its cell.
+class GridEarClipper {
+ public:
+  GridEarClipper(std::vector<P2> pts, double eps) : p_(std::move(pts)), eps_(eps) {
+    const std::size_t n = p_.size();
+    prev_.resize(n);
+    next_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      prev_[i] = static_cast<std::uint32_t>((i + n - 1) % n);
+      next_[i] = static_cast<std::uint32_t>((i + 1) % n);
+    }
+    removed_.assign(n, 0);
+    blocking_.assign(n, 0);
+    std::vector<std::uint32_t> blockers;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (!convex(i)) blocking_[i] = 1, blockers.push_back(i);
+    build_grid(blockers);
+  }
+
+  void run(TriangulateResult& out) {
+    std::size_t remaining = p_.size();
+    std::uint32_t v = 0;
+    std::size_t tried = 0;  // corners tried since the last clip
+    while (remaining > 3) {
+      if (tried < remaining) {
+        if (!is_ear(v)) {
+          v = next_[v];
+          ++tried;
+          continue;
+        }
+      } else {
+        v = fallback(v, remaining, out);
+      }
+      const std::uint32_t a = prev_[v], c = next_[v];
+      emit(a, v, c, out);
+      next_[a] = c;
+      prev_[c] = a;
+      removed_[v] = 1;
+      --remaining;
+      for (std::uint32_t k : {a, c})
+        if (blocking_[k] && convex(k)) blocking_[k] = 0;
+      // Walking on past c keeps the ears local (each turn clips about every
+      // other corner); staying at a or c would make a fan of ever larger
+      // triangles around it, and a vertex of huge valence.
+      v = next_[c];
+      tried = 0;
+    }
+    emit(prev_[v], v, next_[v], out);
+  }
+
+ private:
+  // Strictly convex: corners of large polygons with float coordinates may
+  // turn by less than eps_ and are ears all the same.
+  bool convex(std::uint32_t i) const { return orient(p_[prev_[i]], p_[i], p_[next_[i]]) > 0; }
+
+  void build_grid(const std::vector<std::uint32_t>& blockers) {
+    lo_ = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    P2 hi{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+    for (const P2& q : p_) {
+      lo_ = {std::min(lo_.x, q.x), std::min(lo_.y, q.y)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    }
+    // About one blocking corner per cell, at most 1024 cells a side.
+    const double w = std::max(hi.x - lo_.x, 0.0), h = std::max(hi.y - lo_.y, 0.0);
+    const double side = std::sqrt(static_cast<double>(std::max<std::size_t>(blockers.size(), 1)));
+    const double aspect = w > 0 && h > 0 ? std::sqrt(w / h) : 1.0;
+    cols_ = static_cast<int>(std::clamp(side * aspect, 1.0, 1024.0));
+    rows_ = static_cast<int>(std::clamp(side / aspect, 1.0, 1024.0));
+    cell_w_ = w > 0 ? w / cols_ : 1;
+    cell_h_ = h > 0 ? h / rows_ : 1;
+    start_.assign(static_cast<std::size_t>(cols_) * rows_ + 1, 0);
+    for (std::uint32_t i : blockers) ++start_[cell_of(p_[i]) + 1];
+    for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+    entries_.resize(blockers.size());
+    end_.assign(start_.begin(), start_.end() - 1);
+    for (std::uint32_t i : blockers) entries_[end_[cell_of(p_[i])]++] = i;
+  }
+  int column(double x) const {
+    return static_cast<int>(std::clamp((x - lo_.x) / cell_w_, 0.0, double(cols_ - 1)));
+  }
+  int row(double y) const {
+    return static_cast<int>(std::clamp((y - lo_.y) / cell_h_, 0.0, double(rows_ - 1)));
+  }
+  std::size_t cell_of(const P2& q) const {
+    return static_cast<std::size_t>(row(q.y)) * cols_ + column(q.x);
+  }
+
+  // Corner b is an ear: convex, and no corner that can block it lies in or
+  // on its triangle (corners at the ear's corners, bridged holes, do not).
+  bool is_ear(std::uint32_t b) {
+    if (!convex(b)) return false;
+    const std::uint32_t a = prev_[b], c = next_[b];
+    const P2 &pa = p_[a], &pb = p_[b], &pc = p_[c];
+    auto same = [](const P2& u, const P2& v) { return u.x == v.x && u.y == v.y; };
+    const int c0 = column(std::min({pa.x, pb.x, pc.x})), c1 = column(std::max({pa.x, pb.x, pc.x}));
+    const int r0 = row(std::min({pa.y, pb.y, pc.y})), r1 = row(std::max({pa.y, pb.y, pc.y}));
+    for (int r = r0; r <= r1; ++r)
+      for (int col = c0; col <= c1; ++col) {
+        const std::size_t cell = static_cast<std::size_t>(r) * cols_ + col;
+        for (std::uint32_t k = start_[cell]; k < end_[cell]; ++k) {
+          const std::uint32_t j = entries_[k];
+          if (removed_[j] || !blocking_[j]) {
+            entries_[k--] = entries_[--end_[cell]];
+            continue;
+          }
+          if (j == a || j == b || j == c) continue;
+          const P2& q = p_[j];
+          if (same(q, pa) || same(q, pb) || same(q, pc)) continue;
+          if (orient(pa, pb, q) >= -eps_ && orient(pb, pc, q) >= -eps_ &&
+              orient(pc, pa, q) >= -eps_)
+            return false;
+        }
+      }
+    return true;
+  }
+
+  // No ear in a whole turn: the polygon is not simple (clip a convex
+  // corner) or degenerate (clip the corner with the largest turn).
+  std::uint32_t fallback(std::uint32_t v, std::size_t remaining, TriangulateResult& out) const {
+    std::uint32_t best = v;
+    double best_turn = -std::numeric_limits<double>::max();
+    for (std::size_t k = 0; k < remaining; ++k, v = next_[v]) {
+      if (convex(v)) {
+        out.not_simple = true;
+        return v;
+      }
+      const double o = orient(p_[prev_[v]], p_[v], p_[next_[v]]);
+      if (o > best_turn) best_turn = o, best = v;
+    }
+    out.not_simple = true;
+    out.degenerate = true;
+    return best;
+  }
+
+  void emit(std::uint32_t a, std::uint32_t b, std::uint32_t c, TriangulateResult& out) const {
+    if (orient(p_[a], p_[b], p_[c]) <= eps_) out.degenerate = true;
+    out.triangles.push_back({a, b, c});
+  }
+
+  std::vector<P2> p_;
+  double eps_;
+  std::vector<std::uint32_t> prev_, next_;
+  std::vector<std::uint8_t> removed_, blocking_;
+  P2 lo_{};
+  double cell_w_ = 1, cell_h_ = 1;
+  int cols_ = 1, rows_ = 1;
+  /// Cell k's entries are entries_[start_[k], end_[k]).
+  std::vector<std::uint32_t> start_, end_, entries_;
+};
+
+// A convex polygon cut in O(n): each turn around the ring takes the
+// triangles of every other corner, so the triangles are as balanced as the
+// polygon allows. Convex within the rounding of float input: a corner of a
+// finely sampled curve may turn back by up to about its edges' length times
+// float resolution at the polygon's `extent`. Returns false, doing nothing,
+// if a corner turns back by more, or the polygon winds more than once.
+bool triangulate_convex(const std::vector<P2>& p, double extent, double eps,
+                        TriangulateResult& out) {
+  const std::size_t n = p.size();
+  double turning = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const P2 &a = p[(i + n - 1) % n], &b = p[i], &c = p[(i + 1) % n];
+    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - b.x, vy = c.y - b.y;
+    const double rounding = (std::hypot(ux, uy) + std::hypot(vx, vy)) * extent * 1e-6;
+    if (orient(a, b, c) < -std::max(eps, rounding)) return false;
+    turning += std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+  }
+  if (std::abs(turning - 2 * kPi) > 1e-3) return false;
+  std::vector<std::uint32_t> ring(n), kept;
+  for (std::size_t i = 0; i < n; ++i) ring[i] = static_cast<std::uint32_t>(i);
+  auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (orient(p[a], p[b], p[c]) <= eps) out.degenerate = true;
+    out.triangles.push_back({a, b, c});
+  };
+  while (ring.size() >= 3) {
+    const std::size_t m = ring.size();
+    kept.clear();
+    for (std::size_t i = 0; i + 1 < m; i += 2) {
+      kept.push_back(ring[i]);
+      emit(ring[i], ring[i + 1], ring[(i + 2) % m]);
+    }
+    if (m % 2) kept.push_back(ring[m - 1]);
+    if (m == 3) break;
+    ring.swap(kept);
+  }
+  return true;
+}
+
 void fan(std::size_t n, TriangulateResult& out) {
   for (std::uint32_t i = 1; i + 1 < n; ++i) out.triangles.push_back({0, i, i + 1});
 }
@@ -238,7 +443,10 @@ TriangulateResult triangulate_polygon(std::span<const Vec3> points,
       return out;
     }
   }
-  EarClipper(std::move(p), eps).run(out);
+  if (n <= kBestEarLimit)
+    EarClipper(std::move(p), eps).run(out);
+  else if (!triangulate_convex(p, extent, eps, out))
+    GridEarClipper(std::move(p), eps).run(out);
   return out;
 }
 

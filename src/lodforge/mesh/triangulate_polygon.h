@@ -43,7 +43,12 @@ struct TriangulateResult {
 };
 
 /// Triangulates a polygon with corners `points` (in order, either winding).
-/// Never throws; O(n^2) in the corner count n.
+/// Never throws. Up to 256 corners the best-shaped ear is clipped each time
+/// (O(n^2)); beyond, a convex polygon takes O(n), and any other about O(n)
+/// ear tests of a cost that grows with the non-convex corners in each ear's
+/// box (100 000 corners: a star 0.4 s, random radii 0.6 s; a comb of 25 000
+/// teeth on one straight edge of collinear corners, the quadratic worst
+/// case: 11 s).
 TriangulateResult triangulate_polygon(std::span<const Vec3> points,
                                       const TriangulateOptions& options = {});
 

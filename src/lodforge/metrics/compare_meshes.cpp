@@ -218,6 +218,14 @@ CompareResult run(const TriangleMesh& a, const TriangleMesh& b, const CompareOpt
           ? options.samples
           : std::clamp(kSamplesPerTriangle * std::max(a.triangle_count(), b.triangle_count()),
                        kMinDefaultSamples, kMaxDefaultSamples);
+  // Each sample holds a position, a normal, a triangle, a colour and its
+  // measured distance and angle: 64 bytes is an upper bound.
+  constexpr double kBytesPerSample = 64;
+  const double per_direction = double(result.samples) + double(options.edge_samples) +
+                               double(std::max(a.vertex_count(), b.vertex_count()));
+  check_memory_budget(2 * per_direction * kBytesPerSample, options.max_memory,
+                      fmt::format("comparing with {} area samples per direction", result.samples),
+                      "use fewer samples");
   result.vertex_normals = a.has_normals() && b.has_normals();
   Box3 box_ab = box_a;
   box_ab.add(used_bounds(b));

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "lodforge/core/memory_budget.h"
 #include "lodforge/mesh/triangle_mesh.h"
 
 namespace lodforge {
@@ -31,6 +32,9 @@ struct CompareOptions {
   bool snap_noise = true;
   std::string a_name = "A";  ///< names used in error messages (e.g. file paths)
   std::string b_name = "B";
+  /// The samples of both directions may take at most this many bytes
+  /// (estimated before sampling; DataError if more). 0: no limit.
+  std::uint64_t max_memory = kDefaultMemoryBudget;
 };
 
 /// Angles between the normal at a sample and at its closest point (radians).

@@ -12,10 +12,16 @@
 //  | DEF name reused                         | later USEs take the newest (as the spec says) |
 //  | several top-level nodes                 | all kept (Coin's readAll does the same)       |
 //  | nesting deeper than max_depth           | error (the parser's stack stays bounded)      |
+//  | (inlined files nest below their inline)  |                                               |
+//  | more than max_instances (max_triangles)  | error at the node that goes past the limit    |
+//  | once expanded                            |                                               |
+//  | inline: not a regular file, link loop    | error naming the file and line of the inline  |
+//  | more than max_inline_files inlines read  | error                                         |
 #include "lodforge/io/vrml1/read_vrml1.h"
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <unordered_map>
 #include <unordered_set>
@@ -37,6 +43,53 @@ using scene::FieldValue;
 using scene::Node;
 using scene::NodePtr;
 
+// What all the parsers of one scene (the file and its inlines) share.
+struct SharedState {
+  std::unordered_set<std::string> inline_stack;  ///< the files being read, outermost first
+  std::uint64_t inline_files = 0;                ///< inlined files read so far
+  /// What each node read expands to: instances are 1 + those of its
+  /// children, triangles its own (a shape's) + those of its children.
+  struct Expanded {
+    std::uint64_t instances = 0, triangles = 0;
+  };
+  std::unordered_map<const Node*, Expanded> expanded;
+};
+
+std::uint64_t add_saturated(std::uint64_t a, std::uint64_t b) {
+  return a > UINT64_MAX - b ? UINT64_MAX : a + b;
+}
+
+// The triangles (segments, points) a shape draws, estimated from its fields
+// as read; primitives at the default tessellation of 24 segments.
+std::uint64_t own_triangles(const Node& n) {
+  constexpr std::uint64_t kSegments = 24;
+  if (n.type == "IndexedFaceSet" || n.type == "IndexedLineSet") {
+    const FieldValue* v = n.value("coordIndex");
+    if (!v) return 0;
+    std::uint64_t total = 0, run = 0;
+    for (std::int32_t i : v->ints) {
+      run = i < 0 ? 0 : run + 1;
+      if (i >= 0 && run >= (n.type == "IndexedFaceSet" ? 3u : 2u)) ++total;
+    }
+    return total;
+  }
+  if (n.type == "PointSet") {
+    const FieldValue* v = n.value("numPoints");
+    return v && !v->ints.empty() && v->ints[0] > 0 ? std::uint64_t(v->ints[0]) : 1;
+  }
+  if (n.type == "Cube") return 12;
+  if (n.type == "Sphere") return 2 * kSegments * kSegments;
+  if (n.type == "Cylinder" || n.type == "Cone") return 4 * kSegments;
+  if (n.type == "AsciiText") {
+    const FieldValue* v = n.value("string");
+    std::uint64_t chars = 0;
+    if (v)
+      for (const auto& s : v->strings) chars += s.size();
+    return 2 * chars;
+  }
+  return 0;
+}
+
 bool is_number_start(std::string_view w) {
   if (w.empty()) return false;
   char c = w[0];
@@ -45,16 +98,27 @@ bool is_number_start(std::string_view w) {
 
 class Parser {
  public:
-  Parser(std::string_view text, const ReadOptions& options, ReadResult& result,
-         std::unordered_set<std::string>* inline_stack)
+  /// `depth`: the nesting depth of the file's top-level nodes (an inlined
+  /// file's are one below their WWWInline).
+  Parser(std::string_view text, const ReadOptions& options, ReadResult& result, SharedState& shared,
+         int depth = 0)
       : lex_(text, options.source_name),
         options_(options),
         result_(result),
-        inline_stack_(inline_stack) {}
+        shared_(shared),
+        depth_(depth) {}
 
   void parse_file() {
     parse_header();
-    while (lex_.peek().kind != TokenKind::kEnd) result_.scene.roots.push_back(parse_node(0));
+    SharedState::Expanded total;
+    while (lex_.peek().kind != TokenKind::kEnd) {
+      Token first = lex_.peek();
+      result_.scene.roots.push_back(parse_node(depth_));
+      const auto& e = shared_.expanded.at(result_.scene.roots.back().get());
+      total.instances = add_saturated(total.instances, e.instances);
+      total.triangles = add_saturated(total.triangles, e.triangles);
+      check_expanded(first, total);
+    }
   }
 
  private:
@@ -110,6 +174,32 @@ class Parser {
     return node;
   }
 
+  void check_expanded(const Token& at, const SharedState::Expanded& e) {
+    if (options_.max_instances && e.instances > options_.max_instances)
+      lex_.fail(at, fmt::format("the scene expands to more than {} node instances (each USE and "
+                                "each inline repeats a subtree); refused (the limit of expanded "
+                                "instances)",
+                                options_.max_instances));
+    if (options_.max_triangles && e.triangles > options_.max_triangles)
+      lex_.fail(at, fmt::format("the scene's shapes, expanded, draw more than {} triangles (each "
+                                "USE and each inline repeats a subtree); refused (the limit of "
+                                "expanded triangles)",
+                                options_.max_triangles));
+  }
+
+  // Records what a node whose children are complete expands to.
+  NodePtr counted(NodePtr node, const Token& type) {
+    SharedState::Expanded e{1, own_triangles(*node)};
+    for (const auto& c : node->children) {
+      const auto& ce = shared_.expanded.at(c.get());
+      e.instances = add_saturated(e.instances, ce.instances);
+      e.triangles = add_saturated(e.triangles, ce.triangles);
+    }
+    shared_.expanded[node.get()] = e;
+    check_expanded(type, e);
+    return node;
+  }
+
   NodePtr parse_body(const Token& type, int depth) {
     auto node = std::make_shared<Node>();
     node->type = std::string(type.text);
@@ -138,7 +228,7 @@ class Parser {
           LogCategory::kParse,
           fmt::format("{}:{}-{}: unknown node type >{}< kept as it is", options_.source_name,
                       node->first_line, node->last_line, node->type));
-      return node;
+      return counted(node, type);
     }
     if (!spec) {
       result_.log.warn(LogCategory::kParse,
@@ -195,8 +285,8 @@ class Parser {
       node->fields.push_back(std::move(f));
     }
     node->last_line = lex_.line();
-    if (node->type == "WWWInline" && options_.read_inlines) read_inline(*node);
-    return node;
+    if (node->type == "WWWInline" && options_.read_inlines) read_inline(*node, depth);
+    return counted(node, type);
   }
 
   bool find_field(const Node& node, const scene::NodeSpec* spec, std::string_view name,
@@ -437,7 +527,7 @@ class Parser {
     return v;
   }
 
-  void read_inline(Node& node) {
+  void read_inline(Node& node, int depth) {
     const FieldValue* name = node.value("name");
     if (!name || name->strings.empty() || name->strings[0].empty()) return;
     const std::string& url = name->strings[0];
@@ -451,31 +541,43 @@ class Parser {
       return;
     }
     namespace fs = std::filesystem;
+    auto refuse = [&](const std::string& why) {
+      throw DataError(fmt::format("{}:{}: WWWInline '{}' {}; refused", options_.source_name,
+                                  node.first_line, url, why));
+    };
     std::string rel = url.starts_with("file://") ? url.substr(7) : url;
-    fs::path base = fs::weakly_canonical(fs::path(options_.base_dir));
-    fs::path target = fs::weakly_canonical(base / rel);
+    fs::path base, target;
+    try {
+      base = fs::weakly_canonical(fs::path(options_.base_dir));
+      target = fs::weakly_canonical(base / rel);
+    } catch (const fs::filesystem_error& e) {
+      refuse(fmt::format("cannot be resolved: {}", e.code().message()));
+    }
     auto [b, t] = std::mismatch(base.begin(), base.end(), target.begin(), target.end());
-    if (b != base.end())
-      throw DataError(fmt::format("{}:{}: WWWInline '{}' leaves the scene's folder {}; refused",
-                                  options_.source_name, node.first_line, url, base.string()));
+    if (b != base.end()) refuse(fmt::format("leaves the scene's folder {}", base.string()));
     std::error_code ec;
-    if (!fs::exists(target, ec)) {
+    const fs::file_status status = fs::status(target, ec);
+    if (!fs::exists(status)) {
       warn("file not found");
       return;
     }
-    if (inline_stack_->count(target.string())) {
+    // A FIFO or a device would block or never end: only regular files are read.
+    if (!fs::is_regular_file(status)) refuse("is not a regular file");
+    if (shared_.inline_stack.count(target.string())) {
       warn("it includes itself (inline cycle)");
       return;
     }
-    inline_stack_->insert(target.string());
+    if (options_.max_inline_files && ++shared_.inline_files > options_.max_inline_files)
+      refuse(fmt::format("goes past the limit of {} inlined files", options_.max_inline_files));
+    shared_.inline_stack.insert(target.string());
     ReadOptions sub = options_;
     sub.source_name = target.string();
     sub.base_dir = target.parent_path().string();
     ReadResult r;
     std::string text = read_file(target.string());
-    Parser p(text, sub, r, inline_stack_);
+    Parser p(text, sub, r, shared_, depth + 1);
     p.parse_file();
-    inline_stack_->erase(target.string());
+    shared_.inline_stack.erase(target.string());
     result_.log.merge(r.log);
     for (auto& root : r.scene.roots) node.children.push_back(std::move(root));
   }
@@ -483,7 +585,8 @@ class Parser {
   Lexer lex_;
   const ReadOptions& options_;
   ReadResult& result_;
-  std::unordered_set<std::string>* inline_stack_;
+  SharedState& shared_;
+  const int depth_;
   std::unordered_map<std::string, NodePtr> defs_;
 };
 
@@ -491,8 +594,8 @@ class Parser {
 
 ReadResult read_vrml1(std::string_view text, const ReadOptions& options) {
   ReadResult result;
-  std::unordered_set<std::string> inline_stack;
-  Parser parser(text, options, result, &inline_stack);
+  SharedState shared;
+  Parser parser(text, options, result, shared);
   parser.parse_file();
   return result;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include <fmt/core.h>
 
@@ -52,6 +53,21 @@ vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s
   vrml1::ReadOptions opt;
   opt.read_inlines = s.read_inlines;
   vrml1::ReadResult r = vrml1::read_vrml1_file(path, opt);
+  if (!s.quiet)
+    for (const auto& d : r.log.entries()) print_diagnostic(d);
+  return r;
+}
+
+vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path,
+                                  const SceneReadSettings& s) {
+  vrml1::ReadOptions opt;
+  opt.read_inlines = s.read_inlines;
+  opt.source_name = path == "-" ? "<stdin>" : path;
+  if (path != "-") {
+    const std::filesystem::path p(path);
+    opt.base_dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  }
+  vrml1::ReadResult r = vrml1::read_vrml1(data, opt);
   if (!s.quiet)
     for (const auto& d : r.log.entries()) print_diagnostic(d);
   return r;

@@ -27,7 +27,12 @@ void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w);
 /// Prints a diagnostic on stderr as "warning: text".
 void print_diagnostic(const Diagnostic& d);
 
-/// Reads a VRML 1.0 scene, printing warnings on stderr unless quiet.
+/// Reads a VRML 1.0 or Open Inventor scene, printing warnings on stderr unless quiet.
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);
+
+/// The same for a file's contents already read (`path` names it in messages
+/// and gives the folder of its inlines).
+vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path,
+                                  const SceneReadSettings& s);
 
 }  // namespace lodforge::apps

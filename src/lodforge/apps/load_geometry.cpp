@@ -5,20 +5,35 @@
 #include <unordered_set>
 
 #include "lodforge/apps/common_options.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
 
 namespace lodforge::apps {
 
-bool is_vrml_path(const std::string& path) {
+bool is_scene_path(const std::string& path) {
   std::string p = path;
   std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return std::tolower(c); });
-  return p.ends_with(".wrl") || p.ends_with(".wrl.gz") || p.ends_with(".vrml");
+  if (p.ends_with(".gz")) p.resize(p.size() - 3);
+  return p.ends_with(".wrl") || p.ends_with(".vrml") || p.ends_with(".iv");
+}
+
+bool has_scene_header(std::string_view data) {
+  return data.starts_with("#VRML") || data.starts_with("#Inventor");
 }
 
 TriangleMesh load_geometry(const std::string& path, int lod_level, bool quiet) {
-  if (!is_vrml_path(path)) return read_mesh(path);
-  vrml1::ReadResult r = read_scene(path, {.quiet = quiet});
+  vrml1::ReadResult r;
+  if (is_scene_path(path)) {
+    r = read_scene(path, {.quiet = quiet});
+  } else if (format_from_path(path) != MeshFormat::kAuto) {
+    return read_mesh(path);
+  } else {
+    // No extension to go by: the content tells (read once: it may be stdin).
+    const std::string data = read_file(path);
+    if (!has_scene_header(data)) return read_mesh_data(data, MeshFormat::kAuto, path);
+    r = read_scene_data(data, path, {.quiet = quiet});
+  }
   Log log;
   TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
   if (!quiet)

@@ -89,6 +89,9 @@ TEST(InventorScene, ArrayDrawsItsChildrenOncePerInstance) {
 
 TEST(InventorScene, ArraysOfAbsurdSizesAreErrors) {
   EXPECT_THROW(flatten_scene(iv("Array { numElements1 2000000000 Cube { } }")), DataError);
+  EXPECT_THROW(flatten_scene(iv("Array { numElements1 2147483647 numElements2 2147483647 "
+                                "numElements3 2147483647 Cube { } }")),
+               DataError);
   EXPECT_THROW(flatten_scene(iv("Array { numElements1 1000 numElements2 1000 numElements3 2 "
                                 "Cube { } }")),
                DataError);

@@ -9,6 +9,7 @@
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/scene/schema.h"
+#include "vrml1/corpus.h"
 
 namespace lodforge::vrml1 {
 namespace {
@@ -228,6 +229,17 @@ TEST(InventorRead, ErrorsNameFileLineAndColumn) {
             "'timeOut'");
   EXPECT_EQ(error_of("#Inventor V2.1 ascii\nQuadMesh { verticesPerRow 2.5 }"),
             "t.iv:2:27: expected an integer for SFLong field 'verticesPerRow', got '2.5'");
+}
+
+TEST(InventorRead, EveryCorpusFileReadsAndWritesBackTheSameGraph) {
+  const auto files = testing::all_inventor_test_files();
+  if (files.empty()) GTEST_SKIP() << "no shared corpus";
+  for (const auto& path : files) {
+    SCOPED_TRACE(path);
+    const ReadResult r = read_vrml1_file(path);
+    EXPECT_TRUE(scene::is_inventor_header(r.scene.header));
+    expect_round_trip(r.scene);
+  }
 }
 
 TEST(InventorRead, HeadersOfEveryInventorVersionAreKept) {

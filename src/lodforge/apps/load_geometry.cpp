@@ -51,7 +51,7 @@ std::size_t lod_level_count(const scene::Scene& scene) {
     const scene::Node* n = stack.back();
     stack.pop_back();
     if (!seen.insert(n).second) continue;
-    if (n->type == "LOD") count = std::max(count, n->children.size());
+    if (n->type == "LOD" || n->type == "LevelOfDetail") count = std::max(count, n->children.size());
     for (const auto& c : n->children) stack.push_back(c.get());
   }
   return count;

@@ -25,8 +25,8 @@ bool has_scene_header(std::string_view data);
 /// Inventor header, as `info` reads it. Throws DataError.
 TriangleMesh load_geometry(const std::string& path, int lod_level = 0, bool quiet = false);
 
-/// The number of LOD levels of a scene: the most children of any LOD node (1
-/// if there is none).
+/// The number of LOD levels of a scene: the most children of any LOD (or
+/// Inventor LevelOfDetail) node (1 if there is none).
 std::size_t lod_level_count(const scene::Scene& scene);
 
 }  // namespace lodforge::apps

@@ -272,7 +272,8 @@ class Walker {
     const std::int64_t n1 = std::max<std::int32_t>(0, long_of(n, "numElements1", 1));
     const std::int64_t n2 = std::max<std::int32_t>(0, long_of(n, "numElements2", 1));
     const std::int64_t n3 = std::max<std::int32_t>(0, long_of(n, "numElements3", 1));
-    if (n1 * n2 * n3 > kMaxArrayInstances)
+    if (n1 > kMaxArrayInstances || n2 > kMaxArrayInstances || n3 > kMaxArrayInstances ||
+        n1 * n2 > kMaxArrayInstances || n1 * n2 * n3 > kMaxArrayInstances)
       throw DataError(fmt::format("line {}: Array of {} x {} x {} instances; at most {} are drawn",
                                   n.first_line, n1, n2, n3, kMaxArrayInstances));
     const Vec3 d1 = vec3_of(n, "separation1"), d2 = vec3_of(n, "separation2"),

@@ -1,6 +1,8 @@
-// coin_probe FILE: reads one Inventor / VRML 1.0 file with Coin3D, the
-// independent reader the conformance tests use as an oracle, and prints one
-// JSON object on stdout:
+// coin_probe FILE [LOD_CHILD]: reads one Inventor / VRML 1.0 file with
+// Coin3D, the independent reader the conformance tests use as an oracle, and
+// prints one JSON object on stdout (with LOD_CHILD, every LOD and
+// LevelOfDetail node draws its child LOD_CHILD, or its last, for the
+// traversal's counts: Coin would choose by a view volume the probe has not):
 //
 //   ok               Coin read the file (SoDB::readAll would return a root)
 //   error            Coin's read errors (SoReadError), one per line; some,
@@ -12,6 +14,11 @@
 //   primitive_counts shape instances met by the traversal, per type (a USEd
 //                    shape counts every time, Switch follows whichChild)
 //   shape_triangles  triangles generated per shape type by the traversal
+//   distinct_triangles  the same, counting only triangles whose three corners
+//                    are at three different points (degenerate ones aside)
+//
+// The first line of the output is {"read":true|false}, printed before the
+// traversal; the JSON object above is the second.
 //
 // Coin aborts or crashes on some broken inputs (a USE inside its own DEF, a
 // missing materialIndex), so callers run this program as a child process with
@@ -25,16 +32,24 @@
 // reports but tolerates) and keeps the top-level nodes apart.
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>
+#include <Inventor/SoPath.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
+#include <Inventor/actions/SoSearchAction.h>
 #include <Inventor/errors/SoDebugError.h>
 #include <Inventor/errors/SoReadError.h>
+#include <Inventor/lists/SoPathList.h>
 #include <Inventor/misc/SoChildList.h>
 #include <Inventor/nodes/SoIndexedFaceSet.h>
+#include <Inventor/nodes/SoLOD.h>
+#include <Inventor/nodes/SoLevelOfDetail.h>
 #include <Inventor/nodes/SoSeparator.h>
 #include <Inventor/nodes/SoShape.h>
+#include <Inventor/nodes/SoSwitch.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
@@ -93,6 +108,7 @@ void count_nodes(SoNode* node, std::set<const SoNode*>& seen,
 struct TraversalCounts {
   std::map<std::string, std::size_t> shapes;
   std::map<std::string, std::size_t> triangles;
+  std::map<std::string, std::size_t> distinct;
   std::string current;
 };
 
@@ -103,19 +119,49 @@ SoCallbackAction::Response on_shape(void* data, SoCallbackAction*, const SoNode*
   return SoCallbackAction::CONTINUE;
 }
 
-void on_triangle(void* data, SoCallbackAction*, const SoPrimitiveVertex*, const SoPrimitiveVertex*,
-                 const SoPrimitiveVertex*) {
+void on_triangle(void* data, SoCallbackAction*, const SoPrimitiveVertex* a,
+                 const SoPrimitiveVertex* b, const SoPrimitiveVertex* c) {
   auto* counts = static_cast<TraversalCounts*>(data);
   ++counts->triangles[counts->current];
+  const SbVec3f& p = a->getPoint();
+  const SbVec3f& q = b->getPoint();
+  const SbVec3f& r = c->getPoint();
+  if (p != q && q != r && r != p) ++counts->distinct[counts->current];
+}
+
+// Every LOD / LevelOfDetail under `root` becomes a Switch on child `k` (or
+// its last) with the same children.
+void fix_lod_children(SoNode* root, int k) {
+  for (SoType type : {SoLOD::getClassTypeId(), SoLevelOfDetail::getClassTypeId()}) {
+    SoSearchAction search;
+    search.setType(type);
+    search.setInterest(SoSearchAction::ALL);
+    search.setSearchingAll(TRUE);
+    search.apply(root);
+    std::set<SoNode*> done;
+    const SoPathList& paths = search.getPaths();
+    for (int i = 0; i < paths.getLength(); ++i) {
+      SoPath* path = paths[i];
+      auto* lod = static_cast<SoGroup*>(path->getTail());
+      if (path->getLength() < 2 || !done.insert(lod).second) continue;
+      auto* parent = static_cast<SoGroup*>(path->getNodeFromTail(1));
+      auto* chosen = new SoSwitch;
+      for (int c = 0; c < lod->getNumChildren(); ++c) chosen->addChild(lod->getChild(c));
+      chosen->whichChild = lod->getNumChildren() == 0 ? -1 : std::min(k, lod->getNumChildren() - 1);
+      for (int c = 0; c < parent->getNumChildren(); ++c)
+        if (parent->getChild(c) == lod) parent->replaceChild(c, chosen);
+    }
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: coin_probe FILE\n");
+  if (argc != 2 && argc != 3) {
+    std::fprintf(stderr, "usage: coin_probe FILE [LOD_CHILD]\n");
     return 2;
   }
+  const int lod_child = argc == 3 ? std::atoi(argv[2]) : -1;
   SoDB::init();
   std::string errors;
   std::string warnings;
@@ -149,6 +195,11 @@ int main(int argc, char** argv) {
     }
   }
   out["ok"] = ok;
+  // The verdict on reading first, on a line of its own: Coin crashes in some
+  // traversals (an indexed binding without its index field), and the caller
+  // still learns that Coin read the file.
+  std::printf("{\"read\":%s}\n", ok ? "true" : "false");
+  std::fflush(stdout);
 
   std::set<const SoNode*> seen;
   std::map<std::string, std::size_t> node_counts;
@@ -160,6 +211,7 @@ int main(int argc, char** argv) {
       count_nodes(node, seen, node_counts);
       root->addChild(node);
     }
+    if (lod_child >= 0) fix_lod_children(root, lod_child);
     SoCallbackAction action;
     action.addPreCallback(SoShape::getClassTypeId(), on_shape, &traversal);
     action.addTriangleCallback(SoShape::getClassTypeId(), on_triangle, &traversal);
@@ -176,6 +228,7 @@ int main(int argc, char** argv) {
                              : std::size_t{0};
   out["primitive_counts"] = traversal.shapes;
   out["shape_triangles"] = traversal.triangles;
+  out["distinct_triangles"] = traversal.distinct;
   std::puts(out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
   return 0;
 }

@@ -19,18 +19,33 @@ struct CoinResult {
   bool ran = false;     ///< the probe finished normally
   std::string failure;  ///< why it did not (signal, timeout, bad output)
   bool ok = false;      ///< Coin accepted the file
-  std::string error;    ///< Coin's read errors
+  /// Coin read the file, whether or not its traversal then crashed (Coin
+  /// crashes drawing an IndexedFaceSet under an indexed binding without the
+  /// index field, which VRML 1.0 allows).
+  bool read = false;
+  std::string error;  ///< Coin's read errors
   std::map<std::string, std::size_t> node_counts;
   std::size_t ifs_triangles = 0;
   std::map<std::string, std::size_t> primitive_counts;
+  std::map<std::string, std::size_t> shape_triangles;  ///< per shape type
+  /// Per shape type, triangles with three corners at three different points.
+  std::map<std::string, std::size_t> distinct_triangles;
 
   bool accepted() const { return ran && ok; }
+  /// Triangles of all shapes the traversal met.
+  std::size_t triangles() const {
+    std::size_t n = 0;
+    for (const auto& [type, t] : shape_triangles) n += t;
+    return n;
+  }
   std::string why_rejected() const { return ran ? error : failure; }
 };
 
 /// Runs coin_probe on `path` in a child process, killing it after `timeout`.
+/// With `lod_child` >= 0 every LOD draws that child (or its last) in the counts.
 inline CoinResult run_coin_probe(const std::string& path,
-                                 std::chrono::seconds timeout = std::chrono::seconds(120)) {
+                                 std::chrono::seconds timeout = std::chrono::seconds(120),
+                                 int lod_child = -1) {
   CoinResult result;
 #ifdef LODFORGE_COIN_PROBE
   int fds[2];
@@ -38,6 +53,7 @@ inline CoinResult run_coin_probe(const std::string& path,
     result.failure = "pipe() failed";
     return result;
   }
+  const std::string child = std::to_string(lod_child);  // (no allocation after fork)
   const pid_t pid = fork();
   if (pid < 0) {
     result.failure = "fork() failed";
@@ -49,7 +65,11 @@ inline CoinResult run_coin_probe(const std::string& path,
     if (null_fd >= 0) dup2(null_fd, STDERR_FILENO);
     close(fds[0]);
     close(fds[1]);
-    execl(LODFORGE_COIN_PROBE, "coin_probe", path.c_str(), static_cast<char*>(nullptr));
+    if (lod_child >= 0)
+      execl(LODFORGE_COIN_PROBE, "coin_probe", path.c_str(), child.c_str(),
+            static_cast<char*>(nullptr));
+    else
+      execl(LODFORGE_COIN_PROBE, "coin_probe", path.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   close(fds[1]);
@@ -74,6 +94,7 @@ inline CoinResult run_coin_probe(const std::string& path,
   if (timed_out) kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
+  result.read = out.starts_with("{\"read\":true}");
   if (timed_out) {
     result.failure = "Coin timed out";
   } else if (WIFSIGNALED(status)) {
@@ -81,7 +102,10 @@ inline CoinResult run_coin_probe(const std::string& path,
   } else if (WEXITSTATUS(status) != 0) {
     result.failure = "coin_probe exited with " + std::to_string(WEXITSTATUS(status));
   } else {
-    const nlohmann::json j = nlohmann::json::parse(out, nullptr, false);
+    // The last line: the first only says whether Coin read the file.
+    const std::size_t nl = out.find('\n');
+    const std::string last = nl == std::string::npos ? out : out.substr(nl + 1);
+    const nlohmann::json j = nlohmann::json::parse(last, nullptr, false);
     if (j.is_discarded()) {
       result.failure = "coin_probe printed no JSON: " + out;
       return result;
@@ -92,10 +116,14 @@ inline CoinResult run_coin_probe(const std::string& path,
     result.node_counts = j.at("node_counts").get<std::map<std::string, std::size_t>>();
     result.ifs_triangles = j.at("ifs_triangles").get<std::size_t>();
     result.primitive_counts = j.at("primitive_counts").get<std::map<std::string, std::size_t>>();
+    result.shape_triangles = j.at("shape_triangles").get<std::map<std::string, std::size_t>>();
+    result.distinct_triangles =
+        j.at("distinct_triangles").get<std::map<std::string, std::size_t>>();
   }
 #else
   (void)path;
   (void)timeout;
+  (void)lod_child;
   result.failure = "coin_probe not built";
 #endif
   return result;

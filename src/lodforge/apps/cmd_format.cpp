@@ -20,8 +20,11 @@ void add_format_command(CLI::App& app, Runner& run) {
     vrml1::WriteOptions write;
   };
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd = app.add_subcommand("format", "Read a VRML 1.0 scene and write it back formatted");
-  cmd->add_option("SCENE", s->input, "VRML 1.0 file (.wrl, .wrl.gz; - = stdin)")->required();
+  CLI::App* cmd =
+      app.add_subcommand("format", "Read a VRML 1.0 or Inventor scene and write it back formatted");
+  cmd->add_option("SCENE", s->input,
+                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
+      ->required();
   cmd->add_option("-o,--output", s->output, "Output file (- = stdout; .gz: gzip-compressed)")
       ->required();
   add_scene_read_options(*cmd, s->read);

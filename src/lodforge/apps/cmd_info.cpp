@@ -17,8 +17,10 @@ void add_info_command(CLI::App& app, Runner& run) {
     SceneReadSettings read;
   };
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd = app.add_subcommand("info", "Show what a VRML 1.0 scene holds");
-  cmd->add_option("SCENE", s->input, "VRML 1.0 file (.wrl, .wrl.gz; - = stdin)")->required();
+  CLI::App* cmd = app.add_subcommand("info", "Show what a VRML 1.0 or Open Inventor scene holds");
+  cmd->add_option("SCENE", s->input,
+                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
+      ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   add_scene_read_options(*cmd, s->read);
   cmd->callback([s, &run] {
@@ -33,12 +35,17 @@ void add_info_command(CLI::App& app, Runner& run) {
       };
       const char* shapes[] = {"IndexedFaceSet", "IndexedLineSet", "Cylinder",
                               "Cone",           "Sphere",         "Cube"};
+      // Open Inventor's, shown when the scene has them.
+      const char* inventor_shapes[] = {"FaceSet", "TriangleStripSet", "IndexedTriangleStripSet",
+                                       "QuadMesh", "LineSet"};
       if (s->json) {
         nlohmann::ordered_json j;
         j["file"] = s->input;
         j["header"] = r.scene.header;
         j["node_counts"] = st.node_counts;
         for (const char* t : shapes) j["shapes"][t] = count(t);
+        for (const char* t : inventor_shapes)
+          if (count(t)) j["shapes"][t] = count(t);
         j["shapes_traversed"] = st.shapes_traversed;
         j["ifs_faces"] = st.ifs_faces;
         j["ifs_triangles"] = st.ifs_triangles;
@@ -67,6 +74,10 @@ void add_info_command(CLI::App& app, Runner& run) {
           "Cubes {}\n",
           count("IndexedFaceSet"), count("IndexedLineSet"), count("Cylinder"), count("Cone"),
           count("Sphere"), count("Cube"));
+      std::string more;
+      for (const char* t : inventor_shapes)
+        if (count(t)) more += fmt::format("{}{}s {}", more.empty() ? "" : ", ", t, count(t));
+      if (!more.empty()) fmt::print("  {}\n", more);
       fmt::print("  triangles {} (IndexedFaceSets {} in {} faces), vertices {}, line segments {}\n",
                  st.total_triangles, st.ifs_triangles, st.ifs_faces, st.total_vertices,
                  st.ils_segments);

@@ -185,8 +185,11 @@ void print_summary(const std::string& file, const LodResult& r, bool table) {
 
 void add_lod_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd = app.add_subcommand("lod", "Replace every shape of VRML 1.0 scenes by LOD nodes");
-  cmd->add_option("SCENE", s->inputs, "VRML 1.0 files (- = stdin)")->required();
+  CLI::App* cmd =
+      app.add_subcommand("lod", "Replace every shape of VRML 1.0 or Inventor scenes by LOD nodes");
+  cmd->add_option("SCENE", s->inputs,
+                  "VRML 1.0 or Inventor files (- = stdin); Inventor is written as Inventor 2.1")
+      ->required();
   auto* out = cmd->add_option("-o,--output", s->output,
                               "Output file (- = stdout; .gz: gzip-compressed), for one scene");
   auto* dir = cmd->add_option("--out-dir", s->out_dir, "Output folder, for several scenes");

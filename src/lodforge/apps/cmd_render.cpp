@@ -2,7 +2,7 @@
 // --distances d1,d2,...] [--size WxH] [--view azimuth,elevation] [--no-colors]
 // [--wireframe] [--flat]`: a headless picture of a mesh file (PLY, OBJ, OFF,
 // STL) with its vertex colours, so a `compare --colored` output shows where the
-// error is, or of a VRML 1.0 scene (flattened at LOD level K), or with --levels
+// error is, or of a VRML 1.0 / Inventor scene (flattened at LOD level K), or with --levels
 // a contact sheet of every LOD level side by side with its triangle count
 // under it (the original's Figure 5.5), or with --distances what a browser
 // shows from each distance (every LOD choosing by its own distance) beside the
@@ -88,8 +88,9 @@ std::vector<double> parse_distances(const std::string& text) {
 // The scene of a contact sheet showing its LOD nodes.
 scene::Scene read_lod_scene(const std::string& path, std::string_view option,
                             const SceneReadSettings& read) {
-  if (!is_vrml_path(path))
-    throw DataError(fmt::format("{}: {} needs a VRML 1.0 scene with LOD nodes", path, option));
+  if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
+    throw DataError(
+        fmt::format("{}: {} needs a VRML 1.0 or Inventor scene with LOD nodes", path, option));
   return read_scene(path, read).scene;
 }
 
@@ -181,7 +182,8 @@ void add_render_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
   CLI::App* cmd =
       app.add_subcommand("render", "Render a mesh or a scene to a PNG picture (headless)");
-  cmd->add_option("SCENE_OR_MESH", s->input, "VRML 1.0 scene or mesh file (PLY, OBJ, OFF, STL)")
+  cmd->add_option("SCENE_OR_MESH", s->input,
+                  "VRML 1.0 or Open Inventor scene, or mesh file (PLY, OBJ, OFF, STL)")
       ->required();
   auto* level = cmd->add_option("--level", s->level, "LOD level to render (scenes; 0 = finest)")
                     ->check(kFiniteNumber)

@@ -9,6 +9,7 @@
 #include <map>
 #include <string_view>
 #include <utility>
+#include <filesystem>
 
 #include <fmt/core.h>
 
@@ -122,12 +123,33 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
   }
 }
 
-vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s) {
+namespace {
+
+vrml1::ReadOptions read_options(const SceneReadSettings& s) {
   vrml1::ReadOptions opt;
   opt.read_inlines = s.read_inlines;
   opt.max_instances = s.max_instances;
   opt.max_triangles = s.max_triangles;
-  vrml1::ReadResult r = vrml1::read_vrml1_file(path, opt);
+  return opt;
+}
+
+}  // namespace
+
+vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s) {
+  vrml1::ReadResult r = vrml1::read_vrml1_file(path, read_options(s));
+  if (!s.quiet) print_diagnostics(r.log.entries());
+  return r;
+}
+
+vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path,
+                                  const SceneReadSettings& s) {
+  vrml1::ReadOptions opt = read_options(s);
+  opt.source_name = path == "-" ? "<stdin>" : path;
+  if (path != "-") {
+    const std::filesystem::path p(path);
+    opt.base_dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  }
+  vrml1::ReadResult r = vrml1::read_vrml1(data, opt);
   if (!s.quiet) print_diagnostics(r.log.entries());
   return r;
 }

@@ -46,7 +46,12 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
 /// printed in the order of their first occurrence.
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
 
-/// Reads a VRML 1.0 scene, printing warnings on stderr unless quiet.
+/// Reads a VRML 1.0 or Open Inventor scene, printing warnings on stderr unless quiet.
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);
+
+/// The same for a file's contents already read (`path` names it in messages
+/// and gives the folder of its inlines).
+vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path,
+                                  const SceneReadSettings& s);
 
 }  // namespace lodforge::apps

@@ -6,25 +6,40 @@
 
 #include "lodforge/apps/common_options.h"
 #include "lodforge/mesh/coordinate_range.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
 
 namespace lodforge::apps {
 
-bool is_vrml_path(const std::string& path) {
+bool is_scene_path(const std::string& path) {
   std::string p = path;
   std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return std::tolower(c); });
-  return p.ends_with(".wrl") || p.ends_with(".wrl.gz") || p.ends_with(".vrml");
+  if (p.ends_with(".gz")) p.resize(p.size() - 3);
+  return p.ends_with(".wrl") || p.ends_with(".vrml") || p.ends_with(".iv");
+}
+
+bool has_scene_header(std::string_view data) {
+  return data.starts_with("#VRML") || data.starts_with("#Inventor");
 }
 
 TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneReadSettings& read) {
   const std::string name = path == "-" ? "<stdin>" : path;
-  if (!is_vrml_path(path)) {
-    TriangleMesh m = read_mesh(path);
+  auto mesh_checked = [&](TriangleMesh m) {
     check_coordinate_range(m, name);
     return m;
+  };
+  vrml1::ReadResult r;
+  if (is_scene_path(path)) {
+    r = read_scene(path, read);
+  } else if (format_from_path(path) != MeshFormat::kAuto) {
+    return mesh_checked(read_mesh(path));
+  } else {
+    // No extension to go by: the content tells (read once: it may be stdin).
+    const std::string data = read_file(path);
+    if (!has_scene_header(data)) return mesh_checked(read_mesh_data(data, MeshFormat::kAuto, path));
+    r = read_scene_data(data, path, read);
   }
-  vrml1::ReadResult r = read_scene(path, read);
   Log log;
   TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
   if (!read.quiet) {
@@ -46,7 +61,7 @@ std::size_t lod_level_count(const scene::Scene& scene) {
     const scene::Node* n = stack.back();
     stack.pop_back();
     if (!seen.insert(n).second) continue;
-    if (n->type == "LOD") count = std::max(count, n->children.size());
+    if (n->type == "LOD" || n->type == "LevelOfDetail") count = std::max(count, n->children.size());
     for (const auto& c : n->children) stack.push_back(c.get());
   }
   return count;

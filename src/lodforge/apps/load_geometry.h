@@ -1,8 +1,9 @@
 #pragma once
 /// Geometry for the commands that work on one surface (render, compare,
-/// simplify): a mesh file as it is, or a VRML 1.0 scene flattened to one mesh
-/// in world space (one LOD level of it).
+/// simplify): a mesh file as it is, or a VRML 1.0 / Open Inventor scene
+/// flattened to one mesh in world space (one LOD level of it).
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lodforge/apps/common_options.h"
@@ -11,17 +12,24 @@
 
 namespace lodforge::apps {
 
-/// True if the path names a VRML file (.wrl, .wrl.gz, .vrml; any case).
-bool is_vrml_path(const std::string& path);
+/// True if the path names a scene file: VRML (.wrl, .vrml) or Open Inventor
+/// (.iv), optionally .gz; any case.
+bool is_scene_path(const std::string& path);
 
-/// Reads a mesh file, or a VRML scene flattened at LOD level `lod_level`
-/// (warnings on stderr unless `read.quiet`). Throws DataError, also for
+/// True if `data` (a file's first bytes, decompressed) starts with a VRML or
+/// Open Inventor header.
+bool has_scene_header(std::string_view data);
+
+/// Reads a mesh file, or a scene flattened at LOD level `lod_level` (warnings
+/// on stderr unless `read.quiet`): a scene is a file of a scene extension, or
+/// any other file but a mesh extension's (.ply, .obj, .off, .stl) with a VRML
+/// or Inventor header, as `info` reads it. Throws DataError, also for
 /// coordinates out of the range of check_coordinate_range.
 TriangleMesh load_geometry(const std::string& path, int lod_level = 0,
                            const SceneReadSettings& read = {});
 
-/// The number of LOD levels of a scene: the most children of any LOD node (1
-/// if there is none).
+/// The number of LOD levels of a scene: the most children of any LOD (or
+/// Inventor LevelOfDetail) node (1 if there is none).
 std::size_t lod_level_count(const scene::Scene& scene);
 
 }  // namespace lodforge::apps

@@ -26,6 +26,7 @@
 #include "lodforge/lod/shape_geometry.h"
 #include "lodforge/lod/unshare_contexts.h"
 #include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 #include "lodforge/scene/shape_mesh.h"
 #include "lodforge/scene/tessellate_primitive.h"
@@ -39,17 +40,25 @@ using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
 
+// A shape whose levels are made by a simplifier: VRML 1.0's indexed sets and
+// Inventor's vertex shapes (read as their indexed equivalent).
+bool is_set_shape(const std::string& t) {
+  return t == "IndexedFaceSet" || t == "IndexedLineSet" || scene::has_indexed_equivalent(t);
+}
+
+bool is_line_shape(const std::string& t) {
+  return t == "IndexedLineSet" || t == "LineSet";
+}
+
 std::string type_key(const std::string& node_type) {
-  if (node_type == "IndexedFaceSet") return "polygon";
-  if (node_type == "IndexedLineSet") return "line";
+  if (is_set_shape(node_type)) return is_line_shape(node_type) ? "line" : "polygon";
   std::string k = node_type;
   for (char& ch : k) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return k;
 }
 
 bool is_lod_shape(const std::string& t) {
-  return t == "IndexedFaceSet" || t == "IndexedLineSet" || t == "Cube" || t == "Sphere" ||
-         t == "Cone" || t == "Cylinder";
+  return is_set_shape(t) || t == "Cube" || t == "Sphere" || t == "Cone" || t == "Cylinder";
 }
 
 // A shape node and the property nodes its geometry depends on.
@@ -79,6 +88,7 @@ struct Job {
   std::unique_ptr<LevelWriter> writer;  // the levels' shared vertex data
   Vec3 center;
   double radius = 0;
+  int segments = 24;    // primitives: level 0's tessellation (the state's Complexity)
   bool remove = false;  // quality 0
   bool keep = false;    // nothing to simplify: the shape stays as it is
   bool no_lod = false;  // quality 1
@@ -122,7 +132,11 @@ class Pipeline {
  public:
   Pipeline(const scene::Scene& input, const LodOptions& options) : opt_(options) {
     std::unordered_map<const Node*, NodePtr> done;
-    result_.scene.header = "#VRML V1.0 ascii";
+    // The output is in the input's language: an Inventor scene keeps its
+    // Inventor nodes, so it is written as Inventor 2.1 (whose LOD node has
+    // the fields of VRML 1.0's).
+    result_.scene.header =
+        scene::is_inventor_header(input.header) ? "#Inventor V2.1 ascii" : "#VRML V1.0 ascii";
     for (const auto& r : input.roots) result_.scene.roots.push_back(scene::copy_subtree(r, done));
   }
 
@@ -236,7 +250,7 @@ class Pipeline {
     j.stats.line = j.shape->first_line;
     scene::ShapeVisit visit{*j.shape, j.state, nullptr, empty_path_, 0};
     const double scale = j.stats.scale;
-    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+    if (is_set_shape(t)) {
       j.geometry = read_shape_geometry(visit, {.triangulation = opt_.triangulation}, j.log);
       bounding_sphere(j.geometry.mesh.positions, j.center, j.radius);
       if (j.geometry.mesh.triangles.empty() && j.geometry.mesh.lines.empty()) {
@@ -250,6 +264,7 @@ class Pipeline {
     } else {
       TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = 32});
       bounding_sphere(tess.positions, j.center, j.radius);
+      j.segments = scene::segments_for_complexity(scene::complexity_value(j.state));
     }
     if (opt_.export_flavour == ExportFlavour::kReducer)
       for (auto& p : j.geometry.mesh.positions) p -= j.center;
@@ -267,7 +282,7 @@ class Pipeline {
     // the input draws. Rebuilt from the geometry only where the input cannot
     // be kept: an attribute index out of range (dropped), coordinates moved
     // to the origin (reducer flavour), or clean-and-reformat (--extract -1).
-    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+    if (is_set_shape(t)) {
       j.writer = std::make_unique<LevelWriter>(j.geometry, j.state, opt_.no_lines);
       const bool rebuild = j.geometry.repaired || opt_.export_flavour == ExportFlavour::kReducer ||
                            (opt_.extract && *opt_.extract < 0);
@@ -286,7 +301,8 @@ class Pipeline {
       original->name.clear();
       j.level_nodes.push_back(original);
       j.errors.push_back(0);
-      TriangleMesh tess = scene::tessellate_primitive(*j.shape);
+      // Level 0 draws the tessellation the input draws: under its Complexity.
+      TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = j.segments});
       j.stats.levels.push_back({tess.triangle_count(), tess.vertex_count(), 0});
     }
     if (j.no_lod || (max_levels && max_levels <= 2)) {
@@ -294,7 +310,7 @@ class Pipeline {
       return;
     }
     std::size_t simplified_max = max_levels ? max_levels - 2 : 0;
-    if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+    if (is_set_shape(t)) {
       set_levels(j, simplified_max, quality);
     } else if (t != "Cube") {
       primitive_levels(j, simplified_max);
@@ -391,7 +407,8 @@ class Pipeline {
       auto it = tessellation_errors_.find(key);
       if (it != tessellation_errors_.end()) return it->second;
     }
-    TriangleMesh reference = scene::tessellate_primitive(shape, {.segments = 64});
+    TriangleMesh reference =
+        scene::tessellate_primitive(shape, {.segments = std::max(64, 2 * segments)});
     TriangleMesh tess = scene::tessellate_primitive(shape, {.segments = segments});
     const double h =
         DeviationMeter(reference, {.samples = opt_.measure_samples ? opt_.measure_samples : 20000})
@@ -445,10 +462,17 @@ class Pipeline {
     return level;
   }
 
+  // Coarser tessellations than level 0's (j.segments: 24 without a
+  // Complexity node), at 2/3, 1/3 and 1/6 of its segments (16, 8, 4 for 24),
+  // each with fewer triangles than the level before by at least min_diff.
   void primitive_levels(Job& j, std::size_t simplified_max) {
     j.stats.method = "tessellation";
     std::size_t previous = j.stats.levels.front().triangles;
-    for (int seg : {16, 8, 4}) {
+    std::vector<int> steps;
+    for (int d : {2, 4, 8})
+      steps.push_back(std::max(3, int(std::lround(double(j.segments) * 4 / (3 * d)))));
+    for (int seg : steps) {
+      if (seg >= j.segments) continue;
       if (simplified_max && j.level_nodes.size() - 1 >= simplified_max) break;
       TriangleMesh tess = scene::tessellate_primitive(*j.shape, {.segments = seg});
       if (double(tess.triangle_count()) > double(previous) * (1.0 - opt_.min_diff)) continue;
@@ -467,8 +491,7 @@ class Pipeline {
     // Each level carries its own property nodes (LevelWriter): what is
     // placed here is seen by every level, level 0 the input included.
     auto sep = make_node("Separator");
-    if (opt_.export_flavour == ExportFlavour::kReducer && j.shape->type != "IndexedFaceSet" &&
-        j.shape->type != "IndexedLineSet") {
+    if (opt_.export_flavour == ExportFlavour::kReducer && !is_set_shape(j.shape->type)) {
       // Primitives are centred at their origin already: nothing to move.
     } else if (opt_.export_flavour == ExportFlavour::kReducer) {
       auto tr = make_node("Translation");

@@ -125,7 +125,8 @@ class Joiner {
                                            : (b == "PER_VERTEX_INDEXED" || b == "DEFAULT");
         if (!same) return false;
       } else if (t == "IndexedFaceSet") {
-        if (found || !state.coords) return false;
+        // (An Inventor vertexProperty brings coordinates of its own.)
+        if (found || !state.coords || !scene::field_nodes(*c).empty()) return false;
         found = true;
         const Node* faces = c;
         p.material = state.material;

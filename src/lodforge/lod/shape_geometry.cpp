@@ -21,6 +21,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 #include "lodforge/scene/shape_mesh.h"
 
@@ -147,6 +148,17 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
 ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
                                   const ShapeGeometryOptions& options, Log& log) {
+  if (scene::has_indexed_equivalent(visit.shape.type)) {
+    // Inventor's strips, quad meshes and face sets: read as the indexed set
+    // that draws the same; what the levels inherit is the input's state.
+    const scene::IndexedEquivalent eq = scene::to_indexed_shape(visit);
+    ShapeGeometry g =
+        read_shape_geometry(scene::ShapeVisit{*eq.shape, eq.state, visit.camera, visit.path,
+                                              visit.child_index, visit.path_index},
+                            options, log);
+    mark_inherited_attributes(g, visit.state);
+    return g;
+  }
   const Node& shape = visit.shape;
   const scene::TraversalState& st = visit.state;
   const bool lines = shape.type == "IndexedLineSet";

@@ -1,6 +1,8 @@
 #pragma once
-/// An IndexedFaceSet or IndexedLineSet with its traversal state, turned into a
-/// mesh the simplifiers work on, and back into VRML nodes.
+/// An IndexedFaceSet or IndexedLineSet (or an Inventor FaceSet, strip set,
+/// QuadMesh or LineSet, read as its indexed equivalent: inventor_shapes.h)
+/// with its traversal state, turned into a mesh the simplifiers work on, and
+/// back into VRML nodes.
 ///
 /// Vertices of the mesh are the distinct (coordinate, normal, texture
 /// coordinate, per-vertex material) tuples of the shape's corners: a vertex is

@@ -47,8 +47,9 @@ struct Copy {
 }  // namespace
 
 PropertyContext PropertyContext::of(const scene::TraversalState& s) {
-  return {s.coordinate3,      s.normal,         s.texture_coordinate2, s.material,
-          s.material_binding, s.normal_binding, s.shape_hints,         s.texture2};
+  return {s.coordinate3, s.normal,           s.texture_coordinate2,
+          s.material,    s.material_binding, s.normal_binding,
+          s.shape_hints, s.texture2,         s.complexity};
 }
 
 std::size_t unshare_property_contexts(scene::Scene& scene,

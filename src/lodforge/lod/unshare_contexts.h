@@ -22,6 +22,7 @@ struct PropertyContext {
   const scene::Node* normal_binding = nullptr;
   const scene::Node* shape_hints = nullptr;
   const scene::Node* texture2 = nullptr;
+  const scene::Node* complexity = nullptr;  ///< Inventor: primitives' tessellation
 
   static PropertyContext of(const scene::TraversalState& state);
   auto operator<=>(const PropertyContext&) const = default;

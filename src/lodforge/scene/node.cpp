@@ -8,9 +8,9 @@
 namespace lodforge::scene {
 namespace {
 
-constexpr std::array<std::string_view, 12> kKindNames = {"BitMask",  "Bool",   "Color", "Enum",
-                                                         "Float",    "Image",  "Long",  "Matrix",
-                                                         "Rotation", "String", "Vec2f", "Vec3f"};
+constexpr std::array<std::string_view, 14> kKindNames = {
+    "BitMask", "Bool",     "Color",  "Enum",  "Float", "Image", "Long",
+    "Matrix",  "Rotation", "String", "Vec2f", "Vec3f", "Node",  "UInt32"};
 
 // Equality of two graphs must also see that sharing matches: a node shared in
 // one graph must map to one node in the other. The map records the pairing.
@@ -24,10 +24,9 @@ class GraphComparer {
     if (rit != reverse_.end()) return false;
     pairs_[a.get()] = b.get();
     reverse_[b.get()] = a.get();
-    if (a->type != b->type || a->name != b->name || a->fields != b->fields ||
-        a->declared != b->declared || a->has_declaration != b->has_declaration ||
-        a->is_a != b->is_a || a->is_raw != b->is_raw || a->raw_body != b->raw_body ||
-        a->children.size() != b->children.size())
+    if (a->type != b->type || a->name != b->name || !fields(*a, *b) || a->declared != b->declared ||
+        a->has_declaration != b->has_declaration || a->is_a != b->is_a || a->is_raw != b->is_raw ||
+        a->raw_body != b->raw_body || a->children.size() != b->children.size())
       return false;
     for (std::size_t i = 0; i < a->children.size(); ++i)
       if (!nodes(a->children[i], b->children[i])) return false;
@@ -35,6 +34,23 @@ class GraphComparer {
   }
 
  private:
+  // Fields compare by value, and the nodes they hold (SFNode) as graphs.
+  bool fields(const Node& a, const Node& b) {
+    if (a.fields.size() != b.fields.size()) return false;
+    for (std::size_t i = 0; i < a.fields.size(); ++i) {
+      const Field& fa = a.fields[i];
+      const Field& fb = b.fields[i];
+      if (fa.value.nodes.size() != fb.value.nodes.size()) return false;
+      Field plain_a = fa, plain_b = fb;
+      plain_a.value.nodes.clear();
+      plain_b.value.nodes.clear();
+      if (plain_a != plain_b) return false;
+      for (std::size_t k = 0; k < fa.value.nodes.size(); ++k)
+        if (!nodes(fa.value.nodes[k], fb.value.nodes[k])) return false;
+    }
+    return true;
+  }
+
   std::unordered_map<const Node*, const Node*> pairs_;
   std::unordered_map<const Node*, const Node*> reverse_;
 };
@@ -83,7 +99,10 @@ std::size_t FieldValue::count() const {
   switch (type.kind) {
     case FieldKind::kBool:
     case FieldKind::kLong:
+    case FieldKind::kUInt32:
       return ints.size();
+    case FieldKind::kNode:
+      return nodes.size();
     case FieldKind::kString:
     case FieldKind::kEnum:
     case FieldKind::kBitMask:
@@ -109,14 +128,23 @@ const FieldValue* Node::value(std::string_view field_name) const {
   return (f && !f->is_raw) ? &f->value : nullptr;
 }
 
+const FieldValue* Node::applied_value(std::string_view field_name) const {
+  const Field* f = find(field_name);
+  return (f && !f->is_raw && !f->ignored) ? &f->value : nullptr;
+}
+
 void Node::set(std::string_view field_name, FieldValue v) {
   if (Field* f = find(field_name)) {
     f->value = std::move(v);
     f->is_raw = false;
     f->raw.clear();
+    f->no_value = false;
     return;
   }
-  fields.push_back(Field{std::string(field_name), std::move(v), {}, false});
+  Field f;
+  f.name = std::string(field_name);
+  f.value = std::move(v);
+  fields.push_back(std::move(f));
 }
 
 bool equal(const Scene& a, const Scene& b) {
@@ -165,7 +193,22 @@ NodePtr copy_subtree(const NodePtr& node, std::unordered_map<const Node*, NodePt
   auto copy = std::make_shared<Node>(*node);
   it->second = copy;
   for (auto& child : copy->children) child = copy_subtree(child, done);
+  for (auto& f : copy->fields)
+    for (auto& n : f.value.nodes)
+      if (n) n = copy_subtree(n, done);
   return copy;
+}
+
+bool is_inventor_header(std::string_view header) {
+  return header.starts_with("#Inventor V");
+}
+
+std::vector<NodePtr> field_nodes(const Node& node) {
+  std::vector<NodePtr> out;
+  for (const auto& f : node.fields)
+    for (const auto& n : f.value.nodes)
+      if (n) out.push_back(n);
+  return out;
 }
 
 NodePtr make_node(std::string type) {

@@ -14,7 +14,8 @@
 
 namespace lodforge::scene {
 
-/// The base types of VRML 1.0 fields; a field is single (SF) or multiple (MF).
+/// The base types of VRML 1.0 fields (and the Open Inventor 2.x types kNode
+/// and kUInt32 after them); a field is single (SF) or multiple (MF).
 enum class FieldKind : std::uint8_t {
   kBitMask,
   kBool,
@@ -28,6 +29,8 @@ enum class FieldKind : std::uint8_t {
   kString,
   kVec2f,
   kVec3f,
+  kNode,    ///< Open Inventor SFNode / MFNode (e.g. a shape's vertexProperty)
+  kUInt32,  ///< Open Inventor SFUInt32 / MFUInt32 (packed colours), written in hexadecimal
 };
 
 struct FieldType {
@@ -44,16 +47,21 @@ bool parse_type_name(std::string_view name, FieldType& out);
 /// Vec2f 2, Vec3f 3), 0 for the others.
 int float_components(FieldKind kind);
 
+struct Node;
+
 /// The value of a field. Which vector holds it depends on the kind:
 ///  - floats:  Color, Float, Matrix, Rotation, Vec2f, Vec3f (components x count, flat)
-///  - ints:    Bool (0/1), Long, Image (width, height, components, then pixels)
+///  - ints:    Bool (0/1), Long, UInt32 (the bit pattern), Image (width,
+///             height, components, then pixels)
 ///  - strings: String (one per value), Enum (one name per value),
 ///             BitMask (the flag names of the one value, e.g. {"SIDES","BOTTOM"})
+///  - nodes:   Node (an SFNode holding NULL has none)
 struct FieldValue {
   FieldType type;
   std::vector<float> floats;
   std::vector<std::int32_t> ints;
   std::vector<std::string> strings;
+  std::vector<std::shared_ptr<Node>> nodes;
 
   /// Number of values (1 for any SF field, except an empty SFImage still counts 1).
   std::size_t count() const;
@@ -62,11 +70,19 @@ struct FieldValue {
 
 /// A field as read. A field the schema does not know (an unknown field of a
 /// known node) has no type: its verbatim text is kept in `raw` and written back.
+///
+/// Open Inventor adds two marks after (or in place of) a value, both kept and
+/// written back: the ignore flag `~` (the field is not applied by property
+/// nodes; traversals take their default instead) and a connection
+/// `= ENGINE_OR_NODE . field` (kept verbatim; the value read is the one used).
 struct Field {
   std::string name;
   FieldValue value;
   std::string raw;
   bool is_raw = false;
+  bool ignored = false;    ///< Inventor's `~`
+  bool no_value = false;   ///< only `~` or a connection was given: `value` is the default
+  std::string connection;  ///< the text after `=`, verbatim; empty if none
   friend bool operator==(const Field&, const Field&) = default;
 };
 
@@ -77,7 +93,6 @@ struct FieldDecl {
   friend bool operator==(const FieldDecl&, const FieldDecl&) = default;
 };
 
-struct Node;
 using NodePtr = std::shared_ptr<Node>;
 
 struct Node {
@@ -100,6 +115,9 @@ struct Node {
   const Field* find(std::string_view field_name) const;
   /// The value of a typed field given in the file, or nullptr.
   const FieldValue* value(std::string_view field_name) const;
+  /// The value a traversal applies: as value(), but nullptr for a field with
+  /// Inventor's ignore flag (the node then acts as if it was not given).
+  const FieldValue* applied_value(std::string_view field_name) const;
   /// Sets (or replaces) a typed field.
   void set(std::string_view field_name, FieldValue v);
 };
@@ -110,6 +128,13 @@ struct Scene {
   std::string header = "#VRML V1.0 ascii";
   std::vector<NodePtr> roots;
 };
+
+/// True if `header` is an Open Inventor ASCII header ("#Inventor V2.1 ascii", ...).
+bool is_inventor_header(std::string_view header);
+
+/// The nodes held by fields of `node` (SFNode / MFNode values, e.g. an
+/// Inventor shape's vertexProperty), in field order.
+std::vector<NodePtr> field_nodes(const Node& node);
 
 /// Deep structural equality: types, names, fields, children and the sharing
 /// pattern (a node shared in one graph must be shared the same way in the other).

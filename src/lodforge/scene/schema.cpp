@@ -1,5 +1,8 @@
 // The VRML 1.0 node catalogue (VRML 1.0 specification, 1995, "Nodes Reference"):
-// every standard node with its fields, their types and default values.
+// every standard node with its fields, their types and default values; then
+// the Open Inventor 2.1 nodes and fields that change what a scene draws (The
+// Inventor Mentor and Coin's class documentation give their fields and
+// defaults), marked as Inventor-only.
 #include "lodforge/scene/schema.h"
 
 #include <algorithm>
@@ -43,6 +46,17 @@ FieldSpec sf_bitmask(std::string name, std::vector<std::string> def,
   v.strings = std::move(def);
   return {std::move(name), {K::kBitMask, false}, std::move(v), std::move(names)};
 }
+FieldSpec sf_node(std::string name) {
+  FieldValue v;
+  v.type = {K::kNode, false};
+  return {std::move(name), {K::kNode, false}, std::move(v), {}};
+}
+FieldSpec mf_uint32(std::string name, std::vector<std::uint32_t> def) {
+  FieldValue v;
+  v.type = {K::kUInt32, true};
+  for (std::uint32_t x : def) v.ints.push_back(static_cast<std::int32_t>(x));
+  return {std::move(name), {K::kUInt32, true}, std::move(v), {}};
+}
 FieldSpec sf_image(std::string name) {
   FieldValue v;
   v.type = {K::kImage, false};
@@ -64,6 +78,82 @@ std::vector<FieldSpec> light_fields(std::initializer_list<FieldSpec> extra) {
 std::vector<FieldSpec> indexed_set_fields() {
   return {mf_long("coordIndex", {0}), mf_long("materialIndex", {-1}), mf_long("normalIndex", {-1}),
           mf_long("textureCoordIndex", {-1})};
+}
+
+// Open Inventor 2.1: fields of the nodes VRML 1.0 shares with it, then the
+// Inventor-only nodes that change the geometry a scene draws. Inventor nodes
+// that do not (DrawStyle, LightModel, Font, Text2, Label, engines, ...) stay
+// unknown nodes, kept verbatim.
+void add_inventor(std::vector<NodeSpec>& s) {
+  auto extend = [&](std::string_view type, std::vector<FieldSpec> fields) {
+    for (auto& n : s)
+      if (n.type == type)
+        for (auto& f : fields) {
+          f.inventor = true;
+          n.fields.push_back(f);
+        }
+  };
+  const std::vector<std::string> kCaching = {"ON", "OFF", "AUTO"};
+  extend("Separator", {sf_enum("renderCaching", "AUTO", kCaching),
+                       sf_enum("boundingBoxCaching", "AUTO", kCaching),
+                       sf_enum("pickCulling", "AUTO", kCaching)});
+  for (const char* t : {"IndexedFaceSet", "IndexedLineSet", "PointSet"})
+    extend(t, {sf_node("vertexProperty")});
+  extend("Texture2", {sf_enum("model", "MODULATE", {"MODULATE", "DECAL", "BLEND", "REPLACE"}),
+                      sf("blendColor", K::kColor, {0, 0, 0})});
+
+  auto inventor = [&](std::string type, bool group, bool separator, std::vector<FieldSpec> fields) {
+    for (auto& f : fields) f.inventor = true;
+    NodeSpec n{std::move(type), group, separator, std::move(fields)};
+    n.inventor = true;
+    s.push_back(std::move(n));
+  };
+  const std::vector<std::string> kVertexBindings = {
+      "OVERALL",          "PER_PART",   "PER_PART_INDEXED",  "PER_FACE",
+      "PER_FACE_INDEXED", "PER_VERTEX", "PER_VERTEX_INDEXED"};
+  inventor("VertexProperty", false, false,
+           {mf("vertex", K::kVec3f, {}), mf("normal", K::kVec3f, {}), mf("texCoord", K::kVec2f, {}),
+            mf("texCoord3", K::kVec3f, {}), mf_uint32("orderedRGBA", {}),
+            sf_enum("materialBinding", "OVERALL", kVertexBindings),
+            sf_enum("normalBinding", "PER_VERTEX_INDEXED", kVertexBindings)});
+  auto non_indexed = [&](std::vector<FieldSpec> extra) {
+    std::vector<FieldSpec> f = {sf_node("vertexProperty"), sf_long("startIndex", 0)};
+    f.insert(f.end(), extra.begin(), extra.end());
+    return f;
+  };
+  inventor("FaceSet", false, false, non_indexed({mf_long("numVertices", {-1})}));
+  inventor("TriangleStripSet", false, false, non_indexed({mf_long("numVertices", {-1})}));
+  inventor("LineSet", false, false, non_indexed({mf_long("numVertices", {-1})}));
+  inventor("QuadMesh", false, false,
+           non_indexed({sf_long("verticesPerColumn", 1), sf_long("verticesPerRow", 1)}));
+  {
+    std::vector<FieldSpec> f = indexed_set_fields();
+    f.insert(f.begin(), sf_node("vertexProperty"));
+    inventor("IndexedTriangleStripSet", false, false, std::move(f));
+  }
+  inventor("Complexity", false, false,
+           {sf_enum("type", "OBJECT_SPACE", {"OBJECT_SPACE", "SCREEN_SPACE", "BOUNDING_BOX"}),
+            sf("value", K::kFloat, {0.5f}), sf("textureQuality", K::kFloat, {0.5f})});
+  inventor("RotationXYZ", false, false,
+           {sf_enum("axis", "X", {"X", "Y", "Z"}), sf("angle", K::kFloat, {0})});
+  inventor("ResetTransform", false, false,
+           {sf_bitmask("whatToReset", {"TRANSFORM"}, {"TRANSFORM", "BBOX"})});
+  inventor("BaseColor", false, false, {mf("rgb", K::kColor, {0.8f, 0.8f, 0.8f})});
+  inventor("PackedColor", false, false, {mf_uint32("orderedRGBA", {0xccccccffu})});
+  inventor("Array", true, false,
+           {sf_enum("origin", "FIRST", {"FIRST", "CENTER", "LAST"}), sf_long("numElements1", 1),
+            sf_long("numElements2", 1), sf_long("numElements3", 1),
+            sf("separation1", K::kVec3f, {1, 0, 0}), sf("separation2", K::kVec3f, {0, 1, 0}),
+            sf("separation3", K::kVec3f, {0, 0, 1})});
+  inventor("MultipleCopy", true, false,
+           {mf("matrix", K::kMatrix, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1})});
+  inventor("LevelOfDetail", true, false, {mf("screenArea", K::kFloat, {0})});
+  inventor("Annotation", true, true, {});
+  inventor(
+      "Selection", true, true,
+      {sf_enum("renderCaching", "AUTO", kCaching), sf_enum("boundingBoxCaching", "AUTO", kCaching),
+       sf_enum("renderCulling", "AUTO", kCaching), sf_enum("pickCulling", "AUTO", kCaching),
+       sf_enum("policy", "SHIFT", {"SINGLE", "TOGGLE", "SHIFT"})});
 }
 
 std::vector<NodeSpec> build() {
@@ -144,6 +234,7 @@ std::vector<NodeSpec> build() {
          sf_enum("map", "NONE", {"NONE", "POINT"})});
   node("WWWInline", {sf_string("name", ""), sf("bboxSize", K::kVec3f, {0, 0, 0}),
                      sf("bboxCenter", K::kVec3f, {0, 0, 0})});
+  add_inventor(s);
   return s;
 }
 
@@ -154,16 +245,16 @@ const std::vector<NodeSpec>& specs() {
 
 }  // namespace
 
-const FieldSpec* NodeSpec::field(std::string_view name) const {
+const FieldSpec* NodeSpec::field(std::string_view name, bool with_inventor) const {
   for (const auto& f : fields)
-    if (f.name == name) return &f;
+    if (f.name == name && (with_inventor || !f.inventor)) return &f;
   return nullptr;
 }
 
-const NodeSpec* find_node_spec(std::string_view type) {
+const NodeSpec* find_node_spec(std::string_view type, bool with_inventor) {
   const auto& t = specs();
   auto it = std::find_if(t.begin(), t.end(), [&](const NodeSpec& s) { return s.type == type; });
-  return it == t.end() ? nullptr : &*it;
+  return it == t.end() || (it->inventor && !with_inventor) ? nullptr : &*it;
 }
 
 std::span<const NodeSpec> node_specs() {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "lodforge/core/error.h"
+#include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 
 namespace lodforge::scene {
@@ -49,11 +50,21 @@ std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
 }
 
 TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
+  if (has_indexed_equivalent(visit.shape.type)) {
+    // Inventor's strips, quad meshes and face sets: as the indexed set that
+    // draws the same.
+    const IndexedEquivalent eq = to_indexed_shape(visit);
+    return shape_mesh(ShapeVisit{*eq.shape, eq.state, visit.camera, visit.path, visit.child_index,
+                                 visit.path_index},
+                      options, log);
+  }
   const Node& shape = visit.shape;
   TriangleMesh mesh;
   const std::string& t = shape.type;
   if (t == "Cube" || t == "Sphere" || t == "Cone" || t == "Cylinder") {
-    mesh = tessellate_primitive(shape, options.tessellation);
+    TessellateOptions tess = options.tessellation;
+    tess.complexity = complexity_value(visit.state);
+    mesh = tessellate_primitive(shape, tess);
   } else if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
     mesh.positions = coordinates(visit.state, shape);
     const FieldValue* idx = field_or_default(shape, "coordIndex");

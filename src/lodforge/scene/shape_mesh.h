@@ -2,7 +2,10 @@
 /// The geometry of one shape met by the traversal, as a triangle mesh:
 /// IndexedFaceSet faces triangulated (concave and non-planar faces too),
 /// IndexedLineSet polylines as segments, PointSet points as vertices,
-/// primitives tessellated. AsciiText has no geometry here.
+/// primitives tessellated (by the state's Complexity), Inventor's FaceSet,
+/// TriangleStripSet, IndexedTriangleStripSet and QuadMesh as the faces of
+/// their IndexedFaceSet equivalent, LineSet as segments (inventor_shapes.h).
+/// AsciiText has no geometry here.
 #include "lodforge/core/log.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/mesh/triangulate_polygon.h"

@@ -15,6 +15,7 @@ void count_distinct(const NodePtr& n, std::unordered_set<const Node*>& seen, Sce
   ++s.node_counts[n->type];
   if (n->type == "Coordinate3")
     if (const FieldValue* p = field_or_default(*n, "point")) s.coordinate_points += p->count();
+  for (const auto& c : field_nodes(*n)) count_distinct(c, seen, s);  // vertexProperty
   for (const auto& c : n->children) count_distinct(c, seen, s);
 }
 

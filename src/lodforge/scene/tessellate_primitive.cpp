@@ -101,8 +101,18 @@ class Builder {
 
 }  // namespace
 
+int segments_for_complexity(float complexity) {
+  const float c = std::isfinite(complexity) ? std::clamp(complexity, 0.f, 1.f) : 0.5f;
+  return std::max(4, int(std::lround(48 * c)));
+}
+
+int segments_of(const TessellateOptions& options) {
+  return options.segments > 0 ? std::max(options.segments, 3)
+                              : segments_for_complexity(options.complexity);
+}
+
 TriangleMesh tessellate_primitive(const Node& node, const TessellateOptions& options) {
-  int seg = std::max(options.segments, 3);
+  int seg = segments_of(options);
   Builder b;
   const std::string& t = node.type;
   if (t == "Cube") {

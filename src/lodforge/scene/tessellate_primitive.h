@@ -9,9 +9,21 @@ namespace lodforge::scene {
 
 struct TessellateOptions {
   /// Segments around the axis (Sphere, Cone, Cylinder); Sphere uses half as
-  /// many rings. At least 3.
-  int segments = 24;
+  /// many rings. At least 3; 0: segments_for_complexity(complexity).
+  int segments = 0;
+  /// Open Inventor's Complexity value (0..1) the segments follow when
+  /// `segments` is 0; 0.5, the default, is the tessellation of a scene
+  /// without Complexity (VRML 1.0 has none).
+  float complexity = 0.5f;
 };
+
+/// Segments around the axis for a Complexity value: linear in it, as
+/// Inventor's primitives are, 24 at the default 0.5, 4 at 0 and 48 at 1
+/// (values outside 0..1 are clamped).
+int segments_for_complexity(float complexity);
+
+/// The segments `options` asks for.
+int segments_of(const TessellateOptions& options);
 
 /// Tessellates a Cube, Sphere, Cone or Cylinder node (fields or their spec
 /// defaults; Cone and Cylinder honour `parts`; a negative size counts as its

@@ -6,9 +6,30 @@
 ///
 /// Group semantics: Separator, WWWAnchor, LOD and WWWInline save and restore
 /// the state; TransformSeparator saves only the transform; Group and Switch
-/// pass state on. Switch follows whichChild (-1 none, -3 all); LOD takes the
+/// pass state on. Switch follows whichChild (-1 none, -3 all, and Inventor's
+/// -2: the choice of the Switch it is traversed under); LOD takes the
 /// child chosen by TraverseOptions (clamped to its last child).
+///
+/// Open Inventor nodes (files with an Inventor header) are part of the same
+/// state machine, so everything built on the traversal (info, lod, render,
+/// compare) sees the same geometry:
+///  - RotationXYZ rotates, ResetTransform resets the transform;
+///  - Array and MultipleCopy traverse their children once per instance, each
+///    under its own translation or matrix (and state saved around each, as
+///    Inventor does); LevelOfDetail takes its child as LOD does;
+///  - Complexity is kept in the state (complexity_value) for tessellation;
+///  - BaseColor and PackedColor set the material; VertexProperty, as a node
+///    or as a shape's vertexProperty field, sets the coordinates, normals,
+///    texture coordinates and colours (with its bindings) it has values for.
+///    Their values are seen as the VRML 1.0 nodes Coordinate3, Normal,
+///    TextureCoordinate2, Material, MaterialBinding and NormalBinding that the
+///    traversal makes for them (TraversalState::derived keeps them alive: a
+///    visitor that keeps such pointers past its call keeps a copy of the
+///    state);
+///  - a property node whose every field carries the ignore flag `~` is not
+///    applied, and the transform nodes take the default of an ignored field.
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -29,7 +50,17 @@ struct TraversalState {
   const Node* shape_hints = nullptr;
   const Node* texture2 = nullptr;
   const Node* font_style = nullptr;
+  const Node* complexity = nullptr;  ///< Inventor Complexity; nullptr: value 0.5
+  /// Inventor Switch whichChild -2 takes this (the enclosing Switch's choice).
+  int switch_choice = -1;
+  /// Owns the nodes the traversal made for Inventor property nodes (see the
+  /// file comment); every copy of the state keeps them alive.
+  std::shared_ptr<const void> derived;
 };
+
+/// The Complexity value in effect, clamped to 0..1 (Inventor's default 0.5
+/// without a Complexity node).
+float complexity_value(const TraversalState& state);
 
 struct ShapeVisit {
   const Node& shape;  ///< IndexedFaceSet, IndexedLineSet, PointSet, Cube, ...
@@ -60,10 +91,12 @@ struct TraverseOptions {
 bool is_shape_type(std::string_view type);
 
 /// The local matrix of a transform node (Transform, MatrixTransform,
-/// Translation, Rotation, Scale); identity for any other node.
+/// Translation, Rotation, Scale, Inventor's RotationXYZ); identity for any
+/// other node.
 Mat4 local_transform(const Node& node);
 
-/// Walks the scene and calls `visit` for every shape met.
+/// Walks the scene and calls `visit` for every shape met. Throws DataError
+/// ("line N: ...") for an Inventor Array of more than a million instances.
 void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& visit,
               const TraverseOptions& options = {});
 

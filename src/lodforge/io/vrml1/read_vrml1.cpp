@@ -132,6 +132,7 @@ class Parser {
       if (first.starts_with("#Inventor") && first.find("binary") != std::string_view::npos)
         lex_.fail(at, "binary Open Inventor files are not supported; expected an ASCII file");
       result_.scene.header = std::string(first);
+      inventor_ = scene::is_inventor_header(first);
       return;
     }
     if (first.starts_with("#VRML V2.0") || first.starts_with("#X3D"))
@@ -207,7 +208,8 @@ class Parser {
     Token open = lex_.next();
     if (open.kind != TokenKind::kLBrace)
       lex_.expected(open, fmt::format("'{{' after node type {}", type.text));
-    const scene::NodeSpec* spec = scene::find_node_spec(node->type);
+    // Inventor node types and fields count only in Inventor files.
+    const scene::NodeSpec* spec = scene::find_node_spec(node->type, inventor_);
 
     const Token& first = lex_.peek();
     if (first.kind == TokenKind::kWord && first.text == "fields") {
@@ -257,7 +259,17 @@ class Parser {
                           options_.source_name, word.line, word.col, word.text, node->type));
         scene::Field f;
         f.name = std::string(word.text);
-        f.value = parse_value(ftype, word, enum_names);
+        if (!parse_value_marks(f, depth)) {
+          f.value = ftype.kind == FieldKind::kNode ? parse_node_value(ftype, word, depth)
+                                                   : parse_value(ftype, word, enum_names);
+          parse_value_marks(f, depth);
+        } else {
+          f.no_value = true;
+          if (const scene::FieldSpec* fs = spec ? spec->field(word.text, inventor_) : nullptr)
+            f.value = fs->default_value;
+          else
+            f.value.type = ftype;
+        }
         node->fields.push_back(std::move(f));
         continue;
       }
@@ -277,7 +289,12 @@ class Parser {
       scene::Field f;
       f.name = std::string(word.text);
       f.is_raw = true;
-      f.raw = std::string(parse_raw_value(word));
+      if (!parse_value_marks(f, depth)) {
+        f.raw = std::string(parse_raw_value(word));
+        parse_value_marks(f, depth);
+      } else {
+        f.no_value = true;
+      }
       result_.log.warn(
           LogCategory::kParse,
           fmt::format("{}:{}:{}: unknown field >{}< of {} kept as it is", options_.source_name,
@@ -289,10 +306,85 @@ class Parser {
     return counted(node, type);
   }
 
+  // Open Inventor's marks after a field's value, or in its place: the ignore
+  // flag '~' and a connection '= NODE . field' (NODE an engine or a node,
+  // with DEF/USE; kept verbatim, its DEFs bound). Returns true if any was read.
+  bool parse_value_marks(scene::Field& f, int depth) {
+    bool any = false;
+    while (lex_.peek().kind == TokenKind::kWord) {
+      const Token t = lex_.peek();
+      if (t.text == "~") {
+        lex_.next();
+        f.ignored = true;
+        any = true;
+      } else if (t.text == "=" && f.connection.empty()) {
+        lex_.next();
+        const Token from = lex_.next();
+        Token dot;
+        if (from.kind == TokenKind::kWord && from.text == "USE" &&
+            lex_.peek().kind == TokenKind::kWord &&
+            lex_.peek().text.find('.') != std::string_view::npos) {
+          // "USE name.field": a name holds no '.', so the word splits there.
+          const Token name = lex_.next();
+          const std::string_view node_name = name.text.substr(0, name.text.find('.'));
+          if (!defs_.count(std::string(node_name)))
+            lex_.fail(name, fmt::format("USE of undefined node name '{}'", node_name));
+          dot = name;
+          dot.text = name.text.substr(node_name.size());
+        } else {
+          parse_node_from(from, depth + 1);
+          dot = lex_.next();
+        }
+        Token last = dot;
+        if (dot.kind == TokenKind::kWord && dot.text == ".") {
+          last = lex_.next();
+          if (last.kind != TokenKind::kWord)
+            lex_.expected(last, fmt::format("the name of the field connected to '{}'", f.name));
+        } else if (dot.kind != TokenKind::kWord || dot.text.size() < 2 || dot.text[0] != '.') {
+          lex_.expected(dot,
+                        fmt::format("'.' and a field name after the connection of '{}'", f.name));
+        }
+        const char* end = last.text.data() + last.text.size();
+        f.connection.assign(from.text.data(), static_cast<std::size_t>(end - from.text.data()));
+        any = true;
+      } else {
+        break;
+      }
+    }
+    return any;
+  }
+
+  // An SFNode / MFNode value: a node (DEF, USE or a body), NULL, or for
+  // MFNode a bracketed list of them.
+  FieldValue parse_node_value(FieldType type, const Token& field, int depth) {
+    FieldValue v;
+    v.type = type;
+    auto one = [&](Token t) {
+      if (t.kind == TokenKind::kWord && t.text == "NULL") return;
+      if (t.kind != TokenKind::kWord || is_number_start(t.text))
+        lex_.expected(t, fmt::format("a node or NULL for field '{}'", field.text));
+      v.nodes.push_back(parse_node_from(t, depth + 1));
+    };
+    Token t = lex_.next();
+    if (!type.multi || t.kind != TokenKind::kLBracket) {
+      one(t);
+      return v;
+    }
+    while (true) {
+      Token n = lex_.next();
+      if (n.kind == TokenKind::kComma) continue;
+      if (n.kind == TokenKind::kRBracket) break;
+      if (n.kind == TokenKind::kEnd)
+        lex_.expected(n, fmt::format("a node or ']' for field '{}'", field.text));
+      one(n);
+    }
+    return v;
+  }
+
   bool find_field(const Node& node, const scene::NodeSpec* spec, std::string_view name,
                   FieldType& type, const std::vector<std::string>*& enum_names) {
     if (spec) {
-      if (const scene::FieldSpec* fs = spec->field(name)) {
+      if (const scene::FieldSpec* fs = spec->field(name, inventor_)) {
         type = fs->type;
         enum_names = &fs->enum_names;
         return true;
@@ -316,7 +408,9 @@ class Parser {
       if (t.kind == TokenKind::kComma) continue;
       if (t.kind == TokenKind::kRBracket) break;
       scene::FieldDecl d;
-      if (t.kind != TokenKind::kWord || !scene::parse_type_name(t.text, d.type))
+      // SFNode / MFNode and SFUInt32 / MFUInt32 are Inventor's types.
+      if (t.kind != TokenKind::kWord || !scene::parse_type_name(t.text, d.type) ||
+          (!inventor_ && (d.type.kind == FieldKind::kNode || d.type.kind == FieldKind::kUInt32)))
         lex_.expected(t, "a field type such as SFFloat or MFVec3f, or ']'");
       Token name = lex_.next();
       if (name.kind != TokenKind::kWord) lex_.expected(name, "a field name");
@@ -408,8 +502,11 @@ class Parser {
         return;
       }
       case FieldKind::kLong:
+      case FieldKind::kUInt32:
         out.ints.push_back(read_int(field, type, in_list));
         return;
+      case FieldKind::kNode:
+        lex_.fail_here(fmt::format("node field '{}' in a list", field.text));
       case FieldKind::kBool: {
         if (in_list) lex_.skip_space(true);
         Token t = lex_.next();
@@ -514,7 +611,7 @@ class Parser {
                                      scene::type_name(type), field.text, n, count));
       return v;
     }
-    if (type.kind == FieldKind::kLong) {
+    if (type.kind == FieldKind::kLong || type.kind == FieldKind::kUInt32) {
       std::int32_t i;
       while (lex_.read_int(i, true)) v.ints.push_back(i);
       if (!lex_.accept_char(']', true)) bad_value(field, type, "an integer or ']'");
@@ -588,6 +685,7 @@ class Parser {
   SharedState& shared_;
   const int depth_;
   std::unordered_map<std::string, NodePtr> defs_;
+  bool inventor_ = false;  // an Inventor header: Inventor node types and fields are known
 };
 
 }  // namespace

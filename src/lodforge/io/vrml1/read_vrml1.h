@@ -13,6 +13,13 @@
 /// parsed like any node; without one, their body is kept verbatim. Unknown
 /// fields of known nodes are kept verbatim too. Both produce a warning naming
 /// the node and its line range.
+///
+/// Open Inventor 2.x ASCII (a `#Inventor V2.1 ascii` header, or V2.0, V1.0):
+/// the Inventor node types and fields of the schema (scene/schema.h) are known
+/// as well, SFNode fields (a shape's `vertexProperty VertexProperty { ... }`)
+/// hold nodes, and a value may carry the ignore flag `~` or a connection
+/// `= Engine { ... } . output` (both kept, and written back). Other Inventor
+/// nodes (DrawStyle, Text2, engines, ...) are unknown nodes, kept verbatim.
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -40,6 +40,9 @@ class Writer {
  private:
   void count_refs(const NodePtr& n) {
     if (++refs_[n.get()] > 1) return;
+    for (const auto& f : n->fields)
+      for (const auto& c : f.value.nodes)
+        if (c) count_refs(c);
     for (const auto& c : n->children) count_refs(c);
   }
 
@@ -115,11 +118,19 @@ class Writer {
     for (const auto& f : n->fields) {
       newline(depth + 1);
       out_ += f.name;
-      out_ += ' ';
-      if (f.is_raw)
-        out_ += f.raw;
-      else
-        write_value(f.value, depth + 1);
+      if (!f.no_value) {
+        out_ += ' ';
+        if (f.is_raw)
+          out_ += f.raw;
+        else
+          write_value(f.value, depth + 1);
+      }
+      // Open Inventor's marks: the ignore flag and a connection, as read.
+      if (f.ignored) out_ += " ~";
+      if (!f.connection.empty()) {
+        out_ += " = ";
+        out_ += f.connection;
+      }
     }
     for (const auto& c : n->children) {
       newline(depth + 1);
@@ -185,6 +196,38 @@ class Writer {
           write_list(v.floats, per, opt_.floats_per_line, depth, emit_float);
         else
           write_list(v.floats, v.floats.size(), opt_.floats_per_line, depth, emit_float);
+        return;
+      }
+      case FieldKind::kNode: {
+        // SFNode: the node or NULL; MFNode: a list of nodes.
+        if (!v.type.multi) {
+          if (v.nodes.empty() || !v.nodes[0])
+            out_ += "NULL";
+          else
+            write_node(v.nodes[0], depth);
+          return;
+        }
+        out_ += '[';
+        for (std::size_t i = 0; i < v.nodes.size(); ++i) {
+          if (i) out_ += ',';
+          newline(depth + 1);
+          if (v.nodes[i])
+            write_node(v.nodes[i], depth + 1);
+          else
+            out_ += "NULL";
+        }
+        if (!v.nodes.empty()) newline(depth);
+        out_ += ']';
+        return;
+      }
+      case FieldKind::kUInt32: {
+        auto emit_hex = [this](std::int32_t i) {
+          fmt::format_to(std::back_inserter(out_), "{:#x}", static_cast<std::uint32_t>(i));
+        };
+        if (v.type.multi)
+          write_list(v.ints, 1, opt_.ints_per_line, depth, emit_hex);
+        else
+          write_list(v.ints, v.ints.size(), opt_.ints_per_line, depth, emit_hex);
         return;
       }
       case FieldKind::kLong:

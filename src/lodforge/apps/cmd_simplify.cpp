@@ -32,7 +32,7 @@
 // JSON keys (stdout, --json): input, output, method, input_vertices,
 // input_triangles, target_triangles (null with --error alone), max_error
 // (null without --error), output_vertices, output_triangles, output_lines,
-// error, error_kind, hausdorff (two-sided, same margin), simplifier_estimate,
+// error, error_kind, simplifier_estimate,
 // stop_reason, stop_detail, simplifier_runs, measurements, time_ms (the
 // simplification and its measurements: no file reading or writing;
 // steady_clock). JSON has no infinity: a figure that is not finite prints as
@@ -159,7 +159,6 @@ int run_simplify(const SimplifySettings& s) {
     j["output_lines"] = r.mesh.lines.size();
     j["error"] = finite_or_null(m.error);
     j["error_kind"] = error_kind();
-    j["hausdorff"] = finite_or_null(m.hausdorff);
     j["simplifier_estimate"] = finite_or_null(r.error);
     j["stop_reason"] = to_string(r.stop_reason);
     j["stop_detail"] = r.stop_detail;
@@ -177,9 +176,9 @@ int run_simplify(const SimplifySettings& s) {
   if (!r.mesh.lines.empty()) fmt::print(stderr, ", {} line segments", r.mesh.lines.size());
   if (by_count) fmt::print(stderr, " (target {})", target.triangle_target(mesh.triangle_count()));
   fmt::print(stderr,
-             "\n  error {:.6g} ({})\n  two-sided Hausdorff {:.6g} (measured, same margin)\n"
+             "\n  error {:.6g} ({})\n"
              "  stopped: {}: {}\n  time {:.1f} ms ({} simplifier runs, {} measurements)\n",
-             m.error, error_kind(), m.hausdorff, to_string(r.stop_reason), r.stop_detail, time_ms,
+             m.error, error_kind(), to_string(r.stop_reason), r.stop_detail, time_ms,
              m.simplifier_runs, m.measurements);
   return 0;
 }

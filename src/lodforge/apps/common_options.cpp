@@ -6,10 +6,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <string_view>
 #include <utility>
-#include <filesystem>
 
 #include <fmt/core.h>
 

@@ -5,8 +5,8 @@
 #include <unordered_set>
 
 #include "lodforge/apps/common_options.h"
-#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
 

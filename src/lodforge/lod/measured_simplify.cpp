@@ -18,6 +18,9 @@
 namespace lodforge {
 namespace {
 
+/// Area samples of one measurement at most (the search makes dozens).
+constexpr std::size_t kMaxSamples = 100000;
+
 SimplifyResult run_to_count(const TriangleMesh& mesh, SimplifyMethod method, std::size_t count) {
   SimplifyTarget target;
   target.triangles = std::max<std::size_t>(count, 1);
@@ -60,7 +63,9 @@ class Search {
   Search(const TriangleMesh& mesh, const MeasuredSimplifyOptions& o)
       : mesh_(mesh),
         options_(o),
-        meter_(mesh, {.samples = measure_samples_for(mesh.triangle_count(), o.samples)}) {}
+        meter_(mesh, {.samples = o.samples ? o.samples
+                                           : std::min(measure_samples_for(mesh.triangle_count(), 0),
+                                                      kMaxSamples)}) {}
 
   MeasuredSimplifyResult run() {
     const std::size_t n = mesh_.triangle_count();
@@ -90,7 +95,6 @@ class Search {
 
   MeasuredSimplifyResult finish(MeasuredSimplifyResult out) const {
     if (out.measurements == 0) out.error = bound(out.result.mesh, out);
-    out.hausdorff = kErrorMargin * meter_.hausdorff(out.result.mesh);
     return out;
   }
 

@@ -31,7 +31,8 @@ struct MeasuredSimplifyOptions {
   /// the measured bound); both given: the first limit met ends it. `{}`
   /// keeps the mesh as it is.
   SimplifyTarget target;
-  /// Area samples of each measurement (0: measure_samples_for the input).
+  /// Area samples of each measurement (0: measure_samples_for the input, at
+  /// most 100 000).
   std::size_t samples = 0;
 };
 
@@ -42,9 +43,6 @@ struct MeasuredSimplifyResult {
   /// kErrorMargin x the measured largest distance from the result to the
   /// input (model units): an upper bound on the one-sided Hausdorff distance.
   double error = 0;
-  /// kErrorMargin x the measured two-sided Hausdorff distance (it also
-  /// counts parts of the input that the result lost).
-  double hausdorff = 0;
   std::size_t simplifier_runs = 0;  ///< simplifications the search made
   std::size_t measurements = 0;     ///< one-sided measurements it made
 };

@@ -27,7 +27,9 @@ if [ "${1:-}" = "--sanitize" ]; then
         VertexDecimation.BunnyBeatsTheThesis
         VertexClustering.BunnyBeatsTheThesis
         NodeDistanceSums.DistanceMetricBeatsAreaOnTheBunny
-        CompareMeshes.StanfordBunnyAgreesWithBruteForce)
+        CompareMeshes.StanfordBunnyAgreesWithBruteForce
+        "SharedMeshes/MeasuredErrorTest[ -~]*"
+        "SharedMeshes/ErrorBudgetTest[ -~]*")
   exclude=(-E "^($(IFS='|'; echo "${slow[*]}" | sed 's/\./\\./g'))\$")
 fi
 cmake -S . -B "$build" -G Ninja "${args[@]}" >/dev/null

@@ -283,7 +283,10 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
         for (std::size_t k = 0; k < e.props.size(); ++k) {
           const Property& p = e.props[k];
           if (p.list) {
-            auto n = static_cast<std::int64_t>(in.value(p.count_type));
+            const double count = in.value(p.count_type);
+            if (!(count >= 0 && count <= double(std::numeric_limits<std::int32_t>::max())))
+              throw DataError(fmt::format("{}: list length {} is not a count", name, count));
+            const auto n = static_cast<std::int64_t>(count);
             for (std::int64_t j = 0; j < n; ++j) in.value(p.type);
           } else {
             v[k] = in.value(p.type);

@@ -13,6 +13,19 @@
 namespace lodforge::scene {
 namespace {
 
+// A field's values, or none when the node's type has no such field.
+const std::vector<std::int32_t>& ints_of(const Node& node, std::string_view field) {
+  static const std::vector<std::int32_t> kNone;
+  const FieldValue* v = field_or_default(node, field);
+  return v ? v->ints : kNone;
+}
+
+const std::vector<float>& floats_of(const Node& node, std::string_view field) {
+  static const std::vector<float> kNone;
+  const FieldValue* v = field_or_default(node, field);
+  return v ? v->floats : kNone;
+}
+
 constexpr std::array<std::string_view, 5> kTypes = {
     "FaceSet", "TriangleStripSet", "IndexedTriangleStripSet", "QuadMesh", "LineSet"};
 
@@ -60,7 +73,7 @@ class Converter {
   explicit Converter(const ShapeVisit& visit) : shape_(visit.shape), state_(visit.state) {
     static const Node kDefaultCoords{.type = "Coordinate3"};
     const Node& c = state_.coordinate3 ? *state_.coordinate3 : kDefaultCoords;
-    coords_ = std::int64_t(field_or_default(c, "point")->floats.size() / 3);
+    coords_ = std::int64_t(floats_of(c, "point").size() / 3);
   }
 
   IndexedEquivalent run() {
@@ -94,7 +107,7 @@ class Converter {
   std::vector<std::int64_t> counts(std::int64_t start) const {
     std::vector<std::int64_t> out;
     std::int64_t used = 0;
-    for (std::int32_t n : field_or_default(shape_, "numVertices")->ints) {
+    for (std::int32_t n : ints_of(shape_, "numVertices")) {
       std::int64_t k = n < 0 ? std::max<std::int64_t>(0, coords_ - start - used) : n;
       out.push_back(k);
       used += k;
@@ -141,7 +154,7 @@ class Converter {
   }
 
   void indexed_strips() {
-    const std::vector<std::int32_t>& ci = field_or_default(shape_, "coordIndex")->ints;
+    const std::vector<std::int32_t>& ci = ints_of(shape_, "coordIndex");
     std::vector<Corner> v;
     std::int32_t seq = 0, part = 0;
     auto flush = [&] {
@@ -199,8 +212,8 @@ class Converter {
     const Per per = per_of(binding_node, fallback, indexed_binding);
     if (per == Per::kOverall) return binding_node;
     const bool indexed_shape = shape_.type == "IndexedTriangleStripSet";
-    const std::vector<std::int32_t>& given = field_or_default(shape_, index_field)->ints;
-    const std::vector<std::int32_t>& ci = field_or_default(shape_, "coordIndex")->ints;
+    const std::vector<std::int32_t>& given = ints_of(shape_, index_field);
+    const std::vector<std::int32_t>& ci = ints_of(shape_, "coordIndex");
     // An indexed shape under an *_INDEXED binding reads its index field.
     const bool reads_index = indexed_shape && indexed_binding;
     std::vector<std::int32_t> idx;
@@ -250,8 +263,8 @@ class Converter {
       // Texture coordinates follow the vertices (the indexed strip set: its
       // textureCoordIndex, or coordIndex).
       const bool indexed_shape = shape_.type == "IndexedTriangleStripSet";
-      const std::vector<std::int32_t>& given = field_or_default(shape_, "textureCoordIndex")->ints;
-      const std::vector<std::int32_t>& input_ci = field_or_default(shape_, "coordIndex")->ints;
+      const std::vector<std::int32_t>& given = ints_of(shape_, "textureCoordIndex");
+      const std::vector<std::int32_t>& input_ci = ints_of(shape_, "coordIndex");
       std::vector<std::int32_t> idx;
       for (const Face& f : faces_) {
         for (const Corner& c : f.corners)

@@ -65,6 +65,21 @@ TEST(RangeScan, BadFilesAreDataErrors) {
   std::string bad_index = kAscii;
   bad_index.replace(bad_index.find("1 4\n0\n"), 6, "1 9\n0\n");
   EXPECT_THROW(read_range_grid_data(bad_index, "t.ply"), DataError);
+  // Float-typed lists: an index or a length that is no integer is refused, not cast.
+  std::string float_lists = kAscii;
+  float_lists.replace(float_lists.find("list uchar int"), 14, "list float float");
+  for (const char* row : {"1 inf\n0\n", "1 -5\n0\n", "1 4e12\n0\n", "inf 4\n0\n", "-1 4\n0\n"}) {
+    std::string bad = float_lists;
+    bad.replace(bad.find("1 4\n0\n"), 6, row);
+    try {
+      read_range_grid_data(bad, "t.ply");
+      ADD_FAILURE() << row;
+    } catch (const DataError& e) {
+      EXPECT_NE(std::string(e.what()).find("t.ply: "), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(read_range_grid_data(float_lists, "t.ply").grid,
+            (std::vector<std::int32_t>{0, 1, 2, 3, 4, -1}));
   std::string cut = kAscii;
   cut.resize(cut.size() - 8);
   try {

@@ -203,6 +203,13 @@ std::vector<Vec3> RangeScan::normals() const {
 
 RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
+  // A list's length, refused unless it is a count (a float type may hold anything).
+  auto list_length = [&](Body& in, Type count_type) {
+    const double count = in.value(count_type);
+    if (!(count >= 0 && count <= double(std::numeric_limits<std::int32_t>::max())))
+      throw fail(fmt::format("list length {} is not a count", count));
+    return static_cast<std::int64_t>(count);
+  };
   if (data.substr(0, 4) != "ply\n" && data.substr(0, 5) != "ply\r\n") throw fail("not a PLY file");
   std::size_t end = data.find("end_header");
   if (end == std::string_view::npos) throw fail("PLY header without end_header");
@@ -283,10 +290,7 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
         for (std::size_t k = 0; k < e.props.size(); ++k) {
           const Property& p = e.props[k];
           if (p.list) {
-            const double count = in.value(p.count_type);
-            if (!(count >= 0 && count <= double(std::numeric_limits<std::int32_t>::max())))
-              throw DataError(fmt::format("{}: list length {} is not a count", name, count));
-            const auto n = static_cast<std::int64_t>(count);
+            const std::int64_t n = list_length(in, p.count_type);
             for (std::int64_t j = 0; j < n; ++j) in.value(p.type);
           } else {
             v[k] = in.value(p.type);
@@ -312,16 +316,20 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
             in.value(p.type);
             continue;
           }
-          auto n = static_cast<std::int64_t>(in.value(p.count_type));
+          const std::int64_t n = list_length(in, p.count_type);
           for (std::int64_t j = 0; j < n; ++j) {
-            double idx = in.value(p.type);
-            if (j == 0) scan.grid[i] = static_cast<std::int32_t>(idx);
+            const double idx = in.value(p.type);
+            if (j != 0) continue;
+            // The range against the vertex count is checked once every element is read.
+            if (!(idx >= -1 && idx <= double(std::numeric_limits<std::int32_t>::max())))
+              throw fail(fmt::format("range_grid index {} is not a vertex index", idx));
+            scan.grid[i] = static_cast<std::int32_t>(idx);
           }
         }
     } else {
       for (std::int64_t i = 0; i < e.count; ++i)
         for (const Property& p : e.props) {
-          std::int64_t n = p.list ? static_cast<std::int64_t>(in.value(p.count_type)) : 1;
+          const std::int64_t n = p.list ? list_length(in, p.count_type) : 1;
           for (std::int64_t j = 0; j < n; ++j) in.value(p.type);
         }
     }

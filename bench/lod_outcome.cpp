@@ -7,7 +7,10 @@
 // error range of the same camera, and gone at the same vanishing distance.
 // Both sides use each shape's bounding sphere, largest instance scale and
 // instance count from lodforge's statistics. Also the output file's size
-// against the input's.
+// against the input's, and a bound: the same peer with levels every 10 % of
+// the triangles instead of every 50 %, each shown from its own distance
+// with no spacing rule and no margin, which is about the least any chain of
+// meshopt_simplify's quality can draw.
 //
 //   lod_outcome [--curve] FILE...  (VRML 1.0 scenes; a mesh file (PLY, OBJ,
 //                                   ...) is made a scene of one IndexedFaceSet
@@ -16,7 +19,8 @@
 // --curve also prints, per shape, both chains (triangles, switching distance
 // in radii) and the triangles each side draws at every sampled distance.
 //
-// Prints a Markdown table on stdout; ratio = lodforge / peer (target <= 0.7).
+// Prints a Markdown table on stdout; ratio = lodforge / peer (target <= 0.7),
+// bound = the fine chain / peer.
 #include <fmt/core.h>
 #include <meshoptimizer.h>
 
@@ -58,7 +62,9 @@ struct PeerChain {
   std::vector<double> distance;
 };
 
-PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions& range) {
+// `step`: each level's target is this fraction of the one before.
+PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions& range,
+                     double step) {
   PeerChain c{{mesh.triangle_count()}, {0.0}};
   std::vector<unsigned> indices;
   for (const auto& t : mesh.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
@@ -67,12 +73,14 @@ PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions
   DeviationMeter meter(
       mesh, {.samples = std::clamp<std::size_t>(20 * mesh.triangle_count(), 20000, 200000)});
   double worst = 0;
-  for (std::size_t target = indices.size() / 2; target >= 3; target /= 2) {
+  for (auto target = std::size_t(step * double(indices.size())); target >= 3;
+       target = std::size_t(step * double(target))) {
     std::vector<unsigned> out(indices.size());
     out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(),
                                 mesh.positions.size(), 3 * sizeof(float), target / 3 * 3,
                                 std::numeric_limits<float>::max(), 0, nullptr));
-    if (out.empty() || out.size() / 3 >= c.triangles.back()) break;
+    if (out.empty()) break;
+    if (out.size() / 3 >= c.triangles.back()) continue;
     TriangleMesh level;
     level.positions = mesh.positions;
     for (std::size_t i = 0; i < out.size(); i += 3)
@@ -86,8 +94,16 @@ PeerChain peer_chain(const TriangleMesh& mesh, double radius, const RangeOptions
   return c;
 }
 
+// The triangles a chain draws at distance d (scale k, nothing past `vanish`).
+std::size_t drawn(const PeerChain& c, double k, double d, double vanish) {
+  if (d >= vanish) return 0;
+  std::size_t p = 0;
+  while (p + 1 < c.distance.size() && k * c.distance[p + 1] <= d) ++p;
+  return c.triangles[p];
+}
+
 struct Outcome {
-  double lodforge = 0, peer = 0;
+  double lodforge = 0, peer = 0, fine = 0;
   std::size_t input_bytes = 0, output_bytes = 0;
   std::size_t shapes = 0;
 };
@@ -120,7 +136,8 @@ Outcome measure(const std::string& path, bool curve) {
     auto m = meshes.find(s.line);
     if (m == meshes.end() || m->second.triangles.empty()) continue;
     ++o.shapes;
-    const PeerChain peer = peer_chain(m->second, s.radius, range);
+    const PeerChain peer = peer_chain(m->second, s.radius, range, 0.5);
+    const PeerChain fine = peer_chain(m->second, s.radius, range, 0.9);
     const double k = s.scale > 0 ? s.scale : 1.0;
     const double vanish = k * switch_distance(vanishing_error(s.radius), 1, s.radius, range);
     if (curve) {
@@ -132,7 +149,7 @@ Outcome measure(const std::string& path, bool curve) {
       fmt::print(stderr, "\n  peer:    ");
       for (std::size_t l = 0; l < peer.triangles.size(); ++l)
         fmt::print(stderr, " {}@{:.2f}", peer.triangles[l], peer.distance[l] / s.radius);
-      fmt::print(stderr, "\n  d/r lodforge peer\n");
+      fmt::print(stderr, "\n  d/r lodforge peer bound\n");
     }
     for (int i = 0; i < kDistances; ++i) {
       const double d = k * s.radius * std::pow(kFarthest, double(i) / (kDistances - 1));
@@ -142,14 +159,12 @@ Outcome measure(const std::string& path, bool curve) {
       const std::size_t ours = level < s.levels.size() ? s.levels[level].triangles : 0;
       o.lodforge += double(s.occurrences * ours);
       // The peer: its coarsest level allowed at d, nothing past vanishing.
-      std::size_t theirs = 0;
-      if (d < vanish) {
-        std::size_t p = 0;
-        while (p + 1 < peer.distance.size() && k * peer.distance[p + 1] <= d) ++p;
-        theirs = peer.triangles[p];
-      }
+      const std::size_t theirs = drawn(peer, k, d, vanish);
+      const std::size_t bound = drawn(fine, k, d, vanish);
       o.peer += double(s.occurrences * theirs);
-      if (curve) fmt::print(stderr, "  {:.2f} {} {}\n", d / (k * s.radius), ours, theirs);
+      o.fine += double(s.occurrences * bound);
+      if (curve)
+        fmt::print(stderr, "  {:.2f} {} {} {}\n", d / (k * s.radius), ours, theirs, bound);
     }
   }
   return o;
@@ -164,8 +179,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   fmt::print(
-      "| file | shapes | triangles drawn, lodforge | peer | ratio | output / input size |\n");
-  fmt::print("|---|---|---|---|---|---|\n");
+      "| file | shapes | triangles drawn, lodforge | peer | ratio | bound | output / input size "
+      "|\n");
+  fmt::print("|---|---|---|---|---|---|---|\n");
   Outcome all;
   for (int a = 1 + int(curve); a < argc; ++a) {
     Outcome o;
@@ -178,16 +194,18 @@ int main(int argc, char** argv) {
     if (o.shapes == 0) continue;
     all.lodforge += o.lodforge;
     all.peer += o.peer;
+    all.fine += o.fine;
     all.input_bytes += o.input_bytes;
     all.output_bytes += o.output_bytes;
     all.shapes += o.shapes;
-    fmt::print("| {} | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} |\n",
+    fmt::print("| {} | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} | {:.2f} |\n",
                std::filesystem::path(argv[a]).filename().string(), o.shapes, o.lodforge, o.peer,
-               o.lodforge / o.peer, double(o.output_bytes) / double(o.input_bytes));
+               o.lodforge / o.peer, o.fine / o.peer,
+               double(o.output_bytes) / double(o.input_bytes));
   }
   if (all.peer > 0)
-    fmt::print("| all | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} |\n", all.shapes, all.lodforge,
-               all.peer, all.lodforge / all.peer,
+    fmt::print("| all | {} | {:.0f} | {:.0f} | {:.2f} | {:.2f} | {:.2f} |\n", all.shapes,
+               all.lodforge, all.peer, all.lodforge / all.peer, all.fine / all.peer,
                double(all.output_bytes) / double(all.input_bytes));
   return 0;
 }

@@ -66,6 +66,13 @@ TEST_F(LodCli, GzOutputsAreGzip) {
   auto gz = vrml1::read_vrml1_file(out);
   auto plain = vrml1::read_vrml1_file(path("out.wrl"));
   EXPECT_TRUE(scene::equal(gz.scene, plain.scene));
+  // --out-dir keeps a compressed input's name, so its output is compressed too.
+  auto d = run_lodforge("lod " + out + " --out-dir " + path("d") + " -q");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const std::string again = read_text(path("d/out.wrl.gz"));
+  ASSERT_GE(again.size(), 2u);
+  EXPECT_EQ(static_cast<unsigned char>(again[0]), 0x1f);
+  EXPECT_FALSE(std::filesystem::exists(path("d/out.wrl")));
 }
 
 TEST_F(LodCli, SeveralScenesOneBrokenGoOnAndExitOne) {

@@ -148,8 +148,9 @@ nlohmann::ordered_json stats_json(const std::string& file, const LodResult& r) {
 // without .gz>.
 std::string output_of(const std::string& input, const Settings& s) {
   if (s.out_dir.empty()) return s.output;
-  std::string base = input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
-  if (base.ends_with(".gz")) base.resize(base.size() - 3);
+  // The input's own name: a compressed input gives a compressed output.
+  const std::string base =
+      input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
   return (std::filesystem::path(s.out_dir) / base).string();
 }
 
@@ -192,7 +193,9 @@ void add_lod_command(CLI::App& app, Runner& run) {
       ->required();
   auto* out = cmd->add_option("-o,--output", s->output,
                               "Output file (- = stdout; .gz: gzip-compressed), for one scene");
-  auto* dir = cmd->add_option("--out-dir", s->out_dir, "Output folder, for several scenes");
+  auto* dir = cmd->add_option(
+      "--out-dir", s->out_dir,
+      "Output folder, for several scenes; each keeps its input's name (x.wrl.gz stays compressed)");
   out->excludes(dir);
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()

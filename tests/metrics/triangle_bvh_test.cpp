@@ -63,6 +63,42 @@ TEST(TriangleBvh, EqualsBruteForceOnRandomQueries) {
   }
 }
 
+// closest_point_unless_within: exact beyond the stop distance; within it,
+// some triangle that is within it.
+TEST(TriangleBvh, SearchEndsAtATriangleWithinTheStopDistance) {
+  TriangleMesh m = awkward_mesh();
+  TriangleBvh bvh(m);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coord(-3, 8), stop(0, 4);
+  int ended = 0, exact = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 p{coord(rng), coord(rng), coord(rng)};
+    const float s = stop(rng);
+    const float expected = brute_force(m, p);
+    const auto hint = i % 2 ? std::uint32_t(rng() % m.triangles.size()) : ClosestPoint::kNone;
+    const ClosestPoint c = bvh.closest_point_unless_within(p, s, hint);
+    ASSERT_TRUE(c.found());
+    if (expected > s) {
+      EXPECT_EQ(c.distance_squared, expected) << i;
+      ++exact;
+    } else {
+      EXPECT_LE(c.distance_squared, s) << i;
+      ++ended;
+    }
+    const auto& t = m.triangles[c.triangle];
+    EXPECT_NEAR(closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]],
+                                          m.positions[t[2]])
+                    .distance_squared,
+                c.distance_squared, 1e-4f);
+  }
+  // Both kinds of answer were asked for.
+  EXPECT_GT(ended, 100);
+  EXPECT_GT(exact, 100);
+  // A negative stop distance never ends early.
+  EXPECT_EQ(bvh.closest_point_unless_within({5, 5, 6}, -1).distance_squared,
+            brute_force(m, {5, 5, 6}));
+}
+
 TEST(TriangleBvh, QueriesNearTheSurface) {
   TriangleMesh m = test::icosphere(4);
   TriangleBvh bvh(m);

@@ -8,12 +8,14 @@
 // corpus: a denser measurement stays below 1.1x this one).
 #include "lodforge/lod/measure_deviation.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <span>
 
 #include "lodforge/metrics/sample_surface.h"
 #include "lodforge/metrics/triangle_bvh.h"
@@ -39,9 +41,15 @@ Side make_side(const TriangleMesh& m, const DeviationOptions& o, bool with_bvh =
   return s;
 }
 
-double distance(const TriangleBvh& to, const Vec3& p) {
-  ClosestPoint c = to.closest_point(p);
-  return c.found() ? std::sqrt(double(c.distance_squared)) : 0.0;
+// The distance from p to `to` if it is larger than `floor` (all of them for
+// a negative floor), else -1. `hint` is a triangle of `to` likely to be near
+// p; it becomes the one found. Exact whenever it is not -1, whatever the hint.
+double distance_above(const TriangleBvh& to, const Vec3& p, double floor, std::uint32_t& hint) {
+  const float stop = floor < 0 ? -1.0f : float(floor * floor);
+  ClosestPoint c = to.closest_point_unless_within(p, stop, hint);
+  if (!c.found()) return 0.0;
+  hint = c.triangle;
+  return c.distance_squared > stop ? std::sqrt(double(c.distance_squared)) : -1.0;
 }
 
 // Barycentric coordinates of p (on or near triangle abc).
@@ -60,7 +68,7 @@ std::array<double, 3> barycentric(const Vec3& a, const Vec3& b, const Vec3& c, c
 // Pattern search for a local maximum of the distance to `to` over one
 // triangle of `from`, starting at `start`.
 double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, const TriangleBvh& to,
-             double best) {
+             double best, std::uint32_t hint) {
   const Triangle& t = from.triangles[tri];
   const Vec3 a = from.positions[t[0]], b = from.positions[t[1]], c = from.positions[t[2]];
   auto at = [&](const std::array<double, 3>& w) {
@@ -77,7 +85,7 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
       for (const auto& m : moves) {
         std::array<double, 3> n = {w[0] + h * m[0], w[1] + h * m[1], w[2] + h * m[2]};
         if (n[0] < 0 || n[1] < 0 || n[2] < 0) continue;
-        double d = distance(to, at(n));
+        double d = distance_above(to, at(n), best, hint);
         if (d > best) {
           best = d;
           w = n;
@@ -90,21 +98,55 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
 }
 
 // One direction: the farthest distance from `from`'s surface to `to`.
-double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine) {
+// `near[f]`, when given, is a triangle of `to` near triangle f of `from` (from
+// the simplifier's face map), where the searches of f's samples start. Every
+// kStride-th sample is measured exactly first; their largest distance is a
+// floor under the answer, so each other sample only needs to know whether it
+// is nearer than that, which most learn at the first triangle they try. The
+// maximum is the one an exact distance for every sample gives; the samples
+// whose neighbourhoods are searched are the farthest of those whose distance
+// is known (all above the floor, and the strided ones).
+double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
+                 std::span<const std::uint32_t> near) {
+  constexpr std::size_t kStride = 32;
   const std::size_t n = from.samples.size();
-  std::vector<double> d(n);
-  tbb::parallel_for(std::size_t(0), n,
-                    [&](std::size_t i) { d[i] = distance(to, from.samples.positions[i]); });
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::size_t k = std::min(refine, n);
+  if (n == 0) return 0.0;
+  const auto& at = from.samples.positions;
+  auto start = [&](std::size_t i, std::uint32_t previous) {
+    const std::uint32_t h = near.empty() ? ClosestPoint::kNone : near[from.samples.triangles[i]];
+    return h != ClosestPoint::kNone ? h : previous;
+  };
+  std::vector<double> d(n, -1.0);  // -1: nearer than the floor
+  auto measure = [&](std::size_t stride, double floor) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (n + stride - 1) / stride, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::uint32_t hint = ClosestPoint::kNone;
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          const std::size_t i = k * stride;
+                          if (floor >= 0 && i % kStride == 0) continue;
+                          hint = start(i, hint);
+                          d[i] = distance_above(to, at[i], floor, hint);
+                        }
+                      });
+  };
+  measure(kStride, -1);
+  double floor = 0;
+  for (std::size_t i = 0; i < n; i += kStride) floor = std::max(floor, d[i]);
+  measure(1, floor);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < n; ++i)
+    if (d[i] >= 0) order.push_back(i);
+  const std::size_t k = std::min(refine, order.size());
   std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k), order.end(),
-                    [&](std::size_t x, std::size_t y) { return d[x] > d[y]; });
-  double best = n ? d[order[0]] : 0.0;
+                    [&](std::size_t x, std::size_t y) {
+                      return d[x] > d[y] || (d[x] == d[y] && x < y);
+                    });
+  double best = d[order[0]];
   std::vector<double> refined(k, 0.0);
   tbb::parallel_for(std::size_t(0), k, [&](std::size_t i) {
-    std::size_t s = order[i];
-    refined[i] = climb(*from.mesh, from.samples.triangles[s], from.samples.positions[s], to, d[s]);
+    const std::size_t s = order[i];
+    refined[i] = climb(*from.mesh, from.samples.triangles[s], at[s], to, d[s],
+                       start(s, ClosestPoint::kNone));
   });
   for (double r : refined) best = std::max(best, r);
   return best;
@@ -125,18 +167,46 @@ DeviationMeter::DeviationMeter(const TriangleMesh& reference, const DeviationOpt
 
 DeviationMeter::~DeviationMeter() = default;
 
-double DeviationMeter::hausdorff(const TriangleMesh& level) const {
-  if (impl_->reference.mesh->triangles.empty() || level.triangles.empty()) return 0.0;
+namespace {
+
+// A face map fit to start searches from: one reference triangle per level
+// triangle, each in range; empty otherwise.
+std::span<const std::uint32_t> level_to_reference(std::span<const std::uint32_t> face_map,
+                                                  const TriangleMesh& level,
+                                                  const TriangleMesh& reference) {
+  if (face_map.size() != level.triangles.size()) return {};
+  for (std::uint32_t f : face_map)
+    if (f >= reference.triangles.size()) return {};
+  return face_map;
+}
+
+}  // namespace
+
+double DeviationMeter::hausdorff(const TriangleMesh& level,
+                                 std::span<const std::uint32_t> face_map) const {
+  const TriangleMesh& reference = *impl_->reference.mesh;
+  if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
   Side other = make_side(level, impl_->options);
-  double ab = one_sided(impl_->reference, *other.bvh, impl_->options.refine);
-  double ba = one_sided(other, *impl_->reference.bvh, impl_->options.refine);
+  const auto to_reference = level_to_reference(face_map, level, reference);
+  // The other way: a level triangle descended from each reference triangle.
+  std::vector<std::uint32_t> to_level;
+  if (!to_reference.empty()) {
+    to_level.assign(reference.triangles.size(), ClosestPoint::kNone);
+    for (std::uint32_t t = 0; t < to_reference.size(); ++t) to_level[to_reference[t]] = t;
+  }
+  const double ab = one_sided(impl_->reference, *other.bvh, impl_->options.refine, to_level);
+  const double ba = one_sided(other, *impl_->reference.bvh, impl_->options.refine, to_reference);
   return std::max(ab, ba);
 }
 
-double DeviationMeter::distance_to_reference(const TriangleMesh& level) const {
-  if (impl_->reference.mesh->triangles.empty() || level.triangles.empty()) return 0.0;
+double DeviationMeter::distance_to_reference(const TriangleMesh& level,
+                                             std::span<const std::uint32_t> face_map) const {
+  const TriangleMesh& reference = *impl_->reference.mesh;
+  if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
   const Side other = make_side(level, impl_->options, false);
-  return one_sided(other, *impl_->reference.bvh, impl_->options.refine);
+  return one_sided(other, *impl_->reference.bvh, impl_->options.refine,
+                   level_to_reference(face_map, level, reference));
 }
+
 
 }  // namespace lodforge

@@ -5,6 +5,7 @@
 /// maximum and not on where samples happened to fall.
 #include <cstddef>
 #include <memory>
+#include <span>
 
 #include "lodforge/mesh/triangle_mesh.h"
 
@@ -30,13 +31,20 @@ class DeviationMeter {
   DeviationMeter& operator=(const DeviationMeter&) = delete;
 
   /// Two-sided Hausdorff distance between the reference and `level`, in model
-  /// units; 0 if either has no triangles.
-  double hausdorff(const TriangleMesh& level) const;
+  /// units; 0 if either has no triangles. `face_map` (optional: the
+  /// simplifier's SimplifyResult::face_map, one reference triangle per level
+  /// triangle) only tells where each search starts: the result is the same
+  /// with or without it, found faster with it. A map of the wrong size or
+  /// with an index out of range is ignored.
+  double hausdorff(const TriangleMesh& level,
+                   std::span<const std::uint32_t> face_map = {}) const;
 
   /// One-sided: the largest distance from a point of `level` to the
   /// reference, in model units; 0 if either has no triangles. Cheaper than
-  /// hausdorff() (no search structure of `level` is built).
-  double distance_to_reference(const TriangleMesh& level) const;
+  /// hausdorff() (no search structure of `level` is built). `face_map` as
+  /// for hausdorff().
+  double distance_to_reference(const TriangleMesh& level,
+                               std::span<const std::uint32_t> face_map = {}) const;
 
  private:
   struct Impl;

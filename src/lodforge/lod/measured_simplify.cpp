@@ -81,20 +81,20 @@ class Search {
     if (count < n) {
       out.result = run_to_count(mesh_, options_.method, count);
       ++out.simplifier_runs;
-      out.error = bound(out.result.mesh, out);
+      out.error = bound(out.result, out);
       if (out.error <= budget) return finish(std::move(out));
     }
     return finish(within_budget(count < n ? std::max<std::size_t>(count, 1) : 1, budget, out));
   }
 
  private:
-  double bound(const TriangleMesh& m, MeasuredSimplifyResult& out) const {
+  double bound(const SimplifyResult& r, MeasuredSimplifyResult& out) const {
     ++out.measurements;
-    return kErrorMargin * meter_.distance_to_reference(m);
+    return kErrorMargin * meter_.distance_to_reference(r.mesh, r.face_map);
   }
 
   MeasuredSimplifyResult finish(MeasuredSimplifyResult out) const {
-    if (out.measurements == 0) out.error = bound(out.result.mesh, out);
+    if (out.measurements == 0) out.error = bound(out.result, out);
     return out;
   }
 
@@ -128,7 +128,7 @@ class Search {
     double beyond_error = 0;
     auto consider = [&](SimplifyResult& r) {
       const std::size_t made = r.mesh.triangle_count();
-      const double e = bound(r.mesh, best);
+      const double e = bound(r, best);
       if (e <= budget && made < best.result.mesh.triangle_count()) {
         best.result = std::move(r);
         best.error = e;

@@ -39,7 +39,7 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
       m.error = m.level.error;
       return;
     }
-    m.error = kErrorMargin * meter->hausdorff(m.level.mesh);
+    m.error = kErrorMargin * meter->hausdorff(m.level.mesh, m.level.face_map);
   });
   return out;
 }

@@ -185,7 +185,8 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
 }
 
 template <bool kPreferNormal>
-ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t hint) const {
+ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t hint,
+                                float stop_squared) const {
   ClosestPoint best;
   if (nodes_.empty()) return best;
   float best_score = 0;
@@ -220,7 +221,10 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t
       best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
     }
   };
+  // Without the tie rule, a triangle within stop_squared ends the search.
+  auto done = [&] { return !kPreferNormal && best.distance_squared <= stop_squared; };
   if (hint < slot_.size()) visit(slot_[hint]);
+  if (done()) return best;
 
   struct Entry {
     std::uint32_t node;
@@ -239,6 +243,7 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t
         for (std::uint32_t i = node.index, last = node.index + node.count; i < last; ++i) {
           visit(i);
         }
+        if (done()) return best;
         break;
       }
       std::uint32_t near = ni + 1, far = node.index;
@@ -263,6 +268,11 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t
 
 ClosestPoint TriangleBvh::closest_point(const Vec3& p, std::uint32_t hint) const {
   return query<false>(p, {}, hint);
+}
+
+ClosestPoint TriangleBvh::closest_point_unless_within(const Vec3& p, float stop_squared,
+                                                      std::uint32_t hint) const {
+  return query<false>(p, {}, hint, stop_squared);
 }
 
 ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal,

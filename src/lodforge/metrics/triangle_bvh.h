@@ -48,6 +48,14 @@ class TriangleBvh {
   /// traversal starts with a tight bound; it never changes the distance found.
   ClosestPoint closest_point(const Vec3& p, std::uint32_t hint = ClosestPoint::kNone) const;
 
+  /// As closest_point(p, hint), but the search ends at the first triangle
+  /// whose squared distance is <= `stop_squared`: the answer is exact when
+  /// the surface is farther than that, else it is some triangle within it.
+  /// For maxima of distances (Hausdorff), where a point nearer than the
+  /// largest distance known does not matter and most queries end at the hint.
+  ClosestPoint closest_point_unless_within(const Vec3& p, float stop_squared,
+                                           std::uint32_t hint = ClosestPoint::kNone) const;
+
   /// As closest_point(p), but among triangles at the same distance (within a
   /// relative 1e-5 of the squared distance plus float rounding noise, e.g. at
   /// a shared edge or vertex) takes the one whose surface normal there
@@ -78,7 +86,8 @@ class TriangleBvh {
   };
 
   template <bool kPreferNormal>
-  ClosestPoint query(const Vec3& p, const Vec3& normal, std::uint32_t hint) const;
+  ClosestPoint query(const Vec3& p, const Vec3& normal, std::uint32_t hint,
+                     float stop_squared = -1) const;
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, int depth,
                       std::vector<Vec3>& centroid, std::vector<Vec3>& lo, std::vector<Vec3>& hi);
 

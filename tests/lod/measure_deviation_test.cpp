@@ -1,0 +1,70 @@
+#include "lodforge/lod/measure_deviation.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "lodforge/simplify/quadric_collapse.h"
+#include "metrics/mesh_builders.h"
+
+namespace lodforge {
+namespace {
+
+// A square of n x n cells in the plane z = 0, split into triangles.
+TriangleMesh grid(int n, float z = 0) {
+  TriangleMesh m;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) m.positions.push_back({float(x) / n, float(y) / n, z});
+  auto at = [&](int x, int y) { return std::uint32_t(y * (n + 1) + x); };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      m.triangles.push_back({at(x, y), at(x + 1, y), at(x + 1, y + 1)});
+      m.triangles.push_back({at(x, y), at(x + 1, y + 1), at(x, y + 1)});
+    }
+  return m;
+}
+
+TEST(DeviationMeter, OffsetSheetIsItsOffset) {
+  const TriangleMesh a = grid(8);
+  const TriangleMesh b = grid(3, 0.25f);
+  DeviationMeter meter(a);
+  EXPECT_NEAR(meter.hausdorff(b), 0.25, 1e-6);
+  EXPECT_NEAR(meter.distance_to_reference(b), 0.25, 1e-6);
+  EXPECT_LT(meter.hausdorff(a), 1e-6);  // float rounding of points on the surface
+}
+
+// A bump in the middle of a sheet: the largest distance is at its tip,
+// found by the refinement even where no sample falls on the tip.
+TEST(DeviationMeter, FindsTheTipOfABump) {
+  TriangleMesh bumped = grid(16);
+  const std::uint32_t middle = 8 * 17 + 8;
+  bumped.positions[middle].z = 0.3f;
+  const TriangleMesh flat = grid(16);
+  DeviationMeter meter(flat, {.samples = 500});
+  EXPECT_NEAR(meter.hausdorff(bumped), 0.3, 1e-4);
+  EXPECT_NEAR(meter.distance_to_reference(bumped), 0.3, 1e-4);
+}
+
+// The face map only says where searches start: the same distance with it,
+// without it, and with a map that does not fit (ignored).
+TEST(DeviationMeter, FaceMapChangesNothingButTheTime) {
+  TriangleMesh sphere = test::icosphere(4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> bump(0.97f, 1.03f);
+  for (auto& p : sphere.positions) p *= bump(rng);
+  SimplifyTarget target;
+  target.ratio = 0.2f;
+  const SimplifyResult r = quadric_collapse(sphere, {.target = target});
+  ASSERT_EQ(r.face_map.size(), r.mesh.triangle_count());
+  DeviationMeter meter(sphere);
+  const double plain = meter.hausdorff(r.mesh);
+  EXPECT_GT(plain, 0.0);
+  EXPECT_EQ(meter.hausdorff(r.mesh, r.face_map), plain);
+  std::vector<std::uint32_t> wrong(r.face_map.size(), std::uint32_t(sphere.triangle_count()));
+  EXPECT_EQ(meter.hausdorff(r.mesh, wrong), plain);
+  EXPECT_EQ(meter.hausdorff(r.mesh, std::span(r.face_map).first(1)), plain);
+  EXPECT_EQ(meter.distance_to_reference(r.mesh, r.face_map), meter.distance_to_reference(r.mesh));
+}
+
+}  // namespace
+}  // namespace lodforge

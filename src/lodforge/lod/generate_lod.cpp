@@ -338,6 +338,32 @@ class Pipeline {
       if (c.triangle_targets.empty()) return;
     }
     j.stats.method = j.geometry.mesh.triangles.empty() ? "cluster" : to_string(opt_.method);
+    // Automatic mode: the candidates worth showing, spaced by what a viewer
+    // notices (switch_distance grows by the spacing factor from one kept level
+    // to the next), down to the level after which the object vanishes. Only
+    // the kept ones need their error measured in full.
+    RangeOptions ro = opt_.range;
+    ro.camera_angle = float(camera_angle_);
+    auto space = [&](std::span<const MeasuredLevel> candidates) {
+      std::vector<double> errors;
+      std::vector<std::size_t> triangles;
+      for (const auto& l : candidates) {
+        errors.push_back(l.error);
+        triangles.push_back(l.level.mesh.triangle_count() + l.level.mesh.lines.size());
+      }
+      return space_levels(
+          {.errors = errors,
+           .triangles = triangles,
+           .level0_triangles = j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
+          j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
+    };
+    if (!manual)
+      c.keep = [&](std::span<const MeasuredLevel> candidates) {
+        std::vector<std::size_t> kept;
+        for (const SpacedLevel& s : space(candidates).levels)
+          if (!simplified_max || kept.size() < simplified_max) kept.push_back(s.candidate);
+        return kept;
+      };
     std::vector<MeasuredLevel> levels = simplify_levels(j.geometry.mesh, c);
     if (levels.empty()) {
       j.stats.stop_reason = "nothing could be removed";
@@ -357,22 +383,7 @@ class Pipeline {
       j.stats.stop_reason = chain_end;
       return;
     }
-    // Automatic mode: the candidates worth showing, spaced by what a viewer
-    // notices (switch_distance grows by the spacing factor from one kept level
-    // to the next), down to the level after which the object vanishes.
-    std::vector<double> errors;
-    std::vector<std::size_t> triangles;
-    for (const auto& l : levels) {
-      errors.push_back(l.error);
-      triangles.push_back(l.level.mesh.triangle_count() + l.level.mesh.lines.size());
-    }
-    RangeOptions ro = opt_.range;
-    ro.camera_angle = float(camera_angle_);
-    SpacedLevels spaced = space_levels(
-        {.errors = errors,
-         .triangles = triangles,
-         .level0_triangles = j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
-        j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
+    const SpacedLevels spaced = space(levels);
     std::size_t kept = 0;
     for (const SpacedLevel& s : spaced.levels) {
       if (simplified_max && kept == simplified_max) break;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <tbb/parallel_for.h>
 
@@ -15,33 +16,53 @@ std::size_t measure_samples_for(std::size_t triangles, std::size_t requested) {
   return std::clamp<std::size_t>(20 * triangles, 20000, 200000);
 }
 
+namespace {
+
+// Each level's error against `meter`, side by side (level 0 sampled once).
+void measure(std::vector<MeasuredLevel>& levels, std::span<const std::size_t> which,
+             const DeviationMeter& meter, bool in_full) {
+  tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) {
+    MeasuredLevel& m = levels[which[k]];
+    m.error = kErrorMargin * meter.hausdorff(m.level.mesh, m.level.face_map);
+    m.measured_in_full = in_full;
+  });
+}
+
+}  // namespace
+
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options) {
   std::vector<MeasuredLevel> out;
-  const bool lines_only = mesh.triangles.empty();
   for (auto& level : simplify_chain(mesh, options.method,
                                     {.counts = options.triangle_targets,
                                     .step = options.min_diff,
                                     .smallest = 4,
                                     .max_levels = options.max_levels}))
     out.push_back({std::move(level), 0.0});
-  // The measurements are independent: run them side by side against one
-  // reference (level 0 sampled once).
-  if (out.empty()) return out;
-  std::unique_ptr<DeviationMeter> meter;
-  if (!lines_only)
-    meter = std::make_unique<DeviationMeter>(
-        mesh, DeviationOptions{
-                  .samples = measure_samples_for(mesh.triangle_count(), options.measure_samples)});
-  tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
-    MeasuredLevel& m = out[i];
-    if (lines_only || m.level.mesh.triangles.empty()) {
-      m.error = m.level.error;
-      return;
-    }
-    m.error = kErrorMargin * meter->hausdorff(m.level.mesh, m.level.face_map);
-  });
-  return out;
+  // Line sets and empty levels keep the simplifier's own bound.
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (mesh.triangles.empty() || out[i].level.mesh.triangles.empty())
+      out[i].error = out[i].level.error;
+    else
+      pending.push_back(i);
+  }
+  if (pending.empty()) return out;
+  const std::size_t samples = measure_samples_for(mesh.triangle_count(), options.measure_samples);
+  const DeviationMeter full(mesh, {.samples = samples});
+  if (!options.keep) {
+    measure(out, pending, full, true);
+    return out;
+  }
+  const DeviationMeter screen(mesh, {.samples = std::max<std::size_t>(samples / 8, 2000)});
+  measure(out, pending, screen, false);
+  for (;;) {
+    std::vector<std::size_t> unmeasured;
+    for (std::size_t i : options.keep(out))
+      if (i < out.size() && !out[i].measured_in_full) unmeasured.push_back(i);
+    if (unmeasured.empty()) return out;
+    measure(out, unmeasured, full, true);
+  }
 }
 
 }  // namespace lodforge

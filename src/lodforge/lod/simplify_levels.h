@@ -3,6 +3,8 @@
 /// each level keeping at most (1 - min_diff) of the previous level's triangles
 /// (the original's "min diff"), each with its error measured against level 0.
 #include <cstddef>
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"
@@ -20,6 +22,13 @@ struct LevelChainOptions {
   std::vector<std::size_t> triangle_targets;
   std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
   int threads = 0;                  ///< for the measurements (0: all cores)
+  /// When set, only the levels it keeps need a full measurement: it is given
+  /// every level with its error (measured in full, or a screening
+  /// measurement from an eighth of the samples) and returns the indices of
+  /// the levels it would keep; those are measured in full and it is asked
+  /// again, until it keeps only levels measured in full. Unset: every level
+  /// is measured in full.
+  std::function<std::vector<std::size_t>(std::span<const struct MeasuredLevel> levels)> keep;
 };
 
 /// Sampling finds the largest distance between two surfaces only up to the
@@ -34,6 +43,9 @@ struct MeasuredLevel {
   /// level measured by compare_meshes (model units); for line sets the
   /// simplifier's own bound.
   double error = 0;
+  /// false: `error` is the screening measurement (fewer samples) of a level
+  /// that LevelChainOptions::keep did not keep.
+  bool measured_in_full = true;
 };
 
 /// Area samples per direction for measuring a level of a mesh with
@@ -44,7 +56,9 @@ std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 /// Levels 1..n of `mesh` (level 0 is `mesh` itself) by simplify_chain (the
 /// chain contract of simplify/level_chain.h): each at most (1 - min_diff) x
 /// the triangles of the level before it, or the explicit triangle targets,
-/// down to a few triangles; each with its error measured against level 0.
+/// down to a few triangles; each with its error measured against level 0
+/// (with LevelChainOptions::keep: the kept ones in full, the others screened).
+/// Deterministic: the same levels and errors for any number of threads.
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options);
 

@@ -135,6 +135,7 @@ ContactSheetResult render_contact_sheet(std::span<const ContactSheetPanel> panel
     result.panel_y.push_back(top);
     RenderOptions own = panel_options;
     if (panel.camera) own.camera = panel.camera;
+    own.appearance = panel.appearance;
     sheet.blit(render_mesh(panel.mesh ? *panel.mesh : empty, own).image, x, top);
     int y = top + panel_options.height + gap / 2;
     for (const auto& label : panel.labels) {

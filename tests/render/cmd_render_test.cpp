@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 
+#include "lodforge/render/texture_image.h"
 #include "render/test_meshes.h"
 
 namespace lodforge {
@@ -199,6 +201,137 @@ TEST_F(CmdRender, RendersTheExampleScene) {
       lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png + " --size 160x120"),
       0);
   EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
+}
+
+// ---- Scenes in their own colours (materials, bindings, textures) ----
+
+const std::string kCastleDemo =
+    std::string(LODFORGE_SHARED_DATA) + "/vrml1/castle-engine__demo-models";
+
+TEST_F(CmdRender, PerFaceMaterialBindingColoursEachFace) {
+  // Two squares side by side, one face each: red on the left, blue on the right.
+  const std::string scene = dir_ + "/per_face.wrl", png = dir_ + "/per_face.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Material { diffuseColor [1 0 0, 0 0 1] }\n"
+                          " MaterialBinding { value PER_FACE }\n"
+                          " Coordinate3 { point [-2 -1 0, 0 -1 0, 0 1 0, -2 1 0,"
+                          " 2 -1 0, 2 1 0] }\n"
+                          " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1, 1, 4, 5, 2, -1] }\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 160x80 --view 0,0"), 0);
+  const Image img = load(png);
+  const auto half = [&](int x0) {
+    Image h(80, 80);
+    for (int y = 0; y < 80; ++y) std::copy_n(img.at(x0, y), 80 * 4, h.at(0, y));
+    return h;
+  };
+  const Image left = half(0), right = half(80);
+  // Each square covers about a sixth of its half of the picture.
+  EXPECT_GT(test::fraction_shaded_like(left, {1, 0, 0}), 0.12);
+  EXPECT_LT(test::fraction_shaded_like(left, {0, 0, 1}), 0.01);
+  EXPECT_GT(test::fraction_shaded_like(right, {0, 0, 1}), 0.12);
+  EXPECT_LT(test::fraction_shaded_like(right, {1, 0, 0}), 0.01);
+  // --no-colors draws them grey.
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 160x80 --view 0,0 --no-colors"), 0);
+  EXPECT_LT(test::fraction_shaded_like(load(png), {1, 0, 0}), 0.01);
+}
+
+TEST_F(CmdRender, InlineImageTextureShowsItsFourColours) {
+  // A square under a 2x2 SFImage: red, green (bottom row), blue, white (top).
+  const std::string scene = dir_ + "/sfimage.wrl", png = dir_ + "/sfimage.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Texture2 { image 2 2 3 0xFF0000 0x00FF00 0x0000FF 0xFFFFFF }\n"
+                          " Coordinate3 { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }\n"
+                          " TextureCoordinate2 { point [0 0, 1 0, 1 1, 0 1] }\n"
+                          " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1] }\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 120x120 --view 0,0"), 0);
+  const Image img = load(png);
+  // The square's extent on screen.
+  int x0 = img.width, x1 = 0, y0 = img.height, y1 = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.at(x, y)[0] < 250 || img.at(x, y)[1] < 250 || img.at(x, y)[2] < 250) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  ASSERT_GT(x1 - x0, 40);
+  // Texel centres, a quarter of the way in from each corner, are pure (bilinear
+  // filtering blends in between): red bottom left, green bottom right, blue
+  // top left, white top right.
+  const auto at = [&](double s, double t) {
+    return img.at(x0 + int(s * (x1 - x0)), y1 - int(t * (y1 - y0)));
+  };
+  EXPECT_TRUE(test::shaded_like(at(0.25, 0.25), {1, 0, 0}));
+  EXPECT_TRUE(test::shaded_like(at(0.75, 0.25), {0, 1, 0}));
+  EXPECT_TRUE(test::shaded_like(at(0.25, 0.75), {0, 0, 1}));
+  EXPECT_TRUE(test::shaded_like(at(0.75, 0.75), {1, 1, 1}));
+}
+
+TEST_F(CmdRender, MissingTextureIsAWarningAndTheSurfaceColour) {
+  const std::string scene = dir_ + "/missing_texture.wrl", png = dir_ + "/missing_texture.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Material { diffuseColor 0 1 0 }\n"
+                          " Texture2 { filename \"no_such_image.png\" }\n Cube {}\n}\n";
+  std::string err;
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100", &err), 0);
+  EXPECT_NE(err.find("no_such_image.png"), std::string::npos) << err;
+  EXPECT_NE(err.find("warning"), std::string::npos) << err;
+  EXPECT_GT(test::fraction_shaded_like(load(png), {0, 1, 0}), 0.1);
+  // A file that is not an image: the same.
+  std::ofstream(dir_ + "/not_an_image.png") << "hello";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Texture2 { filename \"not_an_image.png\" }\n Cube {}\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100", &err), 0);
+  EXPECT_NE(err.find("not_an_image.png"), std::string::npos) << err;
+  EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
+}
+
+TEST_F(CmdRender, CastleShowsItsMaterialsAndItsTextures) {
+  // castle.wrl (Blender export, Z up): white and grey (0.56) materials bound
+  // PER_VERTEX_INDEXED under JPEG textures (grass, water, wood, stone).
+  const std::string castle = kCastleDemo + "/castle/old/vrml_1/castle.wrl";
+  if (!fs::exists(castle)) GTEST_SKIP() << "no shared corpus";
+  const std::string textured = dir_ + "/castle.png", plain = dir_ + "/castle_materials.png";
+  const std::string view = " --size 240x180 --view 10,-70";
+  ASSERT_EQ(lodforge_render(castle + " -o " + textured + view), 0);
+  ASSERT_EQ(lodforge_render(castle + " -o " + plain + view + " --no-textures"), 0);
+  const Image with = load(textured), without = load(plain);
+  // Materials only: neutral greys (the materials' white and 0.56 grey), not
+  // the bluish grey of a scene without materials.
+  EXPECT_GT(test::fraction_shaded_like(without, {1, 1, 1}, 0.01), 0.08);
+  // Textured: the grass texture's colour covers the ground.
+  const Texture grass = read_texture(kCastleDemo + "/castle/old/textures/grassfull.jpg");
+  double sum[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < grass.image.pixels.size(); i += 4)
+    for (int c = 0; c < 3; ++c) sum[c] += grass.image.pixels[i + c];
+  const Vec3 mean{float(sum[0]), float(sum[1]), float(sum[2])};
+  EXPECT_GT(test::fraction_shaded_like(with, mean, 0.04), 0.06);
+  EXPECT_LT(test::fraction_shaded_like(without, mean, 0.04), 0.01);
+}
+
+TEST_F(CmdRender, TexturedCorpusSceneShowsItsTexture) {
+  // texture_test.wrl: a Cone, Cylinder, Sphere and Cube under a PNG texture
+  // (default texture coordinates of the primitives), then an untextured
+  // Sphere beside them.
+  const std::string scene = kCastleDemo + "/vrml_1/subdir1/subdir2/texture_test.wrl";
+  if (!fs::exists(scene)) GTEST_SKIP() << "no shared corpus";
+  const std::string png = dir_ + "/texture_test.png";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 400x250 --view 0,0"), 0);
+  const Texture tex = read_texture(kCastleDemo + "/textures/test_texture.png");
+  // The most common texel colours of the image show on the shapes.
+  std::map<std::uint32_t, int> count;
+  for (std::size_t i = 0; i < tex.image.pixels.size(); i += 4)
+    ++count[(tex.image.pixels[i] & 0xF0u) << 16 | (tex.image.pixels[i + 1] & 0xF0u) << 8 |
+            (tex.image.pixels[i + 2] & 0xF0u)];
+  const auto top = std::max_element(count.begin(), count.end(),
+                                    [](auto& a, auto& b) { return a.second < b.second; });
+  const Vec3 common{float((top->first >> 16) & 0xFF) + 8, float((top->first >> 8) & 0xFF) + 8,
+                    float(top->first & 0xFF) + 8};
+  const Image img = load(png);
+  EXPECT_GT(test::fraction_shaded_like(img, common, 0.05), 0.002);
+  std::string err;
+  ASSERT_EQ(
+      lodforge_render(scene + " -o " + png + " --size 400x250 --view 0,0 --no-textures", &err), 0);
+  EXPECT_LT(test::fraction_shaded_like(load(png), common, 0.05),
+            test::fraction_shaded_like(img, common, 0.05) / 4);
 }
 
 }  // namespace

@@ -334,5 +334,60 @@ TEST_F(CmdRender, TexturedCorpusSceneShowsItsTexture) {
             test::fraction_shaded_like(img, common, 0.05) / 4);
 }
 
+TEST_F(CmdRender, DeviationPicturesCarryTheirColourScale) {
+  // compare --colored OUT.png: the coloured mesh with the bar; render
+  // --color-bar: the same bar beside a coloured PLY.
+  const std::string a = dir_ + "/sphere_a.ply", b = dir_ + "/sphere_b.ply";
+  std::ofstream(dir_ + "/a.wrl") << "#VRML V1.0 ascii\nSphere { radius 1 }\n";
+  std::ofstream(dir_ + "/b.wrl") << "#VRML V1.0 ascii\nCube { width 1.6 height 1.6 depth 1.6 }\n";
+  const std::string png = dir_ + "/compare.png";
+  ASSERT_EQ(std::system((exe_ + " compare " + dir_ + "/a.wrl " + dir_ + "/b.wrl --colored " + png +
+                         " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  const Image with_bar = load(png);
+  EXPECT_EQ(with_bar.height, 480);
+  EXPECT_GT(with_bar.width, 640 + 40);
+  // The bar: red at its top, blue at its bottom, right of the 640 picture.
+  int red = 0, blue = 0;
+  for (int y = 0; y < with_bar.height; ++y)
+    for (int x = 640; x < with_bar.width; ++x) {
+      red += test::shaded_like(with_bar.at(x, y), {1, 0, 0}, 0.02);
+      blue += test::shaded_like(with_bar.at(x, y), {0, 0, 1}, 0.02);
+    }
+  EXPECT_GT(red, 20);
+  EXPECT_GT(blue, 20);
+  const std::string plain = dir_ + "/plain.png", bar = dir_ + "/bar.png";
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + plain + " --size 200x150"), 0);
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + bar + " --size 200x150 --color-bar 0.5"), 0);
+  EXPECT_EQ(load(plain).width, 200);
+  EXPECT_GT(load(bar).width, 240);
+  EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + bar + " --color-bar -1"), 2);
+}
+
+TEST_F(CmdRender, ContactSheetsOfManyLevelsWrapIntoRows) {
+  // Six levels: rows of three (up to four stay in one row).
+  const std::string scene = dir_ + "/six.wrl", png = dir_ + "/six.png";
+  std::ofstream(scene)
+      << "#VRML V1.0 ascii\nLOD { range [1, 2, 3, 4, 5]\n"
+         " Sphere {} Cube {} Cone {} Cylinder {} Sphere { radius 0.5 } Cube {}\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100 --levels"), 0);
+  const Image img = load(png);
+  EXPECT_EQ(img.width, 3 * 100 + 4 * 8);
+  // Per row: the picture, half a gap, two label lines of 12 pixels, a gap.
+  EXPECT_EQ(img.height, 8 + 2 * (100 + 4 + 2 * 12 + 8));
+}
+
+TEST_F(CmdRender, InventorWindmillIsDrawnInItsColours) {
+  const std::string windmill = std::string(LODFORGE_SHARED_DATA) +
+                               "/inventor/aumuell__open-inventor/apps/examples/Mentor/"
+                               "01.1.Windmill.iv";
+  if (!fs::exists(windmill)) GTEST_SKIP() << "no shared corpus";
+  const std::string png = dir_ + "/windmill.png";
+  ASSERT_EQ(lodforge_render(windmill + " -o " + png + " --size 200x200 --view 0,10"), 0);
+  // Not the grey of a scene without materials: its materials' colours.
+  EXPECT_LT(test::fraction_shaded_like(load(png), {0.72f, 0.74f, 0.80f}, 0.01), 0.05);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -29,6 +29,8 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
+#include "lodforge/metrics/colorize_deviation.h"
+#include "lodforge/render/color_bar.h"
 #include "lodforge/render/contact_sheet.h"
 #include "lodforge/render/render_mesh.h"
 #include "lodforge/render/texture_image.h"
@@ -266,6 +268,7 @@ void add_render_command(CLI::App& app, Runner& run) {
     std::string view = "30,20";
     bool no_colors = false;
     bool no_textures = false;
+    double color_bar = 0;
     bool wireframe = false;
     bool flat = false;
     int level = 0;
@@ -318,6 +321,13 @@ void add_render_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--no-colors", s->no_colors,
                 "Draw every surface grey: no vertex colours, materials or textures");
   cmd->add_flag("--no-textures", s->no_textures, "Draw a scene's materials without its textures");
+  cmd->add_option("--color-bar", s->color_bar,
+                  "Draw the deviation scale of 'compare --colored' beside the picture, from 0 "
+                  "(blue) to this value (red), e.g. the value compare printed")
+      ->check(kFiniteNumber)
+      ->check(CLI::PositiveNumber)
+      ->excludes(levels)
+      ->excludes(distances);
   cmd->add_flag("--wireframe", s->wireframe, "Draw triangle edges over the surface");
   cmd->add_flag("--flat", s->flat, "Flat shading (one normal per triangle)");
   add_expansion_options(*cmd, s->read);
@@ -341,7 +351,7 @@ void add_render_command(CLI::App& app, Runner& run) {
         throw DataError(fmt::format("{}: the mesh has no triangles or lines to render", s->input));
       options.appearance = d.appearance();
       const RenderResult r = render_mesh(mesh, options);
-      write_png(r.image, s->output);
+      write_png(s->color_bar > 0 ? add_deviation_bar(r.image, s->color_bar) : r.image, s->output);
       fmt::print(stderr, "render: {} ({}x{}, {} triangles, {} line segments drawn)\n", s->output,
                  r.image.width, r.image.height, r.triangles_drawn, r.lines_drawn);
       return 0;

@@ -54,6 +54,14 @@ class CmdRender : public ::testing::Test {
     for (const auto& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
     return path;
   }
+  // Writes `vrml` to NAME.wrl, renders it to NAME.png with `args`; the picture
+  // (empty when the command failed).
+  Image render_text(const std::string& name, const std::string& vrml, const std::string& args) {
+    std::ofstream(dir_ + "/" + name + ".wrl") << vrml;
+    const std::string png = dir_ + "/" + name + ".png";
+    if (lodforge_render(dir_ + "/" + name + ".wrl -o " + png + " " + args) != 0) return {};
+    return load(png);
+  }
   Image load(const std::string& png) {
     int w = 0, h = 0, n = 0;
     stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
@@ -210,15 +218,13 @@ const std::string kCastleDemo =
 
 TEST_F(CmdRender, PerFaceMaterialBindingColoursEachFace) {
   // Two squares side by side, one face each: red on the left, blue on the right.
-  const std::string scene = dir_ + "/per_face.wrl", png = dir_ + "/per_face.png";
-  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
-                          " Material { diffuseColor [1 0 0, 0 0 1] }\n"
-                          " MaterialBinding { value PER_FACE }\n"
-                          " Coordinate3 { point [-2 -1 0, 0 -1 0, 0 1 0, -2 1 0,"
-                          " 2 -1 0, 2 1 0] }\n"
-                          " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1, 1, 4, 5, 2, -1] }\n}\n";
-  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 160x80 --view 0,0"), 0);
-  const Image img = load(png);
+  const std::string scene =
+      "#VRML V1.0 ascii\nSeparator {\n Material { diffuseColor [1 0 0, 0 0 1] }\n"
+      " MaterialBinding { value PER_FACE }\n"
+      " Coordinate3 { point [-2 -1 0, 0 -1 0, 0 1 0, -2 1 0, 2 -1 0, 2 1 0] }\n"
+      " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1, 1, 4, 5, 2, -1] }\n}\n";
+  const Image img = render_text("per_face", scene, "--size 160x80 --view 0,0");
+  ASSERT_EQ(img.width, 160);
   const auto half = [&](int x0) {
     Image h(80, 80);
     for (int y = 0; y < 80; ++y) std::copy_n(img.at(x0, y), 80 * 4, h.at(0, y));
@@ -231,20 +237,21 @@ TEST_F(CmdRender, PerFaceMaterialBindingColoursEachFace) {
   EXPECT_GT(test::fraction_shaded_like(right, {0, 0, 1}), 0.12);
   EXPECT_LT(test::fraction_shaded_like(right, {1, 0, 0}), 0.01);
   // --no-colors draws them grey.
-  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 160x80 --view 0,0 --no-colors"), 0);
-  EXPECT_LT(test::fraction_shaded_like(load(png), {1, 0, 0}), 0.01);
+  EXPECT_LT(test::fraction_shaded_like(
+                render_text("grey", scene, "--size 160x80 --view 0,0 --no-colors"), {1, 0, 0}),
+            0.01);
 }
 
 TEST_F(CmdRender, InlineImageTextureShowsItsFourColours) {
   // A square under a 2x2 SFImage: red, green (bottom row), blue, white (top).
-  const std::string scene = dir_ + "/sfimage.wrl", png = dir_ + "/sfimage.png";
-  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
-                          " Texture2 { image 2 2 3 0xFF0000 0x00FF00 0x0000FF 0xFFFFFF }\n"
-                          " Coordinate3 { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }\n"
-                          " TextureCoordinate2 { point [0 0, 1 0, 1 1, 0 1] }\n"
-                          " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1] }\n}\n";
-  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 120x120 --view 0,0"), 0);
-  const Image img = load(png);
+  const Image img = render_text("sfimage",
+                                "#VRML V1.0 ascii\nSeparator {\n"
+                                " Texture2 { image 2 2 3 0xFF0000 0x00FF00 0x0000FF 0xFFFFFF }\n"
+                                " Coordinate3 { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }\n"
+                                " TextureCoordinate2 { point [0 0, 1 0, 1 1, 0 1] }\n"
+                                " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1] }\n}\n",
+                                "--size 120x120 --view 0,0");
+  ASSERT_EQ(img.width, 120);
   // The square's extent on screen.
   int x0 = img.width, x1 = 0, y0 = img.height, y1 = 0;
   for (int y = 0; y < img.height; ++y)

@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 
+#include "lodforge/render/texture_image.h"
 #include "render/test_meshes.h"
 
 namespace lodforge {
@@ -51,6 +53,14 @@ class CmdRender : public ::testing::Test {
     for (const auto& p : m.positions) out << p.x << ' ' << p.y << ' ' << p.z << " 255 0 0\n";
     for (const auto& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
     return path;
+  }
+  // Writes `vrml` to NAME.wrl, renders it to NAME.png with `args`; the picture
+  // (empty when the command failed).
+  Image render_text(const std::string& name, const std::string& vrml, const std::string& args) {
+    std::ofstream(dir_ + "/" + name + ".wrl") << vrml;
+    const std::string png = dir_ + "/" + name + ".png";
+    if (lodforge_render(dir_ + "/" + name + ".wrl -o " + png + " " + args) != 0) return {};
+    return load(png);
   }
   Image load(const std::string& png) {
     int w = 0, h = 0, n = 0;
@@ -199,6 +209,191 @@ TEST_F(CmdRender, RendersTheExampleScene) {
       lodforge_render(std::string(LODFORGE_EXAMPLES) + "/scene.wrl -o " + png + " --size 160x120"),
       0);
   EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
+}
+
+// ---- Scenes in their own colours (materials, bindings, textures) ----
+
+const std::string kCastleDemo =
+    std::string(LODFORGE_SHARED_DATA) + "/vrml1/castle-engine__demo-models";
+
+TEST_F(CmdRender, PerFaceMaterialBindingColoursEachFace) {
+  // Two squares side by side, one face each: red on the left, blue on the right.
+  const std::string scene =
+      "#VRML V1.0 ascii\nSeparator {\n Material { diffuseColor [1 0 0, 0 0 1] }\n"
+      " MaterialBinding { value PER_FACE }\n"
+      " Coordinate3 { point [-2 -1 0, 0 -1 0, 0 1 0, -2 1 0, 2 -1 0, 2 1 0] }\n"
+      " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1, 1, 4, 5, 2, -1] }\n}\n";
+  const Image img = render_text("per_face", scene, "--size 160x80 --view 0,0");
+  ASSERT_EQ(img.width, 160);
+  const auto half = [&](int x0) {
+    Image h(80, 80);
+    for (int y = 0; y < 80; ++y) std::copy_n(img.at(x0, y), 80 * 4, h.at(0, y));
+    return h;
+  };
+  const Image left = half(0), right = half(80);
+  // Each square covers about a sixth of its half of the picture.
+  EXPECT_GT(test::fraction_shaded_like(left, {1, 0, 0}), 0.12);
+  EXPECT_LT(test::fraction_shaded_like(left, {0, 0, 1}), 0.01);
+  EXPECT_GT(test::fraction_shaded_like(right, {0, 0, 1}), 0.12);
+  EXPECT_LT(test::fraction_shaded_like(right, {1, 0, 0}), 0.01);
+  // --no-colors draws them grey.
+  EXPECT_LT(test::fraction_shaded_like(
+                render_text("grey", scene, "--size 160x80 --view 0,0 --no-colors"), {1, 0, 0}),
+            0.01);
+}
+
+TEST_F(CmdRender, InlineImageTextureShowsItsFourColours) {
+  // A square under a 2x2 SFImage: red, green (bottom row), blue, white (top).
+  const Image img = render_text("sfimage",
+                                "#VRML V1.0 ascii\nSeparator {\n"
+                                " Texture2 { image 2 2 3 0xFF0000 0x00FF00 0x0000FF 0xFFFFFF }\n"
+                                " Coordinate3 { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }\n"
+                                " TextureCoordinate2 { point [0 0, 1 0, 1 1, 0 1] }\n"
+                                " IndexedFaceSet { coordIndex [0, 1, 2, 3, -1] }\n}\n",
+                                "--size 120x120 --view 0,0");
+  ASSERT_EQ(img.width, 120);
+  // The square's extent on screen.
+  int x0 = img.width, x1 = 0, y0 = img.height, y1 = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.at(x, y)[0] < 250 || img.at(x, y)[1] < 250 || img.at(x, y)[2] < 250) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  ASSERT_GT(x1 - x0, 40);
+  // Texel centres, a quarter of the way in from each corner, are pure (bilinear
+  // filtering blends in between): red bottom left, green bottom right, blue
+  // top left, white top right.
+  const auto at = [&](double s, double t) {
+    return img.at(x0 + int(s * (x1 - x0)), y1 - int(t * (y1 - y0)));
+  };
+  EXPECT_TRUE(test::shaded_like(at(0.25, 0.25), {1, 0, 0}));
+  EXPECT_TRUE(test::shaded_like(at(0.75, 0.25), {0, 1, 0}));
+  EXPECT_TRUE(test::shaded_like(at(0.25, 0.75), {0, 0, 1}));
+  EXPECT_TRUE(test::shaded_like(at(0.75, 0.75), {1, 1, 1}));
+}
+
+TEST_F(CmdRender, MissingTextureIsAWarningAndTheSurfaceColour) {
+  const std::string scene = dir_ + "/missing_texture.wrl", png = dir_ + "/missing_texture.png";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Material { diffuseColor 0 1 0 }\n"
+                          " Texture2 { filename \"no_such_image.png\" }\n Cube {}\n}\n";
+  std::string err;
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100", &err), 0);
+  EXPECT_NE(err.find("no_such_image.png"), std::string::npos) << err;
+  EXPECT_NE(err.find("warning"), std::string::npos) << err;
+  EXPECT_GT(test::fraction_shaded_like(load(png), {0, 1, 0}), 0.1);
+  // A file that is not an image: the same.
+  std::ofstream(dir_ + "/not_an_image.png") << "hello";
+  std::ofstream(scene) << "#VRML V1.0 ascii\nSeparator {\n"
+                          " Texture2 { filename \"not_an_image.png\" }\n Cube {}\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100", &err), 0);
+  EXPECT_NE(err.find("not_an_image.png"), std::string::npos) << err;
+  EXPECT_GT(test::pixel_stats(load(png)).covered_fraction, 0.1);
+}
+
+TEST_F(CmdRender, CastleShowsItsMaterialsAndItsTextures) {
+  // castle.wrl (Blender export, Z up): white and grey (0.56) materials bound
+  // PER_VERTEX_INDEXED under JPEG textures (grass, water, wood, stone).
+  const std::string castle = kCastleDemo + "/castle/old/vrml_1/castle.wrl";
+  if (!fs::exists(castle)) GTEST_SKIP() << "no shared corpus";
+  const std::string textured = dir_ + "/castle.png", plain = dir_ + "/castle_materials.png";
+  const std::string view = " --size 240x180 --view 10,-70";
+  ASSERT_EQ(lodforge_render(castle + " -o " + textured + view), 0);
+  ASSERT_EQ(lodforge_render(castle + " -o " + plain + view + " --no-textures"), 0);
+  const Image with = load(textured), without = load(plain);
+  // Materials only: neutral greys (the materials' white and 0.56 grey), not
+  // the bluish grey of a scene without materials.
+  EXPECT_GT(test::fraction_shaded_like(without, {1, 1, 1}, 0.01), 0.08);
+  // Textured: the grass texture's colour covers the ground.
+  const Texture grass = read_texture(kCastleDemo + "/castle/old/textures/grassfull.jpg");
+  double sum[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < grass.image.pixels.size(); i += 4)
+    for (int c = 0; c < 3; ++c) sum[c] += grass.image.pixels[i + c];
+  const Vec3 mean{float(sum[0]), float(sum[1]), float(sum[2])};
+  EXPECT_GT(test::fraction_shaded_like(with, mean, 0.04), 0.06);
+  EXPECT_LT(test::fraction_shaded_like(without, mean, 0.04), 0.01);
+}
+
+TEST_F(CmdRender, TexturedCorpusSceneShowsItsTexture) {
+  // texture_test.wrl: a Cone, Cylinder, Sphere and Cube under a PNG texture
+  // (default texture coordinates of the primitives), then an untextured
+  // Sphere beside them.
+  const std::string scene = kCastleDemo + "/vrml_1/subdir1/subdir2/texture_test.wrl";
+  if (!fs::exists(scene)) GTEST_SKIP() << "no shared corpus";
+  const std::string png = dir_ + "/texture_test.png";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 400x250 --view 0,0"), 0);
+  const Texture tex = read_texture(kCastleDemo + "/textures/test_texture.png");
+  // The most common texel colours of the image show on the shapes.
+  std::map<std::uint32_t, int> count;
+  for (std::size_t i = 0; i < tex.image.pixels.size(); i += 4)
+    ++count[(tex.image.pixels[i] & 0xF0u) << 16 | (tex.image.pixels[i + 1] & 0xF0u) << 8 |
+            (tex.image.pixels[i + 2] & 0xF0u)];
+  const auto top = std::max_element(count.begin(), count.end(),
+                                    [](auto& a, auto& b) { return a.second < b.second; });
+  const Vec3 common{float((top->first >> 16) & 0xFF) + 8, float((top->first >> 8) & 0xFF) + 8,
+                    float(top->first & 0xFF) + 8};
+  const Image img = load(png);
+  EXPECT_GT(test::fraction_shaded_like(img, common, 0.05), 0.002);
+  std::string err;
+  ASSERT_EQ(
+      lodforge_render(scene + " -o " + png + " --size 400x250 --view 0,0 --no-textures", &err), 0);
+  EXPECT_LT(test::fraction_shaded_like(load(png), common, 0.05),
+            test::fraction_shaded_like(img, common, 0.05) / 4);
+}
+
+TEST_F(CmdRender, DeviationPicturesCarryTheirColourScale) {
+  // compare --colored OUT.png: the coloured mesh with the bar; render
+  // --color-bar: the same bar beside a coloured PLY.
+  const std::string a = dir_ + "/sphere_a.ply", b = dir_ + "/sphere_b.ply";
+  std::ofstream(dir_ + "/a.wrl") << "#VRML V1.0 ascii\nSphere { radius 1 }\n";
+  std::ofstream(dir_ + "/b.wrl") << "#VRML V1.0 ascii\nCube { width 1.6 height 1.6 depth 1.6 }\n";
+  const std::string png = dir_ + "/compare.png";
+  ASSERT_EQ(std::system((exe_ + " compare " + dir_ + "/a.wrl " + dir_ + "/b.wrl --colored " + png +
+                         " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  const Image with_bar = load(png);
+  EXPECT_EQ(with_bar.height, 480);
+  EXPECT_GT(with_bar.width, 640 + 40);
+  // The bar: red at its top, blue at its bottom, right of the 640 picture.
+  int red = 0, blue = 0;
+  for (int y = 0; y < with_bar.height; ++y)
+    for (int x = 640; x < with_bar.width; ++x) {
+      red += test::shaded_like(with_bar.at(x, y), {1, 0, 0}, 0.02);
+      blue += test::shaded_like(with_bar.at(x, y), {0, 0, 1}, 0.02);
+    }
+  EXPECT_GT(red, 20);
+  EXPECT_GT(blue, 20);
+  const std::string plain = dir_ + "/plain.png", bar = dir_ + "/bar.png";
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + plain + " --size 200x150"), 0);
+  ASSERT_EQ(lodforge_render(red_cube_ply() + " -o " + bar + " --size 200x150 --color-bar 0.5"), 0);
+  EXPECT_EQ(load(plain).width, 200);
+  EXPECT_GT(load(bar).width, 240);
+  EXPECT_EQ(lodforge_render(red_cube_ply() + " -o " + bar + " --color-bar -1"), 2);
+}
+
+TEST_F(CmdRender, ContactSheetsOfManyLevelsWrapIntoRows) {
+  // Six levels: rows of three (up to four stay in one row).
+  const std::string scene = dir_ + "/six.wrl", png = dir_ + "/six.png";
+  std::ofstream(scene)
+      << "#VRML V1.0 ascii\nLOD { range [1, 2, 3, 4, 5]\n"
+         " Sphere {} Cube {} Cone {} Cylinder {} Sphere { radius 0.5 } Cube {}\n}\n";
+  ASSERT_EQ(lodforge_render(scene + " -o " + png + " --size 100x100 --levels"), 0);
+  const Image img = load(png);
+  EXPECT_EQ(img.width, 3 * 100 + 4 * 8);
+  // Per row: the picture, half a gap, two label lines of 12 pixels, a gap.
+  EXPECT_EQ(img.height, 8 + 2 * (100 + 4 + 2 * 12 + 8));
+}
+
+TEST_F(CmdRender, InventorWindmillIsDrawnInItsColours) {
+  const std::string windmill = std::string(LODFORGE_SHARED_DATA) +
+                               "/inventor/aumuell__open-inventor/apps/examples/Mentor/"
+                               "01.1.Windmill.iv";
+  if (!fs::exists(windmill)) GTEST_SKIP() << "no shared corpus";
+  const std::string png = dir_ + "/windmill.png";
+  ASSERT_EQ(lodforge_render(windmill + " -o " + png + " --size 200x200 --view 0,10"), 0);
+  // Not the grey of a scene without materials: its materials' colours.
+  EXPECT_LT(test::fraction_shaded_like(load(png), {0.72f, 0.74f, 0.80f}, 0.01), 0.05);
 }
 
 }  // namespace

@@ -4,8 +4,11 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "lodforge/core/error.h"
+#include "lodforge/render/texture_image.h"
 #include "lodforge/render/write_png.h"
 #include "render/test_meshes.h"
 
@@ -236,6 +239,70 @@ TEST(RenderMesh, BoundingSphereOfUsedVertices) {
   EXPECT_NEAR(s.center.x, 10, 1e-5);
   EXPECT_NEAR(s.radius, std::sqrt(3.f), 1e-5);
   EXPECT_EQ(bounding_sphere(TriangleMesh{}).radius, 0);
+}
+
+// A unit square facing +Z with texture coordinates (0,0)..(1,1), one texture.
+TriangleMesh textured_square() {
+  TriangleMesh m;
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.materials = {0, 0};
+  return m;
+}
+
+TEST(RenderMesh, TextureReplacesTheVertexColourAndIsLit) {
+  const Texture green = sfimage_texture(std::vector<std::int32_t>{1, 1, 3, 0x00ff00});
+  const TriangleMesh m = test::colored(textured_square(), {1, 0, 0});
+  RenderOptions o{.width = 64, .height = 64, .azimuth = 0, .elevation = 0};
+  o.appearance.textures = std::span(&green, 1);
+  const Image img = render_mesh(m, o).image;
+  EXPECT_GT(test::fraction_shaded_like(img, {0, 1, 0}), 0.3);
+  EXPECT_EQ(test::fraction_shaded_like(img, {1, 0, 0}), 0);
+  // An intensity texture scales the colour; an index out of range and
+  // --no-colors draw without the texture.
+  const Texture half_grey = sfimage_texture(std::vector<std::int32_t>{1, 1, 1, 0x80});
+  o.appearance.textures = std::span(&half_grey, 1);
+  EXPECT_GT(test::fraction_shaded_like(render_mesh(m, o).image, {1, 0, 0}), 0.3);
+  o.appearance.textures = std::span(&green, 1);
+  TriangleMesh other = m;
+  other.materials = {5, 5};
+  EXPECT_GT(test::fraction_shaded_like(render_mesh(other, o).image, {1, 0, 0}), 0.3);
+  o.use_colors = false;
+  EXPECT_EQ(test::fraction_shaded_like(render_mesh(m, o).image, {0, 1, 0}), 0);
+}
+
+TEST(RenderMesh, TextureIsNotMirrored) {
+  // 2x1 image: left texel red, right texel blue (SFImage rows bottom up).
+  const Texture tex = sfimage_texture(std::vector<std::int32_t>{2, 1, 3, 0xff0000, 0x0000ff});
+  RenderOptions o{.width = 64, .height = 64, .azimuth = 0, .elevation = 0};
+  o.appearance.textures = std::span(&tex, 1);
+  const Image img = render_mesh(textured_square(), o).image;
+  EXPECT_TRUE(test::shaded_like(img.at(22, 32), {1, 0, 0}));
+  EXPECT_TRUE(test::shaded_like(img.at(42, 32), {0, 0, 1}));
+}
+
+TEST(RenderMesh, TransparentSurfaceShowsWhatIsBehind) {
+  // A red square in front of a blue one, the red one 75 % transparent.
+  TriangleMesh front = test::colored(textured_square(), {1, 0, 0});
+  TriangleMesh back = test::colored(textured_square(), {0, 0, 1});
+  for (auto& p : back.positions) p.z = -1;
+  TriangleMesh both = front;
+  for (const auto& p : back.positions) both.positions.push_back(p);
+  for (const auto& c : back.colors) both.colors.push_back(c);
+  for (const auto& t : back.triangles) both.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+  both.texcoords.clear();
+  both.materials.clear();
+  const std::vector<float> opacity = {0.25f, 0.25f, 0.25f, 0.25f, 1, 1, 1, 1};
+  RenderOptions o{.width = 64, .height = 64, .azimuth = 0, .elevation = 0};
+  const Image opaque = render_mesh(both, o).image;
+  o.appearance.opacity = opacity;
+  const Image blended = render_mesh(both, o).image;
+  const std::uint8_t* a = opaque.at(32, 32);
+  const std::uint8_t* b = blended.at(32, 32);
+  EXPECT_GT(a[0], 3 * a[2]);  // red in front
+  EXPECT_GT(b[2], b[0]);      // mostly the blue behind
+  EXPECT_GT(b[0], 10);        // with some red
 }
 
 }  // namespace

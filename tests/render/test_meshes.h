@@ -108,6 +108,31 @@ inline PixelStats pixel_stats(const Image& img, int x0 = 0, int y0 = 0, int w = 
   return s;
 }
 
+/// True if the RGB bytes `p` are `rgb` (in [0,1]) lit by some amount: their
+/// chromaticities (each channel over the sum) are within `tolerance`, and
+/// the pixel is not black. Lighting scales a colour; it keeps its hue.
+inline bool shaded_like(const std::uint8_t* p, Vec3 rgb, double tolerance = 0.06) {
+  const double sum = double(p[0]) + p[1] + p[2], want = double(rgb.x) + rgb.y + rgb.z;
+  if (sum < 30 || want <= 0) return false;
+  return std::abs(p[0] / sum - rgb.x / want) < tolerance &&
+         std::abs(p[1] / sum - rgb.y / want) < tolerance &&
+         std::abs(p[2] / sum - rgb.z / want) < tolerance;
+}
+
+/// Fraction of the pixels of `img` that differ from its top-left (background)
+/// pixel and are shaded_like `rgb`.
+inline double fraction_shaded_like(const Image& img, Vec3 rgb, double tolerance = 0.06) {
+  const std::uint8_t* bg = img.at(0, 0);
+  std::size_t n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      if (p[0] == bg[0] && p[1] == bg[1] && p[2] == bg[2]) continue;
+      if (shaded_like(p, rgb, tolerance)) ++n;
+    }
+  return double(n) / (double(img.width) * img.height);
+}
+
 /// Fraction of pixels that differ between two images of the same size.
 inline double difference_fraction(const Image& a, const Image& b) {
   std::size_t differ = 0;

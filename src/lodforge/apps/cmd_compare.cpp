@@ -1,5 +1,5 @@
 // `lodforge compare A B [--json] [--samples N] [--seed S] [--threads T]
-//                       [--smooth-normals] [--colored OUT.ply] [--color-max X]`:
+//                       [--smooth-normals] [--colored OUT.ply|OUT.png] [--color-max X]`:
 // Metro-style deviation between two surfaces (SPEC §4, seed 000 §5.2): A is
 // the reference (the original), B the approximation. JSON goes to stdout with
 // --json, human text to stderr otherwise.
@@ -28,9 +28,18 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/metrics/compare_meshes.h"
+#include "lodforge/render/render_mesh.h"
+#include "lodforge/render/write_png.h"
 
 namespace lodforge::apps {
 namespace {
+
+// True for a picture's name (".png", any case).
+bool is_png_path(std::string path) {
+  std::transform(path.begin(), path.end(), path.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return path.ends_with(".png");
+}
 
 nlohmann::ordered_json to_json(const Deviation& d) {
   nlohmann::ordered_json j;
@@ -110,7 +119,8 @@ void add_compare_command(CLI::App& app, Runner& run) {
   cmd->add_flag("--smooth-normals", s->smooth_normals,
                 "Estimate missing vertex normals by averaging face normals (else face normals)");
   cmd->add_option("--colored", s->colored,
-                  "Write A with per-vertex colours by deviation (blue 0, green half, red max)");
+                  "Write A with per-vertex colours by deviation (blue 0, green half, red max); "
+                  "a .png name gives a picture of it with the colour scale");
   cmd->add_option("--color-max", s->color_max,
                   "Deviation shown red (default: the largest vertex deviation)")
       ->check(kFiniteNumber)
@@ -142,7 +152,10 @@ void add_compare_command(CLI::App& app, Runner& run) {
           for (float v : r.vertex_deviation) scale_max = std::max(scale_max, double(v));
         }
         a.colors = colorize_deviation(a, r.vertex_deviation, float(scale_max));
-        write_mesh(a, s->colored);
+        if (is_png_path(s->colored))
+          write_png(add_deviation_bar(render_mesh(a).image, scale_max), s->colored);
+        else
+          write_mesh(a, s->colored);
       }
 
       if (s->json) {

@@ -1,8 +1,9 @@
 // `lodforge render SCENE_OR_MESH -o OUT.png [--level K | --levels |
 // --distances d1,d2,...] [--size WxH] [--view azimuth,elevation] [--no-colors]
-// [--wireframe] [--flat]`: a headless picture of a mesh file (PLY, OBJ, OFF,
-// STL) with its vertex colours, so a `compare --colored` output shows where the
-// error is, or of a VRML 1.0 / Inventor scene (flattened at LOD level K), or with --levels
+// [--no-textures] [--wireframe] [--flat]`: a headless picture of a mesh file
+// (PLY, OBJ, OFF, STL) with its vertex colours, so a `compare --colored`
+// output shows where the error is, or of a VRML 1.0 / Inventor scene
+// (flattened at LOD level K) in its materials' colours and its textures, or with --levels
 // a contact sheet of every LOD level side by side with its triangle count
 // under it (the original's Figure 5.5), or with --distances what a browser
 // shows from each distance (every LOD choosing by its own distance) beside the
@@ -13,7 +14,10 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <memory>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,8 +29,11 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
+#include "lodforge/metrics/colorize_deviation.h"
+#include "lodforge/render/color_bar.h"
 #include "lodforge/render/contact_sheet.h"
 #include "lodforge/render/render_mesh.h"
+#include "lodforge/render/texture_image.h"
 #include "lodforge/render/write_png.h"
 #include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/schema.h"
@@ -85,6 +92,80 @@ std::vector<double> parse_distances(const std::string& text) {
   return out;
 }
 
+// The images of flattened scenes' textures. A file name is relative to the
+// folder of the scene file; a file read once serves every level. A texture
+// that cannot be read is a warning naming it (once), and its triangles are
+// drawn in their surface colour.
+class TextureLoader {
+ public:
+  TextureLoader(const std::string& scene_path, bool enabled, bool quiet)
+      : folder_(scene_path == "-" ? std::filesystem::path(".")
+                                  : std::filesystem::path(scene_path).parent_path()),
+        scene_(scene_path == "-" ? "<stdin>" : scene_path),
+        enabled_(enabled),
+        quiet_(quiet) {}
+
+  std::vector<Texture> load(const std::vector<scene::SceneTexture>& textures) {
+    std::vector<Texture> out;
+    if (!enabled_) return out;
+    for (const scene::SceneTexture& t : textures) {
+      Texture image;
+      try {
+        image = t.filename.empty() ? sfimage_texture(t.image) : file(t.filename);
+      } catch (const DataError& e) {
+        warn(t, e.what());
+      }
+      image.repeat_s = t.repeat_s;
+      image.repeat_t = t.repeat_t;
+      out.push_back(std::move(image));
+    }
+    return out;
+  }
+
+ private:
+  Texture file(const std::string& name) {
+    if (name.find("://") != std::string::npos)
+      throw DataError(fmt::format("texture {}: URLs are not fetched", name));
+    const std::filesystem::path path = folder_ / name;
+    auto it = files_.find(path.string());
+    if (it == files_.end()) {
+      try {
+        it = files_.emplace(path.string(), read_texture(path.string())).first;
+      } catch (const DataError&) {
+        files_.emplace(path.string(), Texture{});
+        throw;
+      }
+    }
+    return it->second;
+  }
+
+  void warn(const scene::SceneTexture& t, const std::string& why) {
+    const std::string key = t.filename.empty() ? std::to_string(t.line) : t.filename;
+    if (quiet_ || !warned_.insert(key).second) return;
+    fmt::print(stderr, "warning: {}:{}: Texture2 {}: {}; drawn without it\n", scene_, t.line,
+               t.filename.empty() ? "image" : t.filename, why);
+  }
+
+  std::filesystem::path folder_;
+  std::string scene_;
+  bool enabled_, quiet_;
+  std::map<std::string, Texture> files_;
+  std::set<std::string> warned_;
+};
+
+// A flattened scene with its texture images, ready to draw.
+struct Drawing {
+  scene::FlatScene flat;
+  std::vector<Texture> textures;
+  Appearance appearance() const { return {.textures = textures, .opacity = flat.opacity}; }
+};
+
+Drawing drawing(scene::FlatScene flat, TextureLoader& loader) {
+  Drawing d{std::move(flat), {}};
+  d.textures = loader.load(d.flat.textures);
+  return d;
+}
+
 // The scene of a contact sheet showing its LOD nodes.
 scene::Scene read_lod_scene(const std::string& path, std::string_view option,
                             const SceneReadSettings& read) {
@@ -102,18 +183,29 @@ void write_sheet(std::span<const ContactSheetPanel> panels, const ContactSheetOp
              what);
 }
 
+// Panels per row of a sheet of `n` panels: up to four in one row, then rows
+// of about equal length.
+int sheet_columns(std::size_t n) {
+  if (n <= 4) return int(n);
+  return int(std::ceil(std::sqrt(double(n))));
+}
+
 // One panel per LOD level of a scene, all seen by the same camera.
 int render_levels(const std::string& input, const std::string& output, const RenderOptions& options,
-                  const SceneReadSettings& read) {
+                  const SceneReadSettings& read, TextureLoader& loader) {
   const scene::Scene scene = read_lod_scene(input, "--levels", read);
   const std::size_t count = lod_level_count(scene);
-  std::vector<TriangleMesh> meshes;
+  std::vector<Drawing> levels;
   for (std::size_t k = 0; k < count; ++k)
-    meshes.push_back(scene::flatten_scene(scene, {.lod_level = int(k)}));
+    levels.push_back(
+        drawing(scene::flatten_scene_appearance(scene, {.lod_level = int(k)}), loader));
   std::vector<ContactSheetPanel> panels;
   for (std::size_t k = 0; k < count; ++k)
-    panels.push_back({&meshes[k], lod_labels(meshes[k].triangle_count(), k)});
-  write_sheet(panels, {.panel = options}, output, fmt::format("{} levels", count));
+    panels.push_back({.mesh = &levels[k].flat.mesh,
+                      .labels = lod_labels(levels[k].flat.mesh.triangle_count(), k),
+                      .appearance = levels[k].appearance()});
+  write_sheet(panels, {.panel = options, .columns = sheet_columns(count)}, output,
+              fmt::format("{} levels", count));
   return 0;
 }
 
@@ -135,28 +227,31 @@ float height_angle(const scene::Scene& scene) {
 // so the scene shrinks with distance as it does in a browser.
 int render_distances(const std::string& input, const std::string& output,
                      const std::vector<double>& distances, const RenderOptions& options,
-                     const SceneReadSettings& read) {
+                     const SceneReadSettings& read, TextureLoader& loader) {
   const scene::Scene scene = read_lod_scene(input, "--distances", read);
-  const TriangleMesh level0 = scene::flatten_scene(scene, {.lod_level = 0});
-  const FrameSphere bounds = bounding_sphere(level0);
+  const Drawing level0 = drawing(scene::flatten_scene_appearance(scene, {.lod_level = 0}), loader);
+  const FrameSphere bounds = bounding_sphere(level0.flat.mesh);
   if (bounds.radius <= 0)
     throw DataError(fmt::format("{}: the scene has no triangles or lines to render", input));
   const Vec3 towards_eye = view_direction(options.azimuth, options.elevation);
   const float angle = height_angle(scene);
-  std::vector<TriangleMesh> chosen;
+  std::vector<Drawing> chosen;
   std::vector<LookAt> cameras;
   for (const double d : distances) {
     cameras.push_back({.eye = bounds.center + towards_eye * float(d),
                        .target = bounds.center,
                        .height_angle = angle});
-    chosen.push_back(scene::flatten_scene(scene, {.viewpoint = cameras.back().eye}));
+    chosen.push_back(
+        drawing(scene::flatten_scene_appearance(scene, {.viewpoint = cameras.back().eye}), loader));
   }
   std::vector<ContactSheetPanel> panels;
   for (std::size_t i = 0; i < distances.size(); ++i) {
-    panels.push_back({&chosen[i],
-                      lod_labels(chosen[i].triangle_count(), std::nullopt, distances[i]),
-                      cameras[i]});
-    panels.push_back({&level0, lod_labels(level0.triangle_count(), 0, distances[i]), cameras[i]});
+    panels.push_back({&chosen[i].flat.mesh,
+                      lod_labels(chosen[i].flat.mesh.triangle_count(), std::nullopt, distances[i]),
+                      cameras[i], chosen[i].appearance()});
+    panels.push_back({&level0.flat.mesh,
+                      lod_labels(level0.flat.mesh.triangle_count(), 0, distances[i]), cameras[i],
+                      level0.appearance()});
   }
   write_sheet(panels, {.panel = options, .columns = 2}, output,
               fmt::format("{} distances", distances.size()));
@@ -172,6 +267,8 @@ void add_render_command(CLI::App& app, Runner& run) {
     std::string size = "640x480";
     std::string view = "30,20";
     bool no_colors = false;
+    bool no_textures = false;
+    double color_bar = 0;
     bool wireframe = false;
     bool flat = false;
     int level = 0;
@@ -221,7 +318,16 @@ void add_render_command(CLI::App& app, Runner& run) {
                          "e.g. 30,20";
           },
           "AZ,EL", "view"));
-  cmd->add_flag("--no-colors", s->no_colors, "Ignore the mesh's vertex colours");
+  cmd->add_flag("--no-colors", s->no_colors,
+                "Draw every surface grey: no vertex colours, materials or textures");
+  cmd->add_flag("--no-textures", s->no_textures, "Draw a scene's materials without its textures");
+  cmd->add_option("--color-bar", s->color_bar,
+                  "Draw the deviation scale of 'compare --colored' beside the picture, from 0 "
+                  "(blue) to this value (red), e.g. the value compare printed")
+      ->check(kFiniteNumber)
+      ->check(CLI::PositiveNumber)
+      ->excludes(levels)
+      ->excludes(distances);
   cmd->add_flag("--wireframe", s->wireframe, "Draw triangle edges over the surface");
   cmd->add_flag("--flat", s->flat, "Flat shading (one normal per triangle)");
   add_expansion_options(*cmd, s->read);
@@ -234,15 +340,18 @@ void add_render_command(CLI::App& app, Runner& run) {
       options.use_colors = !s->no_colors;
       options.wireframe = s->wireframe;
       options.shading = s->flat ? Shading::kFlat : Shading::kSmooth;
-      if (s->levels) return render_levels(s->input, s->output, options, s->read);
+      TextureLoader loader(s->input, !s->no_colors && !s->no_textures, s->read.quiet);
+      if (s->levels) return render_levels(s->input, s->output, options, s->read, loader);
       if (by_distance)
         return render_distances(s->input, s->output, parse_distances(s->distances), options,
-                                s->read);
-      const TriangleMesh mesh = load_geometry(s->input, s->level, s->read);
+                                s->read, loader);
+      const Drawing d = drawing(load_drawing(s->input, s->level, s->read), loader);
+      const TriangleMesh& mesh = d.flat.mesh;
       if (mesh.triangles.empty() && mesh.lines.empty())
         throw DataError(fmt::format("{}: the mesh has no triangles or lines to render", s->input));
+      options.appearance = d.appearance();
       const RenderResult r = render_mesh(mesh, options);
-      write_png(r.image, s->output);
+      write_png(s->color_bar > 0 ? add_deviation_bar(r.image, s->color_bar) : r.image, s->output);
       fmt::print(stderr, "render: {} ({}x{}, {} triangles, {} line segments drawn)\n", s->output,
                  r.image.width, r.image.height, r.triangles_drawn, r.lines_drawn);
       return 0;

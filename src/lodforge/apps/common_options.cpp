@@ -13,6 +13,9 @@
 
 #include <fmt/core.h>
 
+#include "lodforge/metrics/colorize_deviation.h"
+#include "lodforge/render/color_bar.h"
+
 namespace lodforge::apps {
 
 const CLI::Validator kFiniteNumber(
@@ -152,6 +155,13 @@ vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path
   vrml1::ReadResult r = vrml1::read_vrml1(data, opt);
   if (!s.quiet) print_diagnostics(r.log.entries());
   return r;
+}
+
+Image add_deviation_bar(const Image& picture, double max) {
+  return add_color_bar(picture, {.stops = {kDeviationScale.begin(), kDeviationScale.end()},
+                                 .min = 0,
+                                 .max = max,
+                                 .title = "deviation"});
 }
 
 }  // namespace lodforge::apps

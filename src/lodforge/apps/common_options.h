@@ -9,6 +9,7 @@
 #include "lodforge/core/log.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/render/image.h"
 
 namespace lodforge::apps {
 
@@ -53,5 +54,10 @@ vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s
 /// and gives the folder of its inlines).
 vrml1::ReadResult read_scene_data(std::string_view data, const std::string& path,
                                   const SceneReadSettings& s);
+
+/// `picture` with the deviation colour scale of `compare --colored` (blue 0,
+/// green max / 2, red max) and its numbers beside it (render --color-bar,
+/// compare --colored OUT.png).
+Image add_deviation_bar(const Image& picture, double max);
 
 }  // namespace lodforge::apps

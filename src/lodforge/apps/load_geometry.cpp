@@ -23,11 +23,16 @@ bool has_scene_header(std::string_view data) {
   return data.starts_with("#VRML") || data.starts_with("#Inventor");
 }
 
-TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneReadSettings& read) {
+namespace {
+
+// A mesh file as it is, or a scene flattened at `lod_level` (with its
+// appearance when asked), checked against the coordinate range.
+scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSettings& read,
+                      bool appearance) {
   const std::string name = path == "-" ? "<stdin>" : path;
   auto mesh_checked = [&](TriangleMesh m) {
     check_coordinate_range(m, name);
-    return m;
+    return scene::FlatScene{.mesh = std::move(m)};
   };
   vrml1::ReadResult r;
   if (is_scene_path(path)) {
@@ -41,15 +46,30 @@ TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneRe
     r = read_scene_data(data, path, read);
   }
   Log log;
-  TriangleMesh m = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
+  scene::FlatScene flat;
+  if (appearance)
+    flat = scene::flatten_scene_appearance(r.scene, {.lod_level = lod_level}, &log);
+  else
+    flat.mesh = scene::flatten_scene(r.scene, {.lod_level = lod_level}, &log);
   if (!read.quiet) {
     std::vector<Diagnostic> warnings;
     for (const auto& d : log.entries())
       if (d.level != LogLevel::kMessage) warnings.push_back(d);
     print_diagnostics(warnings);
   }
-  check_coordinate_range(m, name);
-  return m;
+  check_coordinate_range(flat.mesh, name);
+  return flat;
+}
+
+}  // namespace
+
+TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneReadSettings& read) {
+  return load(path, lod_level, read, false).mesh;
+}
+
+scene::FlatScene load_drawing(const std::string& path, int lod_level,
+                              const SceneReadSettings& read) {
+  return load(path, lod_level, read, true);
 }
 
 std::size_t lod_level_count(const scene::Scene& scene) {

@@ -8,6 +8,7 @@
 
 #include "lodforge/apps/common_options.h"
 #include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/node.h"
 
 namespace lodforge::apps {
@@ -27,6 +28,12 @@ bool has_scene_header(std::string_view data);
 /// coordinates out of the range of check_coordinate_range.
 TriangleMesh load_geometry(const std::string& path, int lod_level = 0,
                            const SceneReadSettings& read = {});
+
+/// As load_geometry, with what the surfaces look like: a scene is flattened
+/// with its appearance (scene::flatten_scene_appearance), a mesh file is
+/// the mesh as it is (its vertex colours, no textures).
+scene::FlatScene load_drawing(const std::string& path, int lod_level = 0,
+                              const SceneReadSettings& read = {});
 
 /// The number of LOD levels of a scene: the most children of any LOD (or
 /// Inventor LevelOfDetail) node (1 if there is none).

@@ -12,6 +12,8 @@ namespace lodforge {
 
 struct Vec2 {
   float x = 0, y = 0;
+  Vec2 operator+(const Vec2& o) const { return {x + o.x, y + o.y}; }
+  Vec2 operator*(float s) const { return {x * s, y * s}; }
   friend bool operator==(const Vec2&, const Vec2&) = default;
 };
 

@@ -1,16 +1,9 @@
 // IndexedFaceSet / IndexedLineSet <-> attributed triangle mesh, with the
 // binding rules of the VRML 1.0 specification (MaterialBinding,
-// NormalBinding, texture coordinates) and the binding conversion of the
-// original LODCreator (§4: PER_FACE, PER_PART and PER_VERTEX become indexed,
-// with synthesised indices, because levels share one attribute list).
-//
-//  | binding (IndexedFaceSet)  | value of corner c of face f (position p in coordIndex) |
-//  |---------------------------|---------------------------------------------------------|
-//  | DEFAULT, OVERALL           | material 0 (materials); normals: DEFAULT = PER_VERTEX_INDEXED |
-//  | PER_PART, PER_FACE         | f-th value                                              |
-//  | *_PART/FACE_INDEXED        | index[f]                                                |
-//  | PER_VERTEX                 | c-th value counting all corners in order                |
-//  | PER_VERTEX_INDEXED         | index[p], or coordIndex[p] if the index field is [-1]  |
+// NormalBinding, texture coordinates: scene/attribute_binding.h) and the
+// binding conversion of the original LODCreator (§4: PER_FACE, PER_PART and
+// PER_VERTEX become indexed, with synthesised indices, because levels share
+// one attribute list).
 #include "lodforge/lod/shape_geometry.h"
 
 #include <fmt/format.h>
@@ -21,6 +14,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/scene/attribute_binding.h"
 #include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 #include "lodforge/scene/shape_mesh.h"
@@ -33,47 +27,9 @@ using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
 
-enum class Bind { kOverall, kPerFace, kPerFaceIndexed, kPerVertex, kPerVertexIndexed };
-
-Bind binding_of(const Node* binding_node, Bind default_binding) {
-  if (!binding_node) return default_binding;
-  const FieldValue* v = scene::field_or_default(*binding_node, "value");
-  const std::string& s = v->strings.empty() ? std::string("DEFAULT") : v->strings[0];
-  if (s == "OVERALL") return Bind::kOverall;
-  if (s == "PER_PART" || s == "PER_FACE") return Bind::kPerFace;
-  if (s == "PER_PART_INDEXED" || s == "PER_FACE_INDEXED") return Bind::kPerFaceIndexed;
-  if (s == "PER_VERTEX") return Bind::kPerVertex;
-  if (s == "PER_VERTEX_INDEXED") return Bind::kPerVertexIndexed;
-  return default_binding;
-}
-
-// The attribute index of a corner under a binding, before range checking;
-// -1 if the binding has none.
-struct AttributeIndexer {
-  Bind bind = Bind::kOverall;
-  const std::vector<std::int32_t>* index = nullptr;  // materialIndex / normalIndex
-  const std::vector<std::int32_t>* coord_index = nullptr;
-  std::int64_t at(std::size_t face, std::size_t corner_seq, std::size_t pos) const {
-    switch (bind) {
-      case Bind::kOverall:
-        return -1;
-      case Bind::kPerFace:
-        return std::int64_t(face);
-      case Bind::kPerFaceIndexed:
-        return face < index->size() ? (*index)[face] : std::int64_t(-2);
-      case Bind::kPerVertex:
-        return std::int64_t(corner_seq);
-      case Bind::kPerVertexIndexed: {
-        const auto& idx = index_is_default_vec() ? *coord_index : *index;
-        return pos < idx.size() ? idx[pos] : std::int64_t(-2);
-      }
-    }
-    return -1;
-  }
-  bool index_is_default_vec() const {
-    return !index || index->empty() || (index->size() == 1 && (*index)[0] == -1);
-  }
-};
+using scene::AttributeIndexer;
+using Bind = scene::Binding;
+using scene::binding_of;
 
 // Rows of a Material node: one row per index, fields of fewer values repeat
 // their last value (a single colour with many transparencies, say).

@@ -14,12 +14,14 @@ namespace lodforge {
 std::vector<Vec3> colorize_deviation([[maybe_unused]] const TriangleMesh& mesh,
                                      std::span<const float> values, float max) {
   assert(values.size() == mesh.vertex_count());
-  std::vector<Vec3> colors(values.size(), Vec3{0, 0, 1});
+  std::vector<Vec3> colors(values.size(), kDeviationScale[0]);
   if (!(max > 0) || !std::isfinite(max)) return colors;
   for (std::size_t v = 0; v < values.size(); ++v) {
     if (std::isnan(values[v])) continue;
     float t = std::clamp(values[v] / max, 0.f, 1.f);
-    colors[v] = t <= 0.5f ? Vec3{0, 2 * t, 1 - 2 * t} : Vec3{2 * t - 1, 2 - 2 * t, 0};
+    const std::size_t i = t <= 0.5f ? 0 : 1;
+    const float f = 2 * t - float(i);
+    colors[v] = kDeviationScale[i] * (1 - f) + kDeviationScale[i + 1] * f;
   }
   return colors;
 }

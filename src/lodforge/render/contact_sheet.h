@@ -33,6 +33,9 @@ struct ContactSheetPanel {
   /// This panel's camera; unset: the sheet's (options.panel.camera, or the
   /// common framing camera).
   std::optional<LookAt> camera;
+  /// Textures and opacity of this panel's mesh (options.panel.appearance is
+  /// not used: every panel's mesh has its own). Must outlive the call.
+  Appearance appearance;
 };
 
 struct ContactSheetOptions {

@@ -13,8 +13,10 @@
 //
 // Pipeline: validate the mesh -> camera framing a bounding sphere -> per-vertex
 // Lambert lighting (head light + ambient, two-sided) -> z-buffered triangles
-// with perspective-correct colour interpolation, edge functions over the
-// triangle's bounding box, sample at pixel centres -> lines (the mesh's
+// with perspective-correct colour, texture coordinate and opacity
+// interpolation, edge functions over the triangle's bounding box, sample at
+// pixel centres (texels bilinear; opacity as a screen door: an ordered 4x4
+// Bayer dither over the supersamples, so transparency needs no sorting) -> lines (the mesh's
 // segments and the optional wireframe) with a small depth bias so they show on
 // the surface they lie on -> average supersample x supersample blocks down to
 // the output size.
@@ -67,6 +69,24 @@ void validate(const TriangleMesh& mesh) {
     throw DataError(fmt::format("render: {} normals for {} vertices", mesh.normals.size(), nv));
   if (!mesh.colors.empty() && mesh.colors.size() != nv)
     throw DataError(fmt::format("render: {} colours for {} vertices", mesh.colors.size(), nv));
+}
+
+// The appearance's arrays against the mesh; throws DataError like validate.
+void validate(const TriangleMesh& mesh, const Appearance& look) {
+  const std::size_t nv = mesh.positions.size();
+  if (!look.opacity.empty() && look.opacity.size() != nv)
+    throw DataError(fmt::format("render: {} opacities for {} vertices", look.opacity.size(), nv));
+  if (look.textures.empty()) return;
+  if (mesh.has_texcoords() && mesh.texcoords.size() != nv)
+    throw DataError(
+        fmt::format("render: {} texture coordinates for {} vertices", mesh.texcoords.size(), nv));
+  if (mesh.has_materials() && mesh.materials.size() != mesh.triangles.size())
+    throw DataError(fmt::format("render: {} triangle materials for {} triangles",
+                                mesh.materials.size(), mesh.triangles.size()));
+  for (const Texture& t : look.textures)
+    if (t.image.pixels.size() !=
+        std::size_t(std::max(t.image.width, 0)) * std::max(t.image.height, 0) * 4)
+      throw DataError("render: a texture's pixel array has the wrong size");
 }
 
 struct Camera {
@@ -169,9 +189,56 @@ struct Framebuffer {
 };
 
 struct ScreenVertex {
-  Vec2 p;     // pixels
-  float iz;   // 1 / depth, linear in screen space
-  Vec3 c_iz;  // colour / depth, so colour interpolates perspective-correctly
+  Vec2 p;      // pixels
+  float iz;    // 1 / depth, linear in screen space
+  Vec3 c_iz;   // colour / depth, so colour interpolates perspective-correctly
+  Vec2 uv_iz;  // texture coordinate / depth
+  float a_iz;  // opacity / depth
+};
+
+// Wraps (REPEAT) or clamps (CLAMP) a texel index.
+int texel_index(int i, int size, bool repeat) {
+  if (repeat) return ((i % size) + size) % size;
+  return std::clamp(i, 0, size - 1);
+}
+
+// The texel colour at (s, t), bilinear; RGB and alpha in [0,1]. t = 0 is
+// the bottom of the image.
+Vec3 sample(const Texture& tex, Vec2 st, float& alpha) {
+  const Image& img = tex.image;
+  // Whole repeats removed first, so huge coordinates keep their precision.
+  if (tex.repeat_s) st.x -= std::floor(st.x);
+  if (tex.repeat_t) st.y -= std::floor(st.y);
+  const float u = st.x * float(img.width) - 0.5f, v = (1 - st.y) * float(img.height) - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const float du = u - fu, dv = v - fv;
+  const int x0 = static_cast<int>(std::clamp(fu, -2.f, float(img.width)));
+  const int y0 = static_cast<int>(std::clamp(fv, -2.f, float(img.height)));
+  float rgba[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k) {
+    const int x = texel_index(x0 + (k & 1), img.width, tex.repeat_s);
+    const int y = texel_index(y0 + (k >> 1), img.height, tex.repeat_t);
+    const float w = ((k & 1) ? du : 1 - du) * ((k >> 1) ? dv : 1 - dv);
+    const std::uint8_t* px = img.at(x, y);
+    for (int c = 0; c < 4; ++c) rgba[c] += w * float(px[c]);
+  }
+  alpha = rgba[3] / 255.f;
+  if (tex.intensity) return Vec3{rgba[0], rgba[0], rgba[0]} / 255.f;
+  return Vec3{rgba[0], rgba[1], rgba[2]} / 255.f;
+}
+
+// The 4x4 ordered-dither threshold of a sample, in (0,1): a surface covers
+// the samples whose threshold is below its opacity.
+float dither_threshold(int x, int y) {
+  static constexpr std::uint8_t kBayer[4][4] = {
+      {0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  return (float(kBayer[y & 3][x & 3]) + 0.5f) / 16.f;
+}
+
+// How the pixels of one triangle are coloured beyond its vertex colours.
+struct TriangleLook {
+  const Texture* texture = nullptr;  // multiplies the interpolated colour
+  bool translucent = false;          // opacity below 1 somewhere: dithered
 };
 
 float edge(const Vec2& a, const Vec2& b, float x, float y) {
@@ -180,7 +247,7 @@ float edge(const Vec2& a, const Vec2& b, float x, float y) {
 
 // Returns false if the triangle covers no area on screen.
 bool draw_triangle(Framebuffer& fb, const ScreenVertex& a, const ScreenVertex& b,
-                   const ScreenVertex& c) {
+                   const ScreenVertex& c, const TriangleLook& look) {
   const float area = edge(a.p, b.p, c.p.x, c.p.y);
   if (!(std::abs(area) > 1e-12f)) return false;
   const float inv_area = 1.f / area;
@@ -206,8 +273,19 @@ bool draw_triangle(Framebuffer& fb, const ScreenVertex& a, const ScreenVertex& b
       const float z = 1.f / iz;
       const std::size_t i = static_cast<std::size_t>(y) * fb.width + x;
       if (!(z < fb.depth[i])) continue;
+      if (look.translucent &&
+          (a.a_iz * wa + b.a_iz * wb + c.a_iz * wc) * z <= dither_threshold(x, y))
+        continue;
+      Vec3 color = (a.c_iz * wa + b.c_iz * wb + c.c_iz * wc) * z;
+      if (look.texture) {
+        float alpha = 1;
+        const Vec3 texel =
+            sample(*look.texture, (a.uv_iz * wa + b.uv_iz * wb + c.uv_iz * wc) * z, alpha);
+        if (alpha < 0.5f) continue;
+        color = {color.x * texel.x, color.y * texel.y, color.z * texel.z};
+      }
       fb.depth[i] = z;
-      fb.color[i] = (a.c_iz * wa + b.c_iz * wb + c.c_iz * wc) * z;
+      fb.color[i] = color;
     }
   }
   return true;
@@ -319,6 +397,10 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
   assert(options.height >= 1 && options.height <= 16384);
   assert(options.supersample >= 1 && options.supersample <= 8);
   validate(mesh);
+  const bool colored = options.use_colors && mesh.has_colors();
+  const Appearance none;
+  const Appearance& look = options.use_colors ? options.appearance : none;
+  validate(mesh, look);
 
   RenderResult result;
   result.frame = options.frame.radius > 0 ? options.frame : bounding_sphere(mesh);
@@ -335,7 +417,7 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
   const Camera cam = make_camera(result.frame, options, w, h);
   const Vec3 light = normalized(-cam.forward + cam.up * 0.45f - cam.right * 0.3f);
 
-  const bool colored = options.use_colors && mesh.has_colors();
+  const bool textured = !look.textures.empty() && mesh.has_texcoords() && mesh.has_materials();
   const bool smooth = options.shading == Shading::kSmooth;
   const bool given_normals = mesh.has_normals();
   const std::vector<Vec3> computed =
@@ -346,8 +428,13 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
   for (std::size_t i = 0; i < z.size(); ++i)
     z[i] = is_finite(mesh.positions[i]) ? cam.depth(mesh.positions[i]) : -1.f;
 
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
     if (z[t[0]] <= cam.near || z[t[1]] <= cam.near || z[t[2]] <= cam.near) continue;
+    TriangleLook tri_look;
+    if (textured && mesh.materials[f] < look.textures.size() &&
+        !look.textures[mesh.materials[f]].image.empty())
+      tri_look.texture = &look.textures[mesh.materials[f]];
     const Vec3& p0 = mesh.positions[t[0]];
     const Vec3 fn = normalized(cross(mesh.positions[t[1]] - p0, mesh.positions[t[2]] - p0));
     // Two-sided lighting: normals of a face seen from behind are turned round.
@@ -361,13 +448,21 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
         if (given_normals || dot(vn, fn) >= kCreaseCos) n = vn;
       }
       const float lambert = std::max(0.f, dot(n * side, light));
-      const Vec3 base = colored ? clamp01(mesh.colors[v]) : options.surface_color;
+      // An RGB texture replaces the colour it is lit with, an intensity
+      // texture scales it (the VRML lighting model).
+      const Vec3 base = tri_look.texture && !tri_look.texture->intensity ? Vec3{1, 1, 1}
+                        : colored                                        ? clamp01(mesh.colors[v])
+                                                                         : options.surface_color;
       const Vec3 lit = clamp01(base * (kAmbient + kDiffuse * lambert));
       sv[k].p = cam.project(mesh.positions[v], z[v]);
       sv[k].iz = 1.f / z[v];
       sv[k].c_iz = lit * sv[k].iz;
+      sv[k].uv_iz = tri_look.texture ? mesh.texcoords[v] * sv[k].iz : Vec2{};
+      const float opacity = look.opacity.empty() ? 1.f : std::clamp(look.opacity[v], 0.f, 1.f);
+      tri_look.translucent = tri_look.translucent || opacity < 1;
+      sv[k].a_iz = opacity * sv[k].iz;
     }
-    if (draw_triangle(fb, sv[0], sv[1], sv[2])) ++result.triangles_drawn;
+    if (draw_triangle(fb, sv[0], sv[1], sv[2], tri_look)) ++result.triangles_drawn;
   }
 
   const float bias = kLineDepthBias * result.frame.radius;

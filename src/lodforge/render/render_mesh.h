@@ -1,7 +1,8 @@
 #pragma once
 /// Headless pictures of a triangle mesh: a small software rasteriser (z-buffer,
-/// Gouraud or flat Lambert shading, per-vertex colours, lines, wireframe),
-/// needing no display, no GPU and no GL library.
+/// Gouraud or flat Lambert shading, per-vertex colours, textures, screen-door
+/// transparency, lines, wireframe), needing no display, no GPU and no GL
+/// library.
 ///
 /// Camera: Y is up (as in VRML). The camera looks at the centre of a bounding
 /// sphere from outside it, with a perspective projection whose field of view
@@ -13,10 +14,12 @@
 /// show the true perspective from a given place.
 #include <cstddef>
 #include <optional>
+#include <span>
 
 #include "lodforge/core/math.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/render/image.h"
+#include "lodforge/render/texture_image.h"
 
 namespace lodforge {
 
@@ -49,6 +52,22 @@ struct LookAt {
 /// elevation in degrees, as RenderOptions reads them: (0, 0) gives +Z.
 Vec3 view_direction(float azimuth, float elevation);
 
+/// What a scene's surfaces look like beyond the mesh's vertex colours (see
+/// scene::flatten_scene_appearance). Both views must outlive the call.
+struct Appearance {
+  /// Triangle f shows textures[mesh.materials[f]] when the mesh has texture
+  /// coordinates and that index is in range (others, and triangles of a
+  /// texture with an empty image, are untextured).
+  /// Bilinear, perspective-correct; the texel replaces the vertex colour
+  /// (an intensity texture scales it) and is lit like it; texels with
+  /// alpha below one half are holes.
+  std::span<const Texture> textures;
+  /// Empty or #V, 0..1: a surface of opacity a covers about a of the
+  /// samples (an ordered dither over the supersamples), so what is behind
+  /// shows through, blended when the picture is averaged down.
+  std::span<const float> opacity;
+};
+
 struct RenderOptions {
   int width = 640;                          ///< pixels, 1..16384
   int height = 480;                         ///< pixels, 1..16384
@@ -73,6 +92,8 @@ struct RenderOptions {
   /// averaged down. 1 = off; 2 (the default) is smooth enough for documents.
   /// Lowered automatically when width * height * supersample^2 exceeds 64 M.
   int supersample = 2;
+  /// Textures and opacity (drawn only with use_colors).
+  Appearance appearance;
 };
 
 struct RenderResult {

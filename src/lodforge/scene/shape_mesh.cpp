@@ -2,7 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <tuple>
+
 #include "lodforge/core/error.h"
+#include "lodforge/scene/attribute_binding.h"
 #include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 
@@ -34,6 +40,222 @@ void check_index(std::int32_t i, std::size_t n, const Node& shape, std::size_t p
                     shape.first_line, shape.type, pos, i, n));
 }
 
+// The rows of the current Material as the renderer draws them.
+class MaterialRows {
+ public:
+  explicit MaterialRows(const Node* material) {
+    static const Node kDefault{.type = "Material"};
+    const Node& m = material ? *material : kDefault;
+    diffuse_ = field_or_default(m, "diffuseColor");
+    emissive_ = field_or_default(m, "emissiveColor");
+    transparency_ = field_or_default(m, "transparency");
+    rows_ = std::max({std::size_t(1), diffuse_->floats.size() / 3, emissive_->floats.size() / 3,
+                      transparency_->floats.size()});
+  }
+  std::size_t rows() const { return rows_; }
+  Vec3 color(std::size_t row) const {
+    const Vec3 c = value3(diffuse_, row, {0.8f, 0.8f, 0.8f}) + value3(emissive_, row, {});
+    return {std::clamp(c.x, 0.f, 1.f), std::clamp(c.y, 0.f, 1.f), std::clamp(c.z, 0.f, 1.f)};
+  }
+  float opacity(std::size_t row) const {
+    const std::vector<float>& t = transparency_->floats;
+    return t.empty() ? 1.f : 1.f - std::clamp(t[std::min(row, t.size() - 1)], 0.f, 1.f);
+  }
+
+ private:
+  // A field with fewer values than `row` repeats its last one.
+  static Vec3 value3(const FieldValue* v, std::size_t row, Vec3 if_empty) {
+    const std::size_t n = v->floats.size() / 3;
+    if (n == 0) return if_empty;
+    const std::size_t i = 3 * std::min(row, n - 1);
+    return {v->floats[i], v->floats[i + 1], v->floats[i + 2]};
+  }
+  const FieldValue* diffuse_ = nullptr;
+  const FieldValue* emissive_ = nullptr;
+  const FieldValue* transparency_ = nullptr;
+  std::size_t rows_ = 1;
+};
+
+// The Texture2 drawn under `state`: one with a filename or a non-empty
+// image (an empty Texture2 turns texturing off, as the specification says).
+const Node* current_texture(const TraversalState& state) {
+  if (!state.texture2) return nullptr;
+  const FieldValue* name = state.texture2->applied_value("filename");
+  const FieldValue* image = state.texture2->applied_value("image");
+  const bool named = name && !name->strings.empty() && !name->strings[0].empty();
+  const bool inline_image = image && image->ints.size() > 3 && image->ints[0] > 0 &&
+                            image->ints[1] > 0 && image->ints[2] > 0;
+  return named || inline_image ? state.texture2 : nullptr;
+}
+
+// VRML 1.0's default texture coordinates of an indexed set: s along the
+// longest side of the bounding box of the points it uses, 0..1; t along the
+// second longest, 0..(its length / the longest).
+class DefaultMapping {
+ public:
+  DefaultMapping(const std::vector<Vec3>& pts, const std::vector<std::int32_t>& coord_index) {
+    for (std::int32_t i : coord_index)
+      if (i >= 0 && std::size_t(i) < pts.size()) box_.add(pts[std::size_t(i)]);
+    if (box_.empty()) return;
+    const Vec3 size = box_.hi - box_.lo;
+    const float e[3] = {size.x, size.y, size.z};
+    s_ = 0;
+    for (int a = 1; a < 3; ++a)
+      if (e[a] > e[s_]) s_ = a;
+    t_ = s_ == 0 ? 1 : 0;
+    for (int a = 0; a < 3; ++a)
+      if (a != s_ && e[a] > e[t_]) t_ = a;
+    size_ = e[s_] > 0 ? e[s_] : 1.f;
+  }
+  Vec2 at(const Vec3& p) const {
+    if (box_.empty()) return {};
+    return {(p[s_] - box_.lo[s_]) / size_, (p[t_] - box_.lo[t_]) / size_};
+  }
+
+ private:
+  Box3 box_;
+  int s_ = 0, t_ = 1;
+  float size_ = 1;
+};
+
+// The vertices of an indexed set: without appearance one per coordinate;
+// with it one per distinct (coordinate, material row, texture coordinate)
+// of its corners, so colours and texture coordinates can differ at a
+// coordinate (a face's own colour, a texture seam).
+class CornerVertices {
+ public:
+  CornerVertices(ShapeSurface& out, const std::vector<Vec3>& pts, bool appearance)
+      : out_(out), pts_(pts), appearance_(appearance) {
+    if (!appearance_) out_.mesh.positions = pts;
+  }
+  // `texcoord` is an index into `texcoords`, or -1 for the default mapping
+  // (ignored when the shape is not textured).
+  std::uint32_t vertex(std::int32_t coord, std::size_t row, std::int64_t texcoord,
+                       const MaterialRows& materials, const std::vector<float>* texcoords,
+                       const DefaultMapping* mapping) {
+    if (!appearance_) return std::uint32_t(coord);
+    const Key key{coord, std::uint32_t(row), mapping ? std::int32_t(texcoord) : -1};
+    auto [it, fresh] = ids_.try_emplace(key, std::uint32_t(out_.mesh.positions.size()));
+    if (fresh) {
+      const Vec3& p = pts_[std::size_t(coord)];
+      out_.mesh.positions.push_back(p);
+      out_.mesh.colors.push_back(materials.color(row));
+      out_.opacity.push_back(materials.opacity(row));
+      if (mapping)
+        out_.mesh.texcoords.push_back(texcoord >= 0
+                                          ? Vec2{(*texcoords)[2 * std::size_t(texcoord)],
+                                                 (*texcoords)[2 * std::size_t(texcoord) + 1]}
+                                          : mapping->at(p));
+    }
+    return it->second;
+  }
+
+ private:
+  struct Key {
+    std::int32_t coord;
+    std::uint32_t row;
+    std::int32_t texcoord;
+    bool operator<(const Key& o) const {
+      return std::tie(coord, row, texcoord) < std::tie(o.coord, o.row, o.texcoord);
+    }
+  };
+  ShapeSurface& out_;
+  const std::vector<Vec3>& pts_;
+  bool appearance_;
+  std::map<Key, std::uint32_t> ids_;
+};
+
+// An attribute index checked against the rows it indexes: -1 (OVERALL) is
+// row 0, an index out of range is `fallback` after one warning per shape.
+class CheckedIndex {
+ public:
+  CheckedIndex(const Node& shape, LogCategory category, const char* what, Log* log)
+      : shape_(shape), category_(category), what_(what), log_(log) {}
+  std::int64_t operator()(std::int64_t i, std::size_t count, std::int64_t fallback) {
+    if (i == -1) return fallback;
+    if (i >= 0 && std::size_t(i) < count) return i;
+    if (log_ && !warned_)
+      log_->warn(category_,
+                 fmt::format("line {}: {} {} index {} is out of range (0..{}); drawn without it",
+                             shape_.first_line, shape_.type, what_, i, std::int64_t(count) - 1));
+    warned_ = true;
+    return fallback;
+  }
+
+ private:
+  const Node& shape_;
+  LogCategory category_;
+  const char* what_;
+  Log* log_;
+  bool warned_ = false;
+};
+
+// An IndexedFaceSet or IndexedLineSet: faces triangulated, polylines as
+// segments, with appearance when asked.
+void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log,
+                 ShapeSurface& out) {
+  const Node& shape = visit.shape;
+  const bool line_set = shape.type == "IndexedLineSet";
+  const std::vector<Vec3> pts = coordinates(visit.state, shape);
+  const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
+  CornerVertices vertices(out, pts, options.appearance);
+
+  // Appearance: material rows by the binding, texture coordinates by
+  // textureCoordIndex (scene/attribute_binding.h).
+  const MaterialRows materials(visit.state.material);
+  const Binding mbind = binding_of(visit.state.material_binding, Binding::kOverall);
+  const AttributeIndexer mindex{mbind, &field_or_default(shape, "materialIndex")->ints, &ci};
+  CheckedIndex material_row(shape, LogCategory::kMaterial, "material", log);
+  CheckedIndex texcoord_index(shape, LogCategory::kTexCoord, "texture coordinate", log);
+  out.texture = options.appearance && !line_set ? current_texture(visit.state) : nullptr;
+  const FieldValue* tc = out.texture && visit.state.texture_coordinate2
+                             ? field_or_default(*visit.state.texture_coordinate2, "point")
+                             : nullptr;
+  const FieldValue* tci = field_or_default(shape, "textureCoordIndex");
+  const AttributeIndexer tindex{Binding::kPerVertexIndexed, tci ? &tci->ints : nullptr, &ci};
+  const std::size_t ntex = tc ? tc->floats.size() / 2 : 0;
+  const std::optional<DefaultMapping> mapping =
+      out.texture ? std::optional<DefaultMapping>(DefaultMapping(pts, ci)) : std::nullopt;
+
+  std::vector<std::uint32_t> poly;
+  std::size_t corner_seq = 0;
+  const auto runs = split_index_runs(ci);
+  for (std::size_t f = 0; f < runs.size(); ++f) {
+    const auto [b, e] = runs[f];
+    poly.clear();
+    for (std::size_t i = b; i < e; ++i, ++corner_seq) {
+      check_index(ci[i], pts.size(), shape, i);
+      const std::size_t row =
+          options.appearance
+              ? std::size_t(material_row(mindex.at(f, corner_seq, i), materials.rows(), 0))
+              : 0;
+      const std::int64_t t =
+          tc ? texcoord_index(tindex.at(f, corner_seq, i), ntex, -1) : std::int64_t(-1);
+      poly.push_back(vertices.vertex(ci[i], row, t, materials, tc ? &tc->floats : nullptr,
+                                     mapping ? &*mapping : nullptr));
+    }
+    if (line_set) {
+      for (std::size_t i = 1; i < poly.size(); ++i)
+        out.mesh.lines.push_back({poly[i - 1], poly[i]});
+      continue;
+    }
+    if (poly.size() < 3) {
+      if (log)
+        log->warn(LogCategory::kFace, fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
+                                                  "has {} vertices; skipped",
+                                                  shape.first_line, b, poly.size()));
+      continue;
+    }
+    TriangulateResult tr = triangulate_polygon(out.mesh.positions, poly, options.triangulation);
+    if (log && tr.has_warning())
+      log->add(LogLevel::kMessage, LogCategory::kTriangulator,
+               fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, b,
+                           tr.degenerate ? "degenerate" : "not simple"));
+    for (const auto& tri : tr.triangles)
+      out.mesh.triangles.push_back({poly[tri[0]], poly[tri[1]], poly[tri[2]]});
+  }
+}
+
 }  // namespace
 
 std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
@@ -49,61 +271,48 @@ std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
   return runs;
 }
 
-TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
+namespace {
+
+ShapeSurface surface(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
   if (has_indexed_equivalent(visit.shape.type)) {
     // Inventor's strips, quad meshes and face sets: as the indexed set that
     // draws the same.
     const IndexedEquivalent eq = to_indexed_shape(visit);
-    return shape_mesh(ShapeVisit{*eq.shape, eq.state, visit.camera, visit.path, visit.child_index,
-                                 visit.path_index},
-                      options, log);
+    return surface(ShapeVisit{*eq.shape, eq.state, visit.camera, visit.path, visit.child_index,
+                              visit.path_index},
+                   options, log);
   }
   const Node& shape = visit.shape;
-  TriangleMesh mesh;
+  ShapeSurface out;
+  TriangleMesh& mesh = out.mesh;
   const std::string& t = shape.type;
-  if (t == "Cube" || t == "Sphere" || t == "Cone" || t == "Cylinder") {
-    TessellateOptions tess = options.tessellation;
-    tess.complexity = complexity_value(visit.state);
-    mesh = tessellate_primitive(shape, tess);
-  } else if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
-    mesh.positions = coordinates(visit.state, shape);
-    const FieldValue* idx = field_or_default(shape, "coordIndex");
-    std::vector<std::uint32_t> poly;
-    for (auto [b, e] : split_index_runs(idx->ints)) {
-      poly.clear();
-      for (std::size_t i = b; i < e; ++i) {
-        check_index(idx->ints[i], mesh.positions.size(), shape, i);
-        poly.push_back(static_cast<std::uint32_t>(idx->ints[i]));
-      }
-      if (t == "IndexedLineSet") {
-        for (std::size_t i = 1; i < poly.size(); ++i) mesh.lines.push_back({poly[i - 1], poly[i]});
-        continue;
-      }
-      if (poly.size() < 3) {
-        if (log)
-          log->warn(LogCategory::kFace,
-                    fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
-                                "has {} vertices; skipped",
-                                shape.first_line, b, poly.size()));
-        continue;
-      }
-      TriangulateResult tr = triangulate_polygon(mesh.positions, poly, options.triangulation);
-      if (log && tr.has_warning())
-        log->add(LogLevel::kMessage, LogCategory::kTriangulator,
-                 fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, b,
-                             tr.degenerate ? "degenerate" : "not simple"));
-      for (const auto& tri : tr.triangles)
-        mesh.triangles.push_back({poly[tri[0]], poly[tri[1]], poly[tri[2]]});
+  if (t == "IndexedFaceSet" || t == "IndexedLineSet") {
+    indexed_set(visit, options, log, out);
+  } else {
+    if (t == "Cube" || t == "Sphere" || t == "Cone" || t == "Cylinder") {
+      TessellateOptions tess = options.tessellation;
+      tess.complexity = complexity_value(visit.state);
+      mesh = tessellate_primitive(shape, tess);
+    } else if (t == "PointSet") {
+      std::vector<Vec3> pts = coordinates(visit.state, shape);
+      const FieldValue* start = field_or_default(shape, "startIndex");
+      const FieldValue* num = field_or_default(shape, "numPoints");
+      std::int64_t s = start->ints.empty() ? 0 : start->ints[0];
+      std::int64_t n = num->ints.empty() ? -1 : num->ints[0];
+      s = std::clamp<std::int64_t>(s, 0, std::int64_t(pts.size()));
+      std::int64_t e = n < 0 ? std::int64_t(pts.size()) : std::min<std::int64_t>(s + n, pts.size());
+      mesh.positions.assign(pts.begin() + s, pts.begin() + e);
     }
-  } else if (t == "PointSet") {
-    std::vector<Vec3> pts = coordinates(visit.state, shape);
-    const FieldValue* start = field_or_default(shape, "startIndex");
-    const FieldValue* num = field_or_default(shape, "numPoints");
-    std::int64_t s = start->ints.empty() ? 0 : start->ints[0];
-    std::int64_t n = num->ints.empty() ? -1 : num->ints[0];
-    s = std::clamp<std::int64_t>(s, 0, std::int64_t(pts.size()));
-    std::int64_t e = n < 0 ? std::int64_t(pts.size()) : std::min<std::int64_t>(s + n, pts.size());
-    mesh.positions.assign(pts.begin() + s, pts.begin() + e);
+    // Primitives and points: the first material row everywhere.
+    out.texture = options.appearance && !mesh.triangles.empty() && mesh.has_texcoords()
+                      ? current_texture(visit.state)
+                      : nullptr;
+    if (!out.texture) mesh.texcoords.clear();
+    if (options.appearance) {
+      const MaterialRows materials(visit.state.material);
+      mesh.colors.assign(mesh.positions.size(), materials.color(0));
+      out.opacity.assign(mesh.positions.size(), materials.opacity(0));
+    }
   }
   if (options.world_space && !(visit.state.transform == Mat4{})) {
     for (auto& p : mesh.positions) p = visit.state.transform.transform_point(p);
@@ -112,7 +321,19 @@ TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options
       for (auto& n : mesh.normals) n = normalized(nm.transform_vector(n));
     }
   }
-  return mesh;
+  return out;
+}
+
+}  // namespace
+
+TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
+  return surface(visit, options, log).mesh;
+}
+
+ShapeSurface shape_surface(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
+  ShapeMeshOptions with = options;
+  with.appearance = true;
+  return surface(visit, with, log);
 }
 
 }  // namespace lodforge::scene

@@ -46,5 +46,18 @@ Separator {
   EXPECT_EQ(s.total_triangles, 0u);  // what can actually be built
 }
 
+// info tells what lod would refuse: a shape whose extent is not a float.
+TEST(SceneStatistics, ShapeBeyondTheFloatRangeIsReported) {
+  auto r = vrml1::read_vrml1(R"(#VRML V1.0 ascii
+Separator {
+  Cube {}
+  Cylinder { radius 1e38 }
+})");
+  SceneStatistics s = scene_statistics(r.scene);
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_EQ(s.problems[0].rfind("line 4: Cylinder reaches beyond the float range", 0), 0u)
+      << s.problems[0];
+}
+
 }  // namespace
 }  // namespace lodforge::scene

@@ -1,5 +1,8 @@
 #include "lodforge/scene/statistics.h"
 
+#include <fmt/core.h>
+
+#include <cmath>
 #include <unordered_set>
 
 #include "lodforge/core/error.h"
@@ -42,7 +45,14 @@ SceneStatistics scene_statistics(const Scene& scene) {
       TriangleMesh m = shape_mesh(v);
       s.total_triangles += m.triangle_count();
       s.total_vertices += m.vertex_count();
-      for (const auto& p : m.positions) s.bounds.add(p);
+      Box3 box;
+      for (const auto& p : m.positions) box.add(p);
+      s.bounds.add(box);
+      // What lod refuses: a shape whose switching distances cannot be floats.
+      if (!box.empty() && !std::isfinite(box.diagonal()))
+        s.problems.push_back(fmt::format(
+            "line {}: {} reaches beyond the float range (its extent is {}): lod refuses it",
+            v.shape.first_line, t, box.diagonal()));
     } catch (const DataError& e) {
       s.problems.emplace_back(e.what());
     }

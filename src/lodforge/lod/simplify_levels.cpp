@@ -33,13 +33,15 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
     meter = std::make_unique<DeviationMeter>(
         mesh, DeviationOptions{
                   .samples = measure_samples_for(mesh.triangle_count(), options.measure_samples)});
+  ProgressCounter measured(options.progress, "measure", out.size(), 1);
   tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
     MeasuredLevel& m = out[i];
     if (lines_only || m.level.mesh.triangles.empty()) {
       m.error = m.level.error;
-      return;
+    } else {
+      m.error = kErrorMargin * meter->hausdorff(m.level.mesh, m.level.face_map);
     }
-    m.error = kErrorMargin * meter->hausdorff(m.level.mesh, m.level.face_map);
+    measured.add(1);
   });
   return out;
 }

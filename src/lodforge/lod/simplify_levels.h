@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "lodforge/core/progress.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/simplify/level_chain.h"
 #include "lodforge/simplify/simplify_result.h"
@@ -20,6 +21,9 @@ struct LevelChainOptions {
   std::vector<std::size_t> triangle_targets;
   std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
   int threads = 0;                  ///< for the measurements (0: all cores)
+  /// Stage "measure": levels measured of the chain's levels, reported once
+  /// the chain is made (0 of n) and after each level (from worker threads).
+  ProgressCallback progress;
 };
 
 /// Sampling finds the largest distance between two surfaces only up to the

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <regex>
 #include <string>
@@ -17,7 +18,8 @@ class FakeTerminal {
   FakeTerminal() : file_(std::tmpfile()) {}
   ~FakeTerminal() { std::fclose(file_); }
   /// Options drawing into this file, as on a terminal, without delay or
-  /// interval unless a test asks for them.
+  /// interval unless a test asks for them (interval 0: each update draws,
+  /// no redrawing thread, so the drawings are the updates').
   ProgressOptions options(double delay = 0, double interval = 0) const {
     return {.out = file_, .terminal = true, .delay = delay, .interval = interval, .columns = 60};
   }
@@ -140,6 +142,17 @@ TEST(Progress, DrawsAtMostOncePerInterval) {
     for (std::uint64_t i = 1; i <= 1000; ++i) p.update(i);
   }
   EXPECT_EQ(percentages(term.text()).size(), 1u);
+}
+
+TEST(Progress, TheLastCountOfAStageIsRedrawn) {
+  FakeTerminal term;
+  {
+    Progress p("mco build", 0, term.options(/*delay=*/0, /*interval=*/0.02));
+    p.update("signs", 1, 10);  // drawn
+    p.update("signs", 9, 10);  // within the interval: left to the redrawing thread
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_EQ(percentages(term.text()), (std::vector<int>{10, 90}));
 }
 
 TEST(ProgressCounter, ReportsEveryStepAndTheEnd) {

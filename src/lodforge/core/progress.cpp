@@ -56,7 +56,7 @@ Progress::Progress(std::string label, std::uint64_t total, const ProgressOptions
       total_(total),
       start_(Clock::now()),
       stage_start_(start_) {
-  if (enabled_) ticker_ = std::thread([this] { tick(); });
+  if (enabled_ && options_.interval > 0) ticker_ = std::thread([this] { tick(); });
 }
 
 Progress::~Progress() {
@@ -118,11 +118,10 @@ void Progress::finish() {
   std::fflush(options_.out);
 }
 
-// The ticker: every interval (at least every 10 ms), a drawing of what
-// changed since the last one.
+// The ticker: every interval, a drawing of what changed since the last one.
 void Progress::tick() {
-  const auto period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(std::max(options_.interval, 0.01)));
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.interval));
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, period, [this] { return finished_; })) draw_if_due(true);
 }

@@ -51,9 +51,11 @@ struct ProgressOptions {
   /// Whether `out` is a terminal: a bar is drawn only there (the command sets
   /// it from isatty, a test forces it).
   bool terminal = false;
-  bool quiet = false;     ///< the user asked for quiet: draw nothing
-  double delay = 0.5;     ///< seconds: work that ends sooner draws nothing
-  double interval = 0.1;  ///< seconds between two drawings at least
+  bool quiet = false;  ///< the user asked for quiet: draw nothing
+  double delay = 0.5;  ///< seconds: work that ends sooner draws nothing
+  /// Seconds between two drawings at least; 0: every update draws (and no
+  /// thread redraws).
+  double interval = 0.1;
   /// Width of the line in columns; 0: the terminal's (80 when unknown). The
   /// line stays one column short of it, so it never wraps.
   int columns = 0;
@@ -64,9 +66,10 @@ ProgressOptions stderr_progress(bool quiet);
 
 /// A progress bar for one piece of work (optionally in stages). update() is
 /// thread-safe and cheap: an atomic maximum, and a drawing only when the lock
-/// is free and `interval` has passed. While enabled, a thread of its own
-/// redraws what changed since the last drawing every `interval` (the last
-/// count of a stage, the first bar of work that reports late). The
+/// is free and `interval` has passed. While enabled (and `interval` > 0), a
+/// thread of its own redraws what changed since the last drawing every
+/// `interval` (the last count of a stage, the first bar of work that
+/// reports late). The
 /// destructor clears the line.
 class Progress {
  public:

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include "core/progress_recorder.h"
 #include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/statistics.h"
 #include "mesh/test_meshes.h"
@@ -74,6 +75,14 @@ TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {
 
 // A shape too large for float distances would get an infinite switching
 // range, which is not a VRML number: refused with the shape's line.
+TEST(GenerateLod, ReportsTheShapesDone) {
+  const std::string text = scene_of(test::make_icosphere(3), "Cube {}");
+  test::ProgressRecorder progress;
+  generate_lod(read(text), {.measure_samples = 20000, .progress = progress.callback()});
+  EXPECT_EQ(progress.stages(), (std::vector<std::string>{"shapes"}));
+  EXPECT_TRUE(progress.completed("shapes"));
+}
+
 TEST(GenerateLod, InfiniteSwitchingRangesAreRefused) {
   for (const char* shape :
        {"Cylinder { radius 1e38 }",

@@ -12,9 +12,11 @@
 #include <string>
 #include <tuple>
 
+#include "core/progress_recorder.h"
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
@@ -123,6 +125,20 @@ INSTANTIATE_TEST_SUITE_P(
       std::string n = std::get<0>(info.param);
       return n.substr(0, n.find('.')) + "_" + to_string(std::get<1>(info.param));
     });
+
+TEST(MeasuredSimplify, ReportsItsStages) {
+  const TriangleMesh sphere = test::make_icosphere(4);
+  test::ProgressRecorder by_count;
+  simplify_measured(sphere, {.target = {.triangles = 200}, .progress = by_count.callback()});
+  EXPECT_EQ(by_count.stages(), (std::vector<std::string>{"simplify"}));
+  EXPECT_TRUE(by_count.completed("simplify"));
+  test::ProgressRecorder by_error;
+  simplify_measured(sphere, {.target = {.max_error = 0.01f}, .progress = by_error.callback()});
+  ASSERT_GE(by_error.stages().size(), 2u);
+  EXPECT_EQ(by_error.stages()[0], "chain");
+  EXPECT_EQ(by_error.stages()[1], "measure");
+  EXPECT_TRUE(by_error.completed("measure"));
+}
 
 TEST(MeasuredSimplify, NoTargetKeepsTheMeshAndMeasuresZero) {
   const TriangleMesh& input = shared_mesh("cow.obj");

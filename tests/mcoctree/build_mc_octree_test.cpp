@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/progress_recorder.h"
 #include "lodforge/core/error.h"
 #include "lodforge/mcoctree/cell_polygonize.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
@@ -50,6 +51,14 @@ TEST(BuildMcOctree, SphereLeavesLieOnTheSurface) {
 // lies along its crossing's normal, within a quarter of its cell; every level
 // edge has one vertex; on the sphere, whose
 // coarse chords all cut inside, the coarse vertices move outwards.
+TEST(BuildMcOctree, ReportsItsStages) {
+  test::ProgressRecorder progress;
+  build_mc_octree(test::make_icosphere(3), {.resolution = 32, .progress = progress.callback()});
+  EXPECT_EQ(progress.stages(),
+            (std::vector<std::string>{"signs", "surface points", "tree", "priorities"}));
+  for (const auto& stage : progress.stages()) EXPECT_TRUE(progress.completed(stage)) << stage;
+}
+
 TEST(BuildMcOctree, CoarseVerticesStraddleTheSurface) {
   auto sphere = test::make_icosphere(4);
   const McOctree on = build_mc_octree(sphere, {.resolution = 24}).tree;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "core/progress_recorder.h"
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
@@ -260,6 +261,15 @@ TEST(CompareMeshes, DeterministicWhateverTheThreadCount) {
   EXPECT_EQ(one.b_to_a.variance, two.b_to_a.variance);
   EXPECT_EQ(one.a_to_b.normal.mean, two.a_to_b.normal.mean);
   EXPECT_EQ(one.vertex_deviation, two.vertex_deviation);
+}
+
+TEST(CompareMeshes, ReportsTheSamplesOfEachDirection) {
+  test::ProgressRecorder progress;
+  compare_meshes(unit_cube(), icosphere(3), {.samples = 100'000, .progress = progress.callback()});
+  EXPECT_EQ(progress.stages(), (std::vector<std::string>{"A to B", "B to A", "vertices"}));
+  for (const auto& stage : progress.stages()) EXPECT_TRUE(progress.completed(stage)) << stage;
+  // Every 16 384 samples, not every sample.
+  EXPECT_LE(progress.calls("A to B"), 2 + 100'000 / 16'384 + 1);
 }
 
 TEST(CompareMeshes, DefaultSampleCount) {

@@ -25,6 +25,7 @@
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/metrics/compare_meshes.h"
@@ -85,6 +86,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
   struct Settings {
     std::string a, b;
     bool json = false;
+    bool quiet = false;
     std::size_t samples = 0;
     std::uint64_t seed = 1;
     int threads = 0;
@@ -107,6 +109,7 @@ void add_compare_command(CLI::App& app, Runner& run) {
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
+  cmd->add_flag("-q,--quiet", s->quiet, "No reader warnings and no progress bar on stderr");
   cmd->add_option("--samples", s->samples,
                   "Area samples per direction (default: 10 x the larger triangle count, "
                   "at least 100000, at most 4000000)")
@@ -134,9 +137,10 @@ void add_compare_command(CLI::App& app, Runner& run) {
       check_output_paths(outputs, std::array{s->a, s->b});
       // Scenes are flattened in world space at the chosen LOD level.
       SceneReadSettings read = s->read;
-      read.quiet = s->json;
+      read.quiet = s->json || s->quiet;
       TriangleMesh a = load_geometry(s->a, s->level_a, read);
       TriangleMesh b = load_geometry(s->b, s->level_b, read);
+      Progress bar("compare", 0, stderr_progress(s->quiet));
       CompareResult r = compare_meshes(a, b,
                                        {.samples = s->samples,
                                         .seed = s->seed,
@@ -144,7 +148,9 @@ void add_compare_command(CLI::App& app, Runner& run) {
                                         .per_vertex = !s->colored.empty(),
                                         .estimate_normals = s->smooth_normals,
                                         .a_name = s->a,
-                                        .b_name = s->b});
+                                        .b_name = s->b,
+                                        .progress = bar.callback()});
+      bar.finish();
       double scale_max = 0;
       if (!s->colored.empty()) {
         scale_max = s->color_max;

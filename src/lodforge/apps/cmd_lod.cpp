@@ -1,7 +1,6 @@
 // `lodforge lod SCENE... -o OUT | --out-dir DIR [options]`: the main job —
 // every shape of a VRML 1.0 scene becomes an LOD node (SPEC §2, §6).
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 
@@ -275,18 +275,17 @@ void add_lod_command(CLI::App& app, Runner& run) {
       }
       LodOptions options = lod_options(*s);
       check_outputs(*s);
-      const bool tty = isatty(STDERR_FILENO);
       int failures = 0;
       nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();
       for (const auto& input : s->inputs) {
         try {
           vrml1::ReadResult r = read_scene(input, s->read);
-          if (tty && !s->read.silent)
-            options.progress = [&](std::size_t done, std::size_t total) {
-              fmt::print(stderr, "\r{}: shape {}/{}", input, done, total);
-              if (done == total) fmt::print(stderr, "\r\033[K");
-            };
-          LodResult result = generate_lod(r.scene, options);
+          LodResult result = [&] {
+            Progress bar(input == "-" ? "stdin" : input, 0, stderr_progress(s->read.quiet));
+            LodOptions drawn = options;
+            drawn.progress = bar.callback();
+            return generate_lod(r.scene, drawn);
+          }();
           if (!s->read.quiet) {
             std::vector<Diagnostic> show;
             for (const auto& d : result.log.entries())

@@ -20,6 +20,7 @@
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
@@ -109,6 +110,8 @@ void add_mco_command(CLI::App& app, Runner& run) {
   build->add_option("--threads", b->threads, "Worker threads (0: all cores)")
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
+  build->add_flag("-q,--quiet", b->read.quiet,
+                  "No reader warnings and no progress bar (the one-line summary stays)");
   add_expansion_options(*build, b->read);
   build
       ->add_option("--max-memory", b->max_memory_gib,
@@ -128,13 +131,21 @@ void add_mco_command(CLI::App& app, Runner& run) {
           .place_coarse_vertices = !b->surface_vertices,
           .max_memory = static_cast<std::uint64_t>(b->max_memory_gib * double(1 << 30))};
       McBuildResult r;
+      // The bar runs while the octree is built (made once the input is read,
+      // so that the reader's warnings come before it).
+      auto build_with_bar = [&](const auto& input) {
+        Progress bar("mco build", 0, stderr_progress(b->read.quiet));
+        McBuildOptions drawn = options;
+        drawn.progress = bar.callback();
+        return named(b->input, [&] { return build_mc_octree(input, drawn); });
+      };
       std::string what;
       if (is_range_input(b->input)) {
         auto scans = read_range_scans(b->input);
         std::size_t points = 0;
         for (const auto& sc : scans)
           for (auto g : sc.grid) points += g >= 0;
-        r = named(b->input, [&] { return build_mc_octree(scans, options); });
+        r = build_with_bar(scans);
         what = fmt::format(
             "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
             "filled, {} bubbles dropped)",
@@ -148,7 +159,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
                      "warning: {}: the lattice at resolution {} takes about {:.1f} GiB; the build "
                      "may take minutes\n",
                      b->input, b->resolution, bytes / double(std::uint64_t{1} << 30));
-        r = named(b->input, [&] { return build_mc_octree(mesh, options); });
+        r = build_with_bar(mesh);
         what = fmt::format("{} triangles", mesh.triangle_count());
       }
       McLodModel model = compile_mc_lod(r.tree);

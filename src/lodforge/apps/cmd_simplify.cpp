@@ -51,6 +51,7 @@
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/lod/measured_simplify.h"
 #include "lodforge/lod/simplify_levels.h"
 #include "lodforge/mesh/mesh_io.h"
@@ -135,8 +136,11 @@ int run_simplify(const SimplifySettings& s) {
   if (s.max_error) target.max_error = static_cast<float>(*s.max_error);
 
   auto start = std::chrono::steady_clock::now();
-  const MeasuredSimplifyResult m =
-      simplify_measured(mesh, {.method = method_named(s.method), .target = target});
+  const MeasuredSimplifyResult m = [&] {
+    Progress bar("simplify", 0, stderr_progress(s.quiet));
+    return simplify_measured(
+        mesh, {.method = method_named(s.method), .target = target, .progress = bar.callback()});
+  }();
   double time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const SimplifyResult& r = m.result;
@@ -222,7 +226,7 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"ply", "obj", "off", "stl"}));
   cmd->add_flag("--ascii", s->ascii, "ASCII PLY / STL (default binary)");
   cmd->add_flag("--json", s->json, "Print the JSON summary on stdout (no human text)");
-  cmd->add_flag("-q,--quiet", s->quiet, "No summary and no reader warnings on stderr");
+  cmd->add_flag("-q,--quiet", s->quiet, "No summary, no reader warnings and no progress bar on stderr");
   add_expansion_options(*cmd, s->read);
   cmd->callback([s, &run] { run = [s] { return run_simplify(*s); }; });
 }

@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <set>
@@ -153,14 +154,10 @@ class Pipeline {
     std::optional<tbb::global_control> limit;
     if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
     size_scale();
-    std::mutex progress_mutex;
-    std::size_t done = 0;
+    start_progress();
     tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
       make_levels(jobs_[i]);
-      if (opt_.progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        opt_.progress(++done, jobs_.size());
-      }
+      credit(i, 1.0);
     });
     for (auto& j : jobs_) result_.log.merge(j.log);
     replace();
@@ -209,6 +206,40 @@ class Pipeline {
         camera_angle_ = h->floats[0];
     }
     result_.camera_angle = camera_angle_;
+  }
+
+  // Progress in units of work: a job weighs about its input's face indices
+  // (coordIndex; a vertex shape's coordinates; a primitive's tessellation),
+  // plus one so that every job counts.
+  std::uint64_t work_of(const Job& j) const {
+    if (const scene::FieldValue* v = j.shape->value("coordIndex")) return 1 + v->ints.size();
+    if (is_set_shape(j.shape->type) && j.state.coordinate3)
+      if (const scene::FieldValue* p = j.state.coordinate3->value("point"))
+        return 1 + p->floats.size();
+    return 1000;
+  }
+
+  void start_progress() {
+    if (!opt_.progress) return;
+    credited_ = std::vector<std::atomic<std::uint64_t>>(jobs_.size());
+    work_.resize(jobs_.size());
+    for (std::size_t i = 0; i < jobs_.size(); ++i) work_[i] = work_of(jobs_[i]);
+    total_work_ = 0;
+    for (auto w : work_) total_work_ += w;
+    opt_.progress("shapes", 0, total_work_);
+  }
+
+  // Job i is `fraction` done (its calls may come from several threads and
+  // out of order: only an increase is credited).
+  void credit(std::size_t i, double fraction) {
+    if (!opt_.progress) return;
+    const auto target = static_cast<std::uint64_t>(fraction * double(work_[i]));
+    std::uint64_t seen = credited_[i].load();
+    while (target > seen && !credited_[i].compare_exchange_weak(seen, target)) {
+    }
+    if (target <= seen) return;
+    const std::uint64_t done = done_work_ += target - seen;
+    opt_.progress("shapes", done, total_work_);
   }
 
   // Radii (for differentiate-by-size) need the geometry: primitives' from
@@ -363,6 +394,13 @@ class Pipeline {
         for (const SpacedLevel& s : space(candidates).levels)
           if (!simplified_max || kept.size() < simplified_max) kept.push_back(s.candidate);
         return kept;
+      };
+    // A fifth of the job's work when its chain is made, the rest as its
+    // levels are measured (where the pipeline's time goes).
+    const std::size_t job = static_cast<std::size_t>(&j - jobs_.data());
+    if (opt_.progress)
+      c.progress = [&, job](std::string_view, std::uint64_t done, std::uint64_t total) {
+        credit(job, 0.2 + 0.8 * double(done) / double(std::max<std::uint64_t>(total, 1)));
       };
     std::vector<MeasuredLevel> levels = simplify_levels(j.geometry.mesh, c);
     if (levels.empty()) {
@@ -611,6 +649,11 @@ class Pipeline {
   std::vector<const Node*> empty_path_;
   double camera_angle_ = 0.785398;
   double largest_radius_ = 0;
+  // Progress (start_progress): each job's weight and the part credited.
+  std::vector<std::uint64_t> work_;
+  std::vector<std::atomic<std::uint64_t>> credited_;
+  std::uint64_t total_work_ = 0;
+  std::atomic<std::uint64_t> done_work_{0};
   std::mutex cache_mutex_;
   std::map<std::string, double> tessellation_errors_;
   std::map<std::string, NodePtr> unit_levels_;  // primitive_level's shared tessellations

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lodforge/core/log.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/lod/simplify_levels.h"
 #include "lodforge/lod/switching_ranges.h"
 #include "lodforge/mesh/triangulate_polygon.h"
@@ -75,9 +76,11 @@ struct LodOptions {
   std::optional<int> extract;
   std::size_t measure_samples = 0;  ///< compare_meshes samples per level (0: its default)
   int threads = 0;                  ///< 0: all cores; 1: single-threaded
-  /// Called after each distinct shape is done (from worker threads, one call
-  /// at a time): shapes done, shapes in all.
-  std::function<void(std::size_t, std::size_t)> progress;
+  /// Progress of the shapes (stage "shapes"), in units of work: each
+  /// distinct shape weighs about its input's face indices, a fifth of it
+  /// credited when its chain is simplified, the rest as its levels are
+  /// measured. Called from worker threads (core/progress.h); empty: none.
+  ProgressCallback progress;
 };
 
 struct LevelStatistics {

@@ -79,9 +79,13 @@ class Search {
       return out;  // the input itself: error 0
     }
     if (count < n) {
+      // Progress: the simplification, then its measurement.
+      ProgressCounter steps(options_.progress, "simplify", 2, 1);
       out.result = run_to_count(mesh_, options_.method, count);
       ++out.simplifier_runs;
+      steps.add(1);
       out.error = bound(out.result, out);
+      steps.add(1);
       if (out.error <= budget) return finish(std::move(out));
     }
     return finish(within_budget(count < n ? std::max<std::size_t>(count, 1) : 1, budget, out));
@@ -138,9 +142,14 @@ class Search {
       }
       return e;
     };
+    if (options_.progress) options_.progress("chain", 0, 1);
     std::vector<SimplifyResult> levels = chain(floor);
     ++best.simplifier_runs;
-    for (SimplifyResult& l : levels) consider(l);
+    ProgressCounter measured(options_.progress, "measure", levels.size(), 1);
+    for (SimplifyResult& l : levels) {
+      consider(l);
+      measured.add(1);
+    }
     if (levels.empty()) {
       best.result.stop_reason = StopReason::kCannotSimplify;
       best.result.stop_detail = "nothing can be removed";
@@ -152,6 +161,12 @@ class Search {
       constexpr double kStep = 0.917004043204671;  // 2^(-1/8)
       double count = double(best.result.mesh.triangle_count());
       std::size_t previous = best.result.mesh.triangle_count();
+      // Progress: the steps down to the floor, most of which the stop rule
+      // below usually spares.
+      const auto steps = static_cast<std::uint64_t>(
+          std::ceil(std::log(std::max(count, 1.0) / double(std::max<std::size_t>(floor, 1))) /
+                    -std::log(kStep)));
+      ProgressCounter scanned(options_.progress, "scan", std::max<std::uint64_t>(steps, 1), 1);
       while (true) {
         count *= kStep;
         const auto target = std::size_t(count);
@@ -160,6 +175,7 @@ class Search {
         ++best.simplifier_runs;
         previous = r.mesh.triangle_count();
         // Far beyond the budget, and a halving below the best: stop.
+        scanned.add(1);
         if (consider(r) > 2 * budget && 2 * previous <= best.result.mesh.triangle_count()) break;
       }
     }

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "lodforge/core/progress.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/simplify/level_chain.h"
 #include "lodforge/simplify/simplify_result.h"
@@ -34,6 +35,11 @@ struct MeasuredSimplifyOptions {
   /// Area samples of each measurement (0: measure_samples_for the input, at
   /// most 100 000).
   std::size_t samples = 0;
+  /// Stages as the search runs (core/progress.h): a count target "simplify"
+  /// (the run, then its measurement); an error budget "chain" (its levels
+  /// made), "measure" (each level measured), "scan" (counts tried below the
+  /// best, out of the most it could try). Empty: none.
+  ProgressCallback progress;
 };
 
 struct MeasuredSimplifyResult {

@@ -18,13 +18,16 @@ std::size_t measure_samples_for(std::size_t triangles, std::size_t requested) {
 
 namespace {
 
-// Each level's error against `meter`, side by side (level 0 sampled once).
+// Each level's error against `meter`, side by side (level 0 sampled once),
+// `units` of progress each.
 void measure(std::vector<MeasuredLevel>& levels, std::span<const std::size_t> which,
-             const DeviationMeter& meter, bool in_full) {
+             const DeviationMeter& meter, bool in_full, ProgressCounter& progress,
+             std::uint64_t units) {
   tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) {
     MeasuredLevel& m = levels[which[k]];
     m.error = kErrorMargin * meter.hausdorff(m.level.mesh, m.level.face_map);
     m.measured_in_full = in_full;
+    progress.add(units);
   });
 }
 
@@ -50,19 +53,33 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
   if (pending.empty()) return out;
   const std::size_t samples = measure_samples_for(mesh.triangle_count(), options.measure_samples);
   const DeviationMeter full(mesh, {.samples = samples});
+  // Progress in eighths of a full measurement: a screening costs about one.
+  // With screening, the full measurements are counted against about a third
+  // of the levels (what the spacing keeps, typically), and the rest is added
+  // at the end.
+  constexpr std::uint64_t kFull = 8;
+  const std::uint64_t total =
+      options.keep ? pending.size() * (1 + kFull / 3) : pending.size() * kFull;
+  ProgressCounter progress(options.progress, "measure", total, 1);
   if (!options.keep) {
-    measure(out, pending, full, true);
+    measure(out, pending, full, true, progress, kFull);
     return out;
   }
   const DeviationMeter screen(mesh, {.samples = std::max<std::size_t>(samples / 8, 2000)});
-  measure(out, pending, screen, false);
+  measure(out, pending, screen, false, progress, 1);
+  std::uint64_t done = pending.size();
   for (;;) {
     std::vector<std::size_t> unmeasured;
     for (std::size_t i : options.keep(out))
       if (i < out.size() && !out[i].measured_in_full) unmeasured.push_back(i);
-    if (unmeasured.empty()) return out;
-    measure(out, unmeasured, full, true);
+    if (unmeasured.empty()) break;
+    // Each full measurement as its share of what is left of the total.
+    const std::uint64_t units = std::min<std::uint64_t>(kFull, (total - done) / unmeasured.size());
+    measure(out, unmeasured, full, true, progress, units);
+    done += units * unmeasured.size();
   }
+  progress.add(total - done);
+  return out;
 }
 
 }  // namespace lodforge

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "lodforge/core/progress.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/simplify/level_chain.h"
 #include "lodforge/simplify/simplify_result.h"
@@ -29,6 +30,9 @@ struct LevelChainOptions {
   /// again, until it keeps only levels measured in full. Unset: every level
   /// is measured in full.
   std::function<std::vector<std::size_t>(std::span<const struct MeasuredLevel> levels)> keep;
+  /// Stage "measure": levels measured of the chain's levels, reported once
+  /// the chain is made (0 of n) and after each level (from worker threads).
+  ProgressCallback progress;
 };
 
 /// Sampling finds the largest distance between two surfaces only up to the

@@ -503,7 +503,8 @@ void flood_fill(Lattice& lat, const std::vector<std::int64_t>& seeds, McBuildSta
   stats.flooded_points += flooded + queue.size();
 }
 
-Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats) {
+Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats,
+                     const ProgressCallback& progress) {
   const TriangleMesh& m = sd.mesh();
   Lattice lat = empty_lattice(m.bounds(), resolution);
 
@@ -551,6 +552,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       coord[a][static_cast<std::size_t>(i)] =
           lat.root[a] + static_cast<float>(i + lat.offset[a]) * lat.h;
   }
+  ProgressCounter slabs_done(progress, "signs", static_cast<std::uint64_t>(slabs), 1);
   tbb::parallel_for(std::int64_t{0}, slabs, [&](std::int64_t s) {
     struct Best {
       float d2 = INFINITY;
@@ -626,6 +628,7 @@ Lattice make_lattice(const SignedDistance& sd, int resolution, McBuildStats& sta
       if (lat.on_border(idx)) d = std::abs(d);
       out.push_back({idx, sample.open && !lat.on_border(idx) ? NAN : d, bt.triangle});
     }
+    slabs_done.add(1);
   });
   std::vector<std::int64_t> seeds;
   for (const auto& slab : found)
@@ -972,7 +975,7 @@ class SightCarver {
 // (SightCarver::seen_at), which closes the unseen region with a cap where
 // the vote changes.
 Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans, int resolution,
-                          McBuildStats& stats) {
+                          McBuildStats& stats, const ProgressCallback& progress) {
   Lattice lat = empty_lattice(field.bounds(), resolution);
   field.index(lat.origin, lat.h);
   std::vector<std::int64_t> band;
@@ -1018,6 +1021,7 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
   // it than the walls' band), hollowing it from below.
   SightCarver carver(scans, 2 * lat.h);
   std::vector<std::uint8_t> seen(lat.state.size(), 0);
+  ProgressCounter layers(progress, "signs", static_cast<std::uint64_t>(lat.dim[2]), 1);
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, lat.dim[2]), [&](const auto& r) {
     for (std::int64_t k = r.begin(); k != r.end(); ++k)
       for (std::int64_t j = 0; j < lat.dim[1]; ++j)
@@ -1027,6 +1031,7 @@ Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans,
           seen[idx] = static_cast<std::uint8_t>(
               lat.on_border(idx) ? SightCarver::Seen::kEmpty : carver.seen_at(lat.point(idx)));
         }
+    layers.add(static_cast<std::uint64_t>(r.size()));
   });
   for (std::size_t idx = 0; idx < seen.size(); ++idx) {
     if (lat.state[idx] & kAssigned) continue;
@@ -1150,8 +1155,8 @@ class NodeIndex {
 
 class Builder {
  public:
-  Builder(McOctree& t, McBuildStats& stats, bool place_coarse)
-      : t_(t), stats_(stats), place_coarse_(place_coarse) {}
+  Builder(McOctree& t, McBuildStats& stats, bool place_coarse, const ProgressCallback& progress)
+      : t_(t), stats_(stats), place_coarse_(place_coarse), progress_(progress) {}
 
   // attr(x, hint, near, normal, colour) gives the normal (and the colour when
   // `colored`) of the surface point x and returns how far x is from the
@@ -1198,6 +1203,7 @@ class Builder {
     if (colored) t_.colors.resize(edge_keys.size());
     gap_.assign(edge_keys.size(), Gap{});
     finest_count_ = edge_keys.size();
+    ProgressCounter points(progress_, "surface points", edge_keys.size());
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, edge_keys.size(), 256),
         [&](const tbb::blocked_range<std::size_t>& r) {
@@ -1218,6 +1224,7 @@ class Builder {
                                               dq ? dq->triangle : ClosestPoint::kNone};
             gap_[v] = attr(x, hint, near, t_.normals[v], colored ? &t_.colors[v] : nullptr);
           }
+          points.add(r.size());
         });
     // Leaves: finest cells whose corners differ in sign, i.e. the (up to)
     // four cells around each crossed lattice edge.
@@ -1279,11 +1286,16 @@ class Builder {
             t_.nodes[find(D, x, y, z)].edge_vertex[edge] = static_cast<std::uint32_t>(v);
           });
     });
+    // Progress: the nodes made, level by level (the leaves' quadrics with
+    // the leaves).
+    ProgressCounter nodes_done(progress_, "tree", t_.nodes.size(), 1);
     if (place_coarse_) surface_quadrics(D);
+    nodes_done.add(level_offset_[D + 1] - level_offset_[D]);
     for (int l = D - 1; l >= 0; --l) {
       tbb::parallel_for(level_offset_[l], level_offset_[l + 1],
                         [&](std::size_t i) { make_parent(t_.nodes[i]); });
       if (place_coarse_) level_vertices(l);
+      nodes_done.add(level_offset_[l + 1] - level_offset_[l]);
     }
   }
 
@@ -1730,6 +1742,7 @@ class Builder {
     expanded_.assign(count, 0);
     std::vector<float> metric =
         which == McPriorityMetric::kArea ? area_metric() : distance_metric();
+    ProgressCounter expansions(progress_, "priorities", internal_);
     std::vector<int> tri(count, 0);
     std::vector<std::vector<std::uint32_t>> waiting(count);
     using Entry = std::pair<float, std::uint32_t>;
@@ -1775,6 +1788,7 @@ class Builder {
       std::int64_t delta = -tri[i];
       for (auto a : around) delta -= tri[a];
       expanded_[i] = 1;
+      expansions.add(1);
       n.priority = static_cast<std::uint32_t>(t_.lod.size() + 1);
       t_.lod.push_back(i);
       for (auto a : around) delta += tri[a] = count_now(a);
@@ -1812,6 +1826,7 @@ class Builder {
   McOctree& t_;
   McBuildStats& stats_;
   bool place_coarse_;
+  const ProgressCallback& progress_;
   std::vector<std::size_t> level_offset_;
   NodeIndex index_;
   std::vector<std::uint8_t> expanded_;
@@ -1921,11 +1936,11 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
   tbb::task_group hierarchy;
   if (sd.has_rims()) hierarchy.run([&] { sd.bvh(); });
   check_build_budget(sd.mesh().bounds(), result.stats.resolution, options);
-  Lattice lat = make_lattice(sd, result.stats.resolution, result.stats);
+  Lattice lat = make_lattice(sd, result.stats.resolution, result.stats, options.progress);
   hierarchy.wait();
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
-  Builder builder(result.tree, result.stats, options.place_coarse_vertices);
+  Builder builder(result.tree, result.stats, options.place_coarse_vertices, options.progress);
   // Closed inputs invent nothing (every sign change is a crossing of the
   // surface); not testing them keeps them closed whatever the rounding.
   const bool holes = options.holes == McHoles::kOpen && sd.has_rims();
@@ -1987,10 +2002,11 @@ McBuildResult build_mc_octree(const std::vector<RangeScan>& scans, const McBuild
   result.stats.resolution =
       options.resolution ? options.resolution : scan_resolution(scans, field.bounds());
   check_build_budget(field.bounds(), result.stats.resolution, options);
-  Lattice lat = make_scan_lattice(field, scans, result.stats.resolution, result.stats);
+  Lattice lat =
+      make_scan_lattice(field, scans, result.stats.resolution, result.stats, options.progress);
   result.stats.seconds_signs = since(t0);
   auto t1 = Clock::now();
-  Builder builder(result.tree, result.stats, options.place_coarse_vertices);
+  Builder builder(result.tree, result.stats, options.place_coarse_vertices, options.progress);
   builder.build_tree(lat, field.colored(),
                      [&](const Vec3& x, std::uint32_t&, const std::array<std::uint32_t, 2>&,
                          Vec3& normal, Rgb8* color) {

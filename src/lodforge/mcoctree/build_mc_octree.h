@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lodforge/core/memory_budget.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/mcoctree/mc_octree.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mesh/triangle_mesh.h"
@@ -64,6 +65,11 @@ struct McBuildOptions {
   /// The build may take at most this many bytes, as mc_build_bytes estimates
   /// them before the lattice is allocated (DataError if more). 0: no limit.
   std::uint64_t max_memory = kDefaultMemoryBudget;
+  /// The build's stages as they run (core/progress.h), from worker threads:
+  /// "signs" (slabs of the lattice, or its layers for range scans),
+  /// "surface points" (crossed lattice edges), "tree" (nodes made, level by
+  /// level), "priorities" (expansions of the numbering). Empty: none.
+  ProgressCallback progress;
 };
 
 /// The memory a build of the lattice over `box` at `resolution` takes, about

@@ -100,24 +100,29 @@ struct Measured {
 // blocks keep the hints, hence the tie choices, independent of the threads.
 constexpr std::size_t kBlock = 256;
 
+// Progress: every 64 blocks (16 384 samples).
+constexpr std::uint64_t kProgressStep = 64 * kBlock;
+
 template <typename Query>
-void for_each_in_blocks(std::size_t n, Query&& query) {
+void for_each_in_blocks(std::size_t n, ProgressCounter& progress, Query&& query) {
   tbb::parallel_for(std::size_t(0), (n + kBlock - 1) / kBlock, [&](std::size_t block) {
     std::uint32_t hint = ClosestPoint::kNone;
-    for (std::size_t i = block * kBlock, end = std::min(n, i + kBlock); i < end; ++i) {
+    const std::size_t first = block * kBlock, end = std::min(n, first + kBlock);
+    for (std::size_t i = first; i < end; ++i) {
       hint = query(i, hint);
     }
+    progress.add(end - first);
   });
 }
 
 Measured measure(const SurfaceSamples& samples, const TriangleMesh& other_mesh,
-                 const TriangleBvh& other, float noise) {
+                 const TriangleBvh& other, float noise, ProgressCounter& progress) {
   Measured m;
   m.distance.resize(samples.size());
   m.angle.resize(samples.size());
   const bool colors = !samples.colors.empty() && other_mesh.has_colors();
   if (colors) m.color.resize(samples.size());
-  for_each_in_blocks(samples.size(), [&](std::size_t i, std::uint32_t hint) {
+  for_each_in_blocks(samples.size(), progress, [&](std::size_t i, std::uint32_t hint) {
     const Vec3& n1 = samples.normals[i];
     ClosestPoint c = other.closest_point(samples.positions[i], n1, hint);
     float d = std::sqrt(c.distance_squared);
@@ -248,16 +253,19 @@ CompareResult run(const TriangleMesh& a, const TriangleMesh& b, const CompareOpt
                        [&] { bvh_b = std::make_unique<TriangleBvh>(b, bvh); });
 
   auto area_start = [](const SurfaceSamples& s) { return s.vertex_samples + s.edge_samples; };
-  result.a_to_b =
-      summarise(measure(samples_a, b, *bvh_b, noise), area_start(samples_a), result.diagonal);
-  result.b_to_a =
-      summarise(measure(samples_b, a, *bvh_a, noise), area_start(samples_b), result.diagonal);
+  ProgressCounter a_to_b(options.progress, "A to B", samples_a.size(), kProgressStep);
+  result.a_to_b = summarise(measure(samples_a, b, *bvh_b, noise, a_to_b), area_start(samples_a),
+                            result.diagonal);
+  ProgressCounter b_to_a(options.progress, "B to A", samples_b.size(), kProgressStep);
+  result.b_to_a = summarise(measure(samples_b, a, *bvh_a, noise, b_to_a), area_start(samples_b),
+                            result.diagonal);
   result.hausdorff = std::max(result.a_to_b.max, result.b_to_a.max);
   result.hausdorff_pct = result.diagonal > 0 ? 100 * result.hausdorff / result.diagonal : 0;
 
   if (options.per_vertex) {
     result.vertex_deviation.resize(a.positions.size());
-    for_each_in_blocks(a.positions.size(), [&](std::size_t v, std::uint32_t hint) {
+    ProgressCounter vertices(options.progress, "vertices", a.positions.size(), kProgressStep);
+    for_each_in_blocks(a.positions.size(), vertices, [&](std::size_t v, std::uint32_t hint) {
       const Vec3& p = a.positions[v];
       // Unused vertices may hold anything; they get 0.
       if (!is_finite(p)) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lodforge/core/memory_budget.h"
+#include "lodforge/core/progress.h"
 #include "lodforge/mesh/triangle_mesh.h"
 
 namespace lodforge {
@@ -35,6 +36,9 @@ struct CompareOptions {
   /// The samples of both directions may take at most this many bytes
   /// (estimated before sampling; DataError if more). 0: no limit.
   std::uint64_t max_memory = kDefaultMemoryBudget;
+  /// Samples measured, stages "A to B", "B to A" and (per_vertex) "vertices",
+  /// every 16 384 samples, from worker threads (core/progress.h). Empty: none.
+  ProgressCallback progress;
 };
 
 /// Angles between the normal at a sample and at its closest point (radians).

@@ -62,20 +62,77 @@ auto named(const std::string& input, F&& f) {
   }
 }
 
-void add_mco_command(CLI::App& app, Runner& run) {
-  CLI::App* mco = app.add_subcommand("mco", "Marching-cube octree: continuous levels of detail");
-  mco->require_subcommand(1);
+namespace {
 
-  struct Build {
-    std::string input, output;
-    int resolution = 0;
-    int threads = 0;
-    bool close_holes = false;
-    bool surface_vertices = false;
-    std::string metric = "area";
-    double max_memory_gib = double(kDefaultMemoryBudget >> 30);
-    SceneReadSettings read;
+struct Build {
+  std::string input, output;
+  int resolution = 0;
+  int threads = 0;
+  bool close_holes = false;
+  bool surface_vertices = false;
+  std::string metric = "area";
+  double max_memory_gib = double(kDefaultMemoryBudget >> 30);
+  SceneReadSettings read;
+};
+
+// Builds the octree of a mesh or of range scans and writes the model.
+int run_mco_build(const Build& b) {
+  check_output_paths(std::array{OutputPath{b.output, "the model"}}, std::array{b.input});
+  auto t0 = std::chrono::steady_clock::now();
+  McBuildOptions options{
+      .resolution = b.resolution,
+      .threads = b.threads,
+      .holes = b.close_holes ? McHoles::kCapped : McHoles::kOpen,
+      .metric = b.metric == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea,
+      .place_coarse_vertices = !b.surface_vertices,
+      .max_memory = static_cast<std::uint64_t>(b.max_memory_gib * double(1 << 30))};
+  McBuildResult r;
+  // The bar runs while the octree is built (made once the input is read,
+  // so that the reader's warnings come before it).
+  auto build_with_bar = [&](const auto& input) {
+    Progress bar("mco build", 0, stderr_progress(b.read.quiet));
+    McBuildOptions drawn = options;
+    drawn.progress = bar.callback();
+    return named(b.input, [&] { return build_mc_octree(input, drawn); });
   };
+  std::string what;
+  if (is_range_input(b.input)) {
+    auto scans = read_range_scans(b.input);
+    std::size_t points = 0;
+    for (const auto& sc : scans)
+      for (auto g : sc.grid) points += g >= 0;
+    r = build_with_bar(scans);
+    what = fmt::format(
+        "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
+        "filled, {} bubbles dropped)",
+        scans.size(), points, r.stats.band_points, r.stats.carved_points,
+        r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
+  } else {
+    TriangleMesh mesh = load_geometry(b.input, 0, b.read);
+    if (const double bytes = mc_build_bytes(mesh.bounds(), b.resolution);
+        bytes > double(std::uint64_t{1} << 30))
+      fmt::print(stderr,
+                 "warning: {}: the lattice at resolution {} takes about {:.1f} GiB; the build "
+                 "may take minutes\n",
+                 b.input, b.resolution, bytes / double(std::uint64_t{1} << 30));
+    r = build_with_bar(mesh);
+    what = fmt::format("{} triangles", mesh.triangle_count());
+  }
+  McLodModel model = compile_mc_lod(r.tree);
+  write_mco_file(model, b.output);
+  double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  fmt::print(stderr,
+             "{}: {} -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "
+             "full resolution, {:.1f} bytes per triangle at run time; {:.2f} s\n",
+             b.output, what, r.tree.nodes.size(), r.stats.leaves, model.positions.size(),
+             model.priorities(), model.full_triangles(),
+             static_cast<double>(model.memory_bytes()) /
+                 static_cast<double>(std::max<std::uint64_t>(model.full_triangles(), 1)),
+             s);
+  return 0;
+}
+
+void add_mco_build(CLI::App* mco, Runner& run) {
   auto b = std::make_shared<Build>();
   CLI::App* build = mco->add_subcommand("build", "Build the octree of a mesh and write MODEL.mco");
   build
@@ -119,69 +176,16 @@ void add_mco_command(CLI::App& app, Runner& run) {
       ->capture_default_str()
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
-  build->callback([b, &run] {
-    run = [b] {
-      check_output_paths(std::array{OutputPath{b->output, "the model"}}, std::array{b->input});
-      auto t0 = std::chrono::steady_clock::now();
-      McBuildOptions options{
-          .resolution = b->resolution,
-          .threads = b->threads,
-          .holes = b->close_holes ? McHoles::kCapped : McHoles::kOpen,
-          .metric = b->metric == "distance" ? McPriorityMetric::kDistance : McPriorityMetric::kArea,
-          .place_coarse_vertices = !b->surface_vertices,
-          .max_memory = static_cast<std::uint64_t>(b->max_memory_gib * double(1 << 30))};
-      McBuildResult r;
-      // The bar runs while the octree is built (made once the input is read,
-      // so that the reader's warnings come before it).
-      auto build_with_bar = [&](const auto& input) {
-        Progress bar("mco build", 0, stderr_progress(b->read.quiet));
-        McBuildOptions drawn = options;
-        drawn.progress = bar.callback();
-        return named(b->input, [&] { return build_mc_octree(input, drawn); });
-      };
-      std::string what;
-      if (is_range_input(b->input)) {
-        auto scans = read_range_scans(b->input);
-        std::size_t points = 0;
-        for (const auto& sc : scans)
-          for (auto g : sc.grid) points += g >= 0;
-        r = build_with_bar(scans);
-        what = fmt::format(
-            "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
-            "filled, {} bubbles dropped)",
-            scans.size(), points, r.stats.band_points, r.stats.carved_points,
-            r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
-      } else {
-        TriangleMesh mesh = load_geometry(b->input, 0, b->read);
-        if (const double bytes = mc_build_bytes(mesh.bounds(), b->resolution);
-            bytes > double(std::uint64_t{1} << 30))
-          fmt::print(stderr,
-                     "warning: {}: the lattice at resolution {} takes about {:.1f} GiB; the build "
-                     "may take minutes\n",
-                     b->input, b->resolution, bytes / double(std::uint64_t{1} << 30));
-        r = build_with_bar(mesh);
-        what = fmt::format("{} triangles", mesh.triangle_count());
-      }
-      McLodModel model = compile_mc_lod(r.tree);
-      write_mco_file(model, b->output);
-      double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print(stderr,
-                 "{}: {} -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "
-                 "full resolution, {:.1f} bytes per triangle at run time; {:.2f} s\n",
-                 b->output, what, r.tree.nodes.size(), r.stats.leaves, model.positions.size(),
-                 model.priorities(), model.full_triangles(),
-                 static_cast<double>(model.memory_bytes()) /
-                     static_cast<double>(std::max<std::uint64_t>(model.full_triangles(), 1)),
-                 s);
-      return 0;
-    };
-  });
+  build->callback([b, &run] { run = [b] { return run_mco_build(*b); }; });
+}
 
-  struct Extract {
-    std::string input, output;
-    std::int64_t triangles = -1, priority = -1;
-    double percent = -1;
-  };
+struct Extract {
+  std::string input, output;
+  std::int64_t triangles = -1, priority = -1;
+  double percent = -1;
+};
+
+void add_mco_extract(CLI::App* mco, Runner& run) {
   auto e = std::make_shared<Extract>();
   CLI::App* extract = mco->add_subcommand("extract", "Extract one level of detail from MODEL.mco");
   extract->add_option("MODEL", e->input, "Model file (.mco)")->required();
@@ -222,10 +226,14 @@ void add_mco_command(CLI::App& app, Runner& run) {
     };
   });
 
-  struct Info {
-    std::string input;
-    bool json = false;
-  };
+}
+
+struct Info {
+  std::string input;
+  bool json = false;
+};
+
+void add_mco_info(CLI::App* mco, Runner& run) {
   auto i = std::make_shared<Info>();
   CLI::App* info = mco->add_subcommand("info", "Describe MODEL.mco");
   info->add_option("MODEL", i->input, "Model file (.mco)")->required();
@@ -272,11 +280,15 @@ void add_mco_command(CLI::App& app, Runner& run) {
     };
   });
 
-  struct Scan {
-    std::string input, output;
-    int views = 6, resolution = 256;
-    SceneReadSettings read;
-  };
+}
+
+struct Scan {
+  std::string input, output;
+  int views = 6, resolution = 256;
+  SceneReadSettings read;
+};
+
+void add_mco_scan(CLI::App* mco, Runner& run) {
   auto sc = std::make_shared<Scan>();
   CLI::App* scan = mco->add_subcommand(
       "scan", "Synthetic range scans of a mesh: range-grid PLYs and a .conf in DIR");
@@ -309,6 +321,17 @@ void add_mco_command(CLI::App& app, Runner& run) {
       return 0;
     };
   });
+}
+
+}  // namespace
+
+void add_mco_command(CLI::App& app, Runner& run) {
+  CLI::App* mco = app.add_subcommand("mco", "Marching-cube octree: continuous levels of detail");
+  mco->require_subcommand(1);
+  add_mco_build(mco, run);
+  add_mco_extract(mco, run);
+  add_mco_info(mco, run);
+  add_mco_scan(mco, run);
 }
 
 }  // namespace lodforge::apps

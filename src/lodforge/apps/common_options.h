@@ -41,11 +41,6 @@ void print_diagnostic(const Diagnostic& d);
 /// are compared without their leading "FILE:LINE[:COLUMN]: " location, and
 /// printed in the order of their first occurrence.
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
-/// Prints diagnostics on stderr, the same message repeated at several places
-/// once: "warning: MESSAGE (210 times, first at FILE:LINE:COLUMN)". Messages
-/// are compared without their leading "FILE:LINE[:COLUMN]: " location, and
-/// printed in the order of their first occurrence.
-void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
 
 /// Reads a VRML 1.0 or Open Inventor scene, printing warnings on stderr unless quiet.
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);

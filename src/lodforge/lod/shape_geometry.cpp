@@ -100,6 +100,306 @@ class Deduper {
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
+// Reads one IndexedFaceSet or IndexedLineSet under its traversal state into
+// a ShapeGeometry: a pass over the faces builds de-duplicated vertices (each
+// a position with its normal, texture coordinate and material) and the
+// triangles or segments; an attribute index found out of range drops that
+// attribute with a warning and the pass starts over without it.
+class FaceSetReader {
+ public:
+  FaceSetReader(const scene::ShapeVisit& visit, const ShapeGeometryOptions& options, Log& log)
+      : shape_(visit.shape),
+        st_(visit.state),
+        options_(options),
+        log_(log),
+        lines_(shape_.type == "IndexedLineSet"),
+        ci_(scene::field_or_default(shape_, "coordIndex")->ints),
+        mat_(st_.material ? *st_.material : default_material()) {
+    static const Node kDefaultCoords{.type = "Coordinate3"};
+    pts_ = scene::field_or_default(st_.coordinate3 ? *st_.coordinate3 : kDefaultCoords, "point");
+    npts_ = pts_->floats.size() / 3;
+    choose_bindings();
+  }
+
+  ShapeGeometry read() {
+    ShapeGeometry g;
+    const auto runs = scene::split_index_runs(ci_);
+    while (!read_pass(runs, g)) {
+    }
+    finish(g);
+    return g;
+  }
+
+ private:
+  struct Corner {
+    std::uint32_t vertex;
+    std::int64_t material;
+  };
+
+  static const Node& default_material() {
+    static const Node kDefaultMaterial{.type = "Material"};
+    return kDefaultMaterial;
+  }
+  static bool per_vertex(Bind b) { return b == Bind::kPerVertex || b == Bind::kPerVertexIndexed; }
+  static bool per_face(Bind b) { return b == Bind::kPerFace || b == Bind::kPerFaceIndexed; }
+
+  // The bindings in force, reduced to what the shape can use.
+  void choose_bindings() {
+    mbind_ = binding_of(st_.material_binding, Bind::kOverall);
+    nbind_ = binding_of(st_.normal_binding, Bind::kPerVertexIndexed);
+    normal_field_ = st_.normal ? scene::field_or_default(*st_.normal, "vector") : nullptr;
+    nnormals_ = normal_field_ ? normal_field_->floats.size() / 3 : 0;
+    if (lines_ || nnormals_ == 0) nbind_ = Bind::kOverall;
+    tc_field_ = st_.texture_coordinate2
+                    ? scene::field_or_default(*st_.texture_coordinate2, "point")
+                    : nullptr;
+    ntex_ = tc_field_ ? tc_field_->floats.size() / 2 : 0;
+    nmat_ = material_rows(mat_);
+    if (mbind_ != Bind::kOverall && nmat_ <= 1 && mbind_ != Bind::kPerFaceIndexed &&
+        mbind_ != Bind::kPerVertexIndexed)
+      mbind_ = Bind::kOverall;  // one material for everything: nothing to bind
+    material_ok_ = mbind_ != Bind::kOverall;
+    normal_ok_ = nbind_ != Bind::kOverall;
+    tex_ok_ = !lines_ && ntex_ > 0;
+    mindex_ = {mbind_, &scene::field_or_default(shape_, "materialIndex")->ints, &ci_};
+    nindex_ = {nbind_, &scene::field_or_default(shape_, "normalIndex")->ints, &ci_};
+    tindex_ = {Bind::kPerVertexIndexed,
+               &scene::field_or_default(shape_, "textureCoordIndex")->ints, &ci_};
+  }
+
+  // Switches an attribute off for the out-of-range index `bad`, with a warning.
+  void drop(bool& ok, const char* what, std::int64_t bad, std::size_t limit) {
+    if (!ok) return;
+    ok = false;
+    repaired_ = true;
+    log_.warn(LogCategory::kParse,
+              fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
+                          shape_.first_line, shape_.type, what, bad, std::int64_t(limit) - 1,
+                          what));
+  }
+
+  Vec3 normal_value(std::int64_t n) const {
+    return {normal_field_->floats[3 * n], normal_field_->floats[3 * n + 1],
+            normal_field_->floats[3 * n + 2]};
+  }
+  std::uint32_t add_normal(std::int64_t n) {
+    const Vec3 v = normal_value(n);
+    return normals_.add(v, {bits(v.x), bits(v.y), bits(v.z)});
+  }
+  std::uint32_t add_material(std::int64_t m) {
+    return materials_.add(std::uint32_t(m), material_row(mat_, std::size_t(m)));
+  }
+
+  // One pass over every face; false when an attribute was dropped on the way
+  // (the pass must start over without it).
+  bool read_pass(const std::vector<std::pair<std::size_t, std::size_t>>& runs, ShapeGeometry& g) {
+    g = ShapeGeometry{};
+    g.has_texcoords = tex_ok_;
+    normals_ = {};
+    texcoords_ = {};
+    materials_ = {};
+    vertex_ids_.clear();
+    corner_seq_ = 0;
+    for (std::size_t f = 0; f < runs.size(); ++f)
+      if (!read_face(f, runs[f].first, runs[f].second, g)) return false;
+    return true;
+  }
+
+  bool read_face(std::size_t f, std::size_t b, std::size_t e, ShapeGeometry& g) {
+    const bool was_ok[3] = {material_ok_, normal_ok_, tex_ok_};
+    const std::int64_t fmat = material_ok_ && per_face(mbind_) ? mindex_.at(f, 0, b) : -1;
+    if (fmat != -1 && (fmat < 0 || std::size_t(fmat) >= nmat_))
+      drop(material_ok_, "material", fmat, nmat_);
+    const std::int64_t fnorm = normal_ok_ && per_face(nbind_) ? nindex_.at(f, 0, b) : -1;
+    if (fnorm != -1 && (fnorm < 0 || std::size_t(fnorm) >= nnormals_))
+      drop(normal_ok_, "normal", fnorm, nnormals_);
+    corners_.clear();
+    for (std::size_t p = b; p < e; ++p, ++corner_seq_) corners_.push_back(read_corner(f, p, g));
+    if (was_ok[0] != material_ok_ || was_ok[1] != normal_ok_ || was_ok[2] != tex_ok_)
+      return false;
+    const std::uint32_t face_mat = material_ok_ && fmat >= 0 ? add_material(fmat) : kNone;
+    const std::uint32_t face_norm = normal_ok_ && fnorm >= 0 ? add_normal(fnorm) : kNone;
+    ++g.input_faces;
+    if (lines_)
+      add_segments(face_mat, g);
+    else
+      add_polygon(f, face_mat, face_norm, g);
+    return true;
+  }
+
+  // Corner p of face f: its vertex (position and per-vertex attributes,
+  // de-duplicated) and its per-vertex material index (-1: none).
+  Corner read_corner(std::size_t f, std::size_t p, ShapeGeometry& g) {
+    const std::int32_t c = ci_[p];
+    if (c < 0 || std::size_t(c) >= npts_)
+      throw DataError(
+          fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the "
+                      "current Coordinate3 has {} points)",
+                      shape_.first_line, shape_.type, p, c, npts_));
+    const Vec3 x{pts_->floats[3 * std::size_t(c)], pts_->floats[3 * std::size_t(c) + 1],
+                 pts_->floats[3 * std::size_t(c) + 2]};
+    if (!is_finite(x))
+      throw DataError(fmt::format(
+          "line {}: Coordinate3 point {} used by the {} at line {} is not finite",
+          st_.coordinate3 ? st_.coordinate3->first_line : 0, c, shape_.type, shape_.first_line));
+    VertexKey key{{bits(x.x), bits(x.y), bits(x.z)}, kNone, kNone, kNone};
+    if (normal_ok_ && per_vertex(nbind_)) {
+      const std::int64_t n = nindex_.at(f, corner_seq_, p);
+      if (n < 0 || std::size_t(n) >= nnormals_)
+        drop(normal_ok_, "normal", n, nnormals_);
+      else
+        key.normal = add_normal(n);
+    }
+    if (tex_ok_) {
+      const std::int64_t t = tindex_.at(f, corner_seq_, p);
+      if (t < 0 || std::size_t(t) >= ntex_) {
+        drop(tex_ok_, "texture coordinate", t, ntex_);
+      } else {
+        const Vec2 v{tc_field_->floats[2 * t], tc_field_->floats[2 * t + 1]};
+        key.texcoord = texcoords_.add(v, {bits(v.x), bits(v.y)});
+      }
+    }
+    std::int64_t vm = -1;
+    if (material_ok_ && per_vertex(mbind_)) {
+      vm = mindex_.at(f, corner_seq_, p);
+      if (vm < 0 || std::size_t(vm) >= nmat_)
+        drop(material_ok_, "material", vm, nmat_);
+      else
+        key.material = add_material(vm);
+    }
+    auto [it, fresh] = vertex_ids_.try_emplace(key, std::uint32_t(g.mesh.positions.size()));
+    if (fresh) {
+      g.mesh.positions.push_back(x);
+      g.vertex_normal.push_back(key.normal);
+      g.vertex_texcoord.push_back(key.texcoord);
+      g.vertex_material.push_back(key.material);
+      g.vertex_face_material.push_back(kNone);
+    }
+    return {it->second, vm};
+  }
+
+  // A polyline's segments (repeated corners skipped).
+  void add_segments(std::uint32_t face_mat, ShapeGeometry& g) {
+    for (std::size_t i = 1; i < corners_.size(); ++i) {
+      if (corners_[i].vertex == corners_[i - 1].vertex) continue;
+      g.mesh.lines.push_back({corners_[i - 1].vertex, corners_[i].vertex});
+      g.segment_material.push_back(face_mat);
+    }
+  }
+
+  // A polygon's triangles; consecutive repeated corners (and a closing
+  // repeat) carry no area, a polygon of fewer than 3 corners is dropped.
+  void add_polygon(std::size_t f, std::uint32_t face_mat, std::uint32_t face_norm,
+                   ShapeGeometry& g) {
+    poly_.clear();
+    for (const auto& c : corners_)
+      if (poly_.empty() || poly_.back() != c.vertex) poly_.push_back(c.vertex);
+    while (poly_.size() > 1 && poly_.front() == poly_.back()) poly_.pop_back();
+    if (poly_.size() < 3) {
+      ++g.dropped_faces;
+      return;
+    }
+    const TriangulateResult tr =
+        triangulate_polygon(g.mesh.positions, poly_, options_.triangulation);
+    if (tr.has_warning())
+      log_.add(LogLevel::kMessage, LogCategory::kTriangulator,
+               fmt::format("line {}: face {} is {}; triangulated anyway", shape_.first_line, f,
+                           tr.degenerate ? "degenerate" : "not simple"));
+    const auto polygon = std::uint32_t(g.polygon_is_quad.size());
+    g.polygon_is_quad.push_back(poly_.size() == 4 && tr.keep_as_quad);
+    for (const auto& t : tr.triangles) {
+      g.mesh.triangles.push_back({poly_[t[0]], poly_[t[1]], poly_[t[2]]});
+      g.triangle_polygon.push_back(polygon);
+      g.face_normal.push_back(face_norm);
+      if (face_mat != kNone) g.mesh.materials.push_back(face_mat);
+      for (int k = 0; k < 3; ++k)
+        if (g.vertex_face_material[poly_[t[k]]] == kNone)
+          g.vertex_face_material[poly_[t[k]]] = face_mat;
+    }
+  }
+
+  // Whether every index of the input's `field` is in range of `limit`
+  // values (an index field the geometry does not use, e.g.
+  // textureCoordIndex without texture coordinates, still reaches a reader).
+  bool in_range(const char* field, std::size_t limit) const {
+    const FieldValue* idx = shape_.value(field);
+    if (!idx) return true;
+    for (std::int32_t i : idx->ints)
+      if (i < -1 || (i >= 0 && std::size_t(i) >= limit)) return false;
+    return true;
+  }
+
+  // The distinct materials as one Material node, rows in first-use order.
+  NodePtr material_node() const {
+    auto m = std::make_shared<Node>();
+    m->type = "Material";
+    for (const char* f : kMaterialFields) {
+      const FieldValue* src = scene::field_or_default(mat_, f);
+      const int comps = scene::float_components(src->type.kind);
+      const std::size_t count = src->floats.size() / std::size_t(comps);
+      if (count == 0) continue;
+      std::vector<float> vals;
+      for (std::uint32_t row : materials_.values) {
+        const std::size_t i = std::min<std::size_t>(row, count - 1);
+        vals.insert(vals.end(), src->floats.begin() + std::ptrdiff_t(i * comps),
+                    src->floats.begin() + std::ptrdiff_t((i + 1) * comps));
+      }
+      if (mat_.value(f) || count > 1) m->set(f, scene::make_floats(src->type.kind, true, vals));
+    }
+    return m;
+  }
+
+  // Bindings, attribute lists and flags of the finished geometry.
+  void finish(ShapeGeometry& g) const {
+    if (!g.mesh.materials.empty() && g.mesh.materials.size() != g.mesh.triangles.size())
+      g.mesh.materials.clear();
+    g.material_binding = !material_ok_        ? AttributeBinding::kNone
+                         : per_vertex(mbind_) ? AttributeBinding::kPerVertex
+                                              : AttributeBinding::kPerFace;
+    g.normal_binding = !normal_ok_        ? AttributeBinding::kNone
+                       : per_vertex(nbind_) ? AttributeBinding::kPerVertex
+                                            : AttributeBinding::kPerFace;
+    g.has_texcoords = tex_ok_;
+    // The input node is drawn as it is only if every index it holds is in range.
+    g.repaired = repaired_ || !in_range("normalIndex", nnormals_) ||
+                 !in_range("textureCoordIndex", ntex_) ||
+                 !in_range("materialIndex", std::max<std::size_t>(nmat_, 1));
+    g.normal_values = normals_.values;
+    g.texcoord_values = texcoords_.values;
+    if (g.material_binding != AttributeBinding::kNone) g.material = material_node();
+    if (g.material_binding == AttributeBinding::kPerVertex && lines_) g.segment_material.clear();
+    mark_inherited_attributes(g, st_);
+    const Node* hints = st_.shape_hints;
+    const FieldValue* face_type = hints ? scene::field_or_default(*hints, "faceType") : nullptr;
+    g.needs_convex_hint =
+        !lines_ && face_type && !face_type->strings.empty() && face_type->strings[0] != "CONVEX";
+  }
+
+  const Node& shape_;
+  const scene::TraversalState& st_;
+  const ShapeGeometryOptions& options_;
+  Log& log_;
+  const bool lines_;
+  const std::vector<std::int32_t>& ci_;
+  const Node& mat_;
+  const FieldValue* pts_ = nullptr;
+  std::size_t npts_ = 0;
+  Bind mbind_ = Bind::kOverall, nbind_ = Bind::kOverall;
+  const FieldValue* normal_field_ = nullptr;
+  const FieldValue* tc_field_ = nullptr;
+  std::size_t nnormals_ = 0, ntex_ = 0, nmat_ = 1;
+  AttributeIndexer mindex_, nindex_, tindex_;
+  bool material_ok_ = false, normal_ok_ = false, tex_ok_ = false, repaired_ = false;
+
+  Deduper<Vec3, std::array<std::uint32_t, 3>> normals_;
+  Deduper<Vec2, std::array<std::uint32_t, 2>> texcoords_;
+  Deduper<std::uint32_t, std::vector<float>> materials_;  // value: source row
+  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> vertex_ids_;
+  std::vector<Corner> corners_;
+  std::vector<std::uint32_t> poly_;
+  std::size_t corner_seq_ = 0;
+};
+
 }  // namespace
 
 ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
@@ -115,252 +415,7 @@ ShapeGeometry read_shape_geometry(const scene::ShapeVisit& visit,
     mark_inherited_attributes(g, visit.state);
     return g;
   }
-  const Node& shape = visit.shape;
-  const scene::TraversalState& st = visit.state;
-  const bool lines = shape.type == "IndexedLineSet";
-  ShapeGeometry g;
-
-  // Coordinates (checked as the scene module does).
-  static const Node kDefaultCoords{.type = "Coordinate3"};
-  const FieldValue* pts =
-      scene::field_or_default(st.coordinate3 ? *st.coordinate3 : kDefaultCoords, "point");
-  const std::size_t npts = pts->floats.size() / 3;
-  auto point = [&](std::size_t i) {
-    return Vec3{pts->floats[3 * i], pts->floats[3 * i + 1], pts->floats[3 * i + 2]};
-  };
-  const FieldValue* coord_index = scene::field_or_default(shape, "coordIndex");
-  const std::vector<std::int32_t>& ci = coord_index->ints;
-
-  // Bindings.
-  Bind mbind = binding_of(st.material_binding, Bind::kOverall);
-  Bind nbind = binding_of(st.normal_binding, Bind::kPerVertexIndexed);
-  const FieldValue* normal_field =
-      st.normal ? scene::field_or_default(*st.normal, "vector") : nullptr;
-  std::size_t nnormals = normal_field ? normal_field->floats.size() / 3 : 0;
-  if (lines || nnormals == 0) nbind = Bind::kOverall;
-  const FieldValue* tc_field =
-      st.texture_coordinate2 ? scene::field_or_default(*st.texture_coordinate2, "point") : nullptr;
-  std::size_t ntex = tc_field ? tc_field->floats.size() / 2 : 0;
-  g.has_texcoords = !lines && ntex > 0;
-
-  const Node* material = st.material;
-  static const Node kDefaultMaterial{.type = "Material"};
-  const Node& mat = material ? *material : kDefaultMaterial;
-  const std::size_t nmat = material_rows(mat);
-  if (mbind != Bind::kOverall && nmat <= 1 && mbind != Bind::kPerFaceIndexed &&
-      mbind != Bind::kPerVertexIndexed)
-    mbind = Bind::kOverall;  // one material for everything: nothing to bind
-
-  AttributeIndexer mindex{mbind, &scene::field_or_default(shape, "materialIndex")->ints, &ci};
-  AttributeIndexer nindex{nbind, &scene::field_or_default(shape, "normalIndex")->ints, &ci};
-  const FieldValue* tci = scene::field_or_default(shape, "textureCoordIndex");
-  AttributeIndexer tindex{Bind::kPerVertexIndexed, &tci->ints, &ci};
-
-  bool material_ok = mbind != Bind::kOverall, normal_ok = nbind != Bind::kOverall,
-       tex_ok = g.has_texcoords;
-  bool repaired = false;
-  auto drop = [&](bool& ok, const char* what, std::int64_t bad, std::size_t limit) {
-    if (!ok) return;
-    ok = false;
-    repaired = true;
-    log.warn(LogCategory::kParse,
-             fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
-                         shape.first_line, shape.type, what, bad, std::int64_t(limit) - 1, what));
-  };
-
-  Deduper<Vec3, std::array<std::uint32_t, 3>> normals;
-  Deduper<Vec2, std::array<std::uint32_t, 2>> texcoords;
-  Deduper<std::uint32_t, std::vector<float>> materials;  // value: source row
-  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> vertex_ids;
-
-  struct Corner {
-    std::uint32_t vertex;
-    std::int64_t material;
-  };
-  std::vector<Corner> corners;
-  std::vector<std::uint32_t> poly;
-  std::vector<std::int64_t> face_materials;
-  std::vector<std::uint32_t> face_normals;
-  std::size_t corner_seq = 0;
-
-  // A pass reads every face; an attribute found out of range switches its
-  // binding off and the pass starts over (at most once per attribute).
-  auto runs = scene::split_index_runs(ci);
-  while (true) {
-    bool was_ok[3] = {material_ok, normal_ok, tex_ok};
-    g = ShapeGeometry{};
-    g.has_texcoords = tex_ok;
-    normals = {};
-    texcoords = {};
-    materials = {};
-    vertex_ids.clear();
-    corner_seq = 0;
-    std::vector<std::uint32_t>& vertex_face_material = g.vertex_face_material;
-    for (std::size_t f = 0; f < runs.size(); ++f) {
-      auto [b, e] = runs[f];
-      corners.clear();
-      std::int64_t fmat = material_ok && (mbind == Bind::kPerFace || mbind == Bind::kPerFaceIndexed)
-                              ? mindex.at(f, 0, b)
-                              : -1;
-      if (fmat != -1 && (fmat < 0 || std::size_t(fmat) >= nmat))
-        drop(material_ok, "material", fmat, nmat);
-      std::int64_t fnorm = normal_ok && (nbind == Bind::kPerFace || nbind == Bind::kPerFaceIndexed)
-                               ? nindex.at(f, 0, b)
-                               : -1;
-      if (fnorm != -1 && (fnorm < 0 || std::size_t(fnorm) >= nnormals))
-        drop(normal_ok, "normal", fnorm, nnormals);
-      for (std::size_t p = b; p < e; ++p, ++corner_seq) {
-        std::int32_t c = ci[p];
-        if (c < 0 || std::size_t(c) >= npts)
-          throw DataError(
-              fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the "
-                          "current Coordinate3 has {} points)",
-                          shape.first_line, shape.type, p, c, npts));
-        Vec3 x = point(std::size_t(c));
-        if (!is_finite(x))
-          throw DataError(fmt::format(
-              "line {}: Coordinate3 point {} used by the {} at line {} is "
-              "not finite",
-              st.coordinate3 ? st.coordinate3->first_line : 0, c, shape.type, shape.first_line));
-        VertexKey key{{bits(x.x), bits(x.y), bits(x.z)}, kNone, kNone, kNone};
-        if (normal_ok && (nbind == Bind::kPerVertex || nbind == Bind::kPerVertexIndexed)) {
-          std::int64_t n = nindex.at(f, corner_seq, p);
-          if (n < 0 || std::size_t(n) >= nnormals)
-            drop(normal_ok, "normal", n, nnormals);
-          else {
-            Vec3 v{normal_field->floats[3 * n], normal_field->floats[3 * n + 1],
-                   normal_field->floats[3 * n + 2]};
-            key.normal = normals.add(v, {bits(v.x), bits(v.y), bits(v.z)});
-          }
-        }
-        if (tex_ok) {
-          std::int64_t t = tindex.at(f, corner_seq, p);
-          if (t < 0 || std::size_t(t) >= ntex)
-            drop(tex_ok, "texture coordinate", t, ntex);
-          else {
-            Vec2 v{tc_field->floats[2 * t], tc_field->floats[2 * t + 1]};
-            key.texcoord = texcoords.add(v, {bits(v.x), bits(v.y)});
-          }
-        }
-        std::int64_t vm = -1;
-        if (material_ok && (mbind == Bind::kPerVertex || mbind == Bind::kPerVertexIndexed)) {
-          vm = mindex.at(f, corner_seq, p);
-          if (vm < 0 || std::size_t(vm) >= nmat)
-            drop(material_ok, "material", vm, nmat);
-          else
-            key.material = materials.add(std::uint32_t(vm), material_row(mat, std::size_t(vm)));
-        }
-        auto [it, fresh] = vertex_ids.try_emplace(key, std::uint32_t(g.mesh.positions.size()));
-        if (fresh) {
-          g.mesh.positions.push_back(x);
-          g.vertex_normal.push_back(key.normal);
-          g.vertex_texcoord.push_back(key.texcoord);
-          g.vertex_material.push_back(key.material);
-          vertex_face_material.push_back(kNone);
-        }
-        corners.push_back({it->second, vm});
-      }
-      if (was_ok[0] != material_ok || was_ok[1] != normal_ok || was_ok[2] != tex_ok)
-        break;  // an attribute was dropped: start over without it
-      std::uint32_t face_mat = kNone;
-      if (material_ok && fmat >= 0)
-        face_mat = materials.add(std::uint32_t(fmat), material_row(mat, std::size_t(fmat)));
-      std::uint32_t face_norm = kNone;
-      if (normal_ok && fnorm >= 0) {
-        Vec3 v{normal_field->floats[3 * fnorm], normal_field->floats[3 * fnorm + 1],
-               normal_field->floats[3 * fnorm + 2]};
-        face_norm = normals.add(v, {bits(v.x), bits(v.y), bits(v.z)});
-      }
-      ++g.input_faces;
-      if (lines) {
-        for (std::size_t i = 1; i < corners.size(); ++i) {
-          if (corners[i].vertex == corners[i - 1].vertex) continue;
-          g.mesh.lines.push_back({corners[i - 1].vertex, corners[i].vertex});
-          g.segment_material.push_back(face_mat);
-        }
-        continue;
-      }
-      // Consecutive repeated corners (and a closing repeat) carry no area.
-      poly.clear();
-      for (const auto& c : corners)
-        if (poly.empty() || poly.back() != c.vertex) poly.push_back(c.vertex);
-      while (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
-      if (poly.size() < 3) {
-        ++g.dropped_faces;
-        continue;
-      }
-      TriangulateResult tr = triangulate_polygon(g.mesh.positions, poly, options.triangulation);
-      if (tr.has_warning())
-        log.add(LogLevel::kMessage, LogCategory::kTriangulator,
-                fmt::format("line {}: face {} is {}; triangulated anyway", shape.first_line, f,
-                            tr.degenerate ? "degenerate" : "not simple"));
-      std::uint32_t polygon = std::uint32_t(g.polygon_is_quad.size());
-      g.polygon_is_quad.push_back(poly.size() == 4 && tr.keep_as_quad);
-      for (const auto& t : tr.triangles) {
-        g.mesh.triangles.push_back({poly[t[0]], poly[t[1]], poly[t[2]]});
-        g.triangle_polygon.push_back(polygon);
-        g.face_normal.push_back(face_norm);
-        if (face_mat != kNone) g.mesh.materials.push_back(face_mat);
-        for (int k = 0; k < 3; ++k)
-          if (vertex_face_material[poly[t[k]]] == kNone)
-            vertex_face_material[poly[t[k]]] = face_mat;
-      }
-    }
-    if (was_ok[0] == material_ok && was_ok[1] == normal_ok && was_ok[2] == tex_ok) break;
-  }
-  if (!g.mesh.materials.empty() && g.mesh.materials.size() != g.mesh.triangles.size())
-    g.mesh.materials.clear();
-
-  g.material_binding = !material_ok ? AttributeBinding::kNone
-                       : (mbind == Bind::kPerVertex || mbind == Bind::kPerVertexIndexed)
-                           ? AttributeBinding::kPerVertex
-                           : AttributeBinding::kPerFace;
-  g.normal_binding = !normal_ok ? AttributeBinding::kNone
-                     : (nbind == Bind::kPerVertex || nbind == Bind::kPerVertexIndexed)
-                         ? AttributeBinding::kPerVertex
-                         : AttributeBinding::kPerFace;
-  g.has_texcoords = tex_ok;
-  // The input node is drawn as it is only if every index it holds is in
-  // range of what it indexes (an index field the geometry does not use, e.g.
-  // textureCoordIndex without texture coordinates, still reaches a reader).
-  auto in_range = [&](const char* field, std::size_t limit) {
-    const FieldValue* idx = shape.value(field);
-    if (!idx) return true;
-    for (std::int32_t i : idx->ints)
-      if (i < -1 || (i >= 0 && std::size_t(i) >= limit)) return false;
-    return true;
-  };
-  g.repaired = repaired || !in_range("normalIndex", nnormals) ||
-               !in_range("textureCoordIndex", ntex) ||
-               !in_range("materialIndex", std::max<std::size_t>(nmat, 1));
-  g.normal_values = normals.values;
-  g.texcoord_values = texcoords.values;
-  if (g.material_binding != AttributeBinding::kNone) {
-    // The distinct materials as one Material node, rows in first-use order.
-    auto m = std::make_shared<Node>();
-    m->type = "Material";
-    for (const char* f : kMaterialFields) {
-      const FieldValue* src = scene::field_or_default(mat, f);
-      int comps = scene::float_components(src->type.kind);
-      std::size_t count = src->floats.size() / std::size_t(comps);
-      if (count == 0) continue;
-      std::vector<float> vals;
-      for (std::uint32_t row : materials.values) {
-        std::size_t i = std::min<std::size_t>(row, count - 1);
-        vals.insert(vals.end(), src->floats.begin() + std::ptrdiff_t(i * comps),
-                    src->floats.begin() + std::ptrdiff_t((i + 1) * comps));
-      }
-      if (mat.value(f) || count > 1) m->set(f, scene::make_floats(src->type.kind, true, vals));
-    }
-    g.material = m;
-  }
-  if (g.material_binding == AttributeBinding::kPerVertex && lines) g.segment_material.clear();
-  mark_inherited_attributes(g, st);
-  const Node* hints = st.shape_hints;
-  const FieldValue* face_type = hints ? scene::field_or_default(*hints, "faceType") : nullptr;
-  g.needs_convex_hint =
-      !lines && face_type && !face_type->strings.empty() && face_type->strings[0] != "CONVEX";
-  return g;
+  return FaceSetReader(visit, options, log).read();
 }
 
 void mark_inherited_attributes(ShapeGeometry& g, const scene::TraversalState& st) {

@@ -5,22 +5,16 @@
 #include <random>
 
 #include "lodforge/simplify/quadric_collapse.h"
+#include "mesh/test_meshes.h"
 #include "metrics/mesh_builders.h"
 
 namespace lodforge {
 namespace {
 
-// A square of n x n cells in the plane z = 0, split into triangles.
+// The shared n x n grid over [0,1]^2 in z = 0, lifted to height z.
 TriangleMesh grid(int n, float z = 0) {
-  TriangleMesh m;
-  for (int y = 0; y <= n; ++y)
-    for (int x = 0; x <= n; ++x) m.positions.push_back({float(x) / n, float(y) / n, z});
-  auto at = [&](int x, int y) { return std::uint32_t(y * (n + 1) + x); };
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      m.triangles.push_back({at(x, y), at(x + 1, y), at(x + 1, y + 1)});
-      m.triangles.push_back({at(x, y), at(x + 1, y + 1), at(x, y + 1)});
-    }
+  TriangleMesh m = test::make_grid(n);
+  for (auto& p : m.positions) p.z = z;
   return m;
 }
 

@@ -10,6 +10,9 @@
 
 namespace lodforge {
 
+/// The index that names no vertex, triangle, node or value: all bits set.
+inline constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
 struct Vec2 {
   float x = 0, y = 0;
   Vec2 operator+(const Vec2& o) const { return {x + o.x, y + o.y}; }

@@ -98,8 +98,6 @@ class Deduper {
   std::map<Key, std::uint32_t> ids_;
 };
 
-constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-
 // Reads one IndexedFaceSet or IndexedLineSet under its traversal state into
 // a ShapeGeometry: a pass over the faces builds de-duplicated vertices (each
 // a position with its normal, texture coordinate and material) and the

@@ -19,7 +19,7 @@
 namespace lodforge {
 
 struct McNode {
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::uint32_t kNone = lodforge::kNone;
   /// Index of the first child; the children present (bit o of child_mask,
   /// octant o = x + 2y + 4z) follow one another in octant order. kNone for a leaf.
   std::uint32_t first_child = kNone;

@@ -31,8 +31,6 @@ class UnionFind {
   std::vector<std::uint32_t> parent_;
 };
 
-constexpr std::uint32_t kNone = 0xffffffffu;
-
 }  // namespace
 
 std::uint32_t MeshAdjacency::find_edge(std::uint32_t a, std::uint32_t b) const {

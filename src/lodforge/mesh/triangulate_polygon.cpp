@@ -161,7 +161,7 @@ class EarClipper {
     out.triangles.push_back({a, b, c});
   }
 
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::uint32_t kNone = lodforge::kNone;
   std::vector<P2> p_;
   double eps_;
   std::vector<std::uint32_t> prev_, next_;

@@ -19,7 +19,7 @@ struct BvhOptions {
 
 /// The answer to a closest-point query.
 struct ClosestPoint {
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::uint32_t kNone = lodforge::kNone;
   Vec3 point;                          ///< the nearest surface point
   std::uint32_t triangle = kNone;      ///< index into mesh.triangles
   std::array<float, 3> barycentric{};  ///< of `point` in that triangle

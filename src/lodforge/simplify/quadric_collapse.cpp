@@ -66,8 +66,6 @@
 namespace lodforge {
 namespace {
 
-constexpr std::uint32_t kNone = 0xffffffffu;
-
 struct D3 {
   double x = 0, y = 0, z = 0;
 };

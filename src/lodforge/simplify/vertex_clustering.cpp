@@ -111,7 +111,6 @@ template <class T>
 using Buffer = std::vector<T, BufferAllocator<T>>;
 
 constexpr int kMaxDepth = 21;  // bits per axis of the Morton code (3 x 21 = 63)
-constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr std::size_t kMaxCandidates = 64;
 // Regularisation of a cell's quadric, as a fraction of its trace: directions
 // in which the cell's surface is flat or straight (Lindstrom 2000 drops

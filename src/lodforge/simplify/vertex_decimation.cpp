@@ -44,7 +44,6 @@
 namespace lodforge {
 namespace {
 
-constexpr std::uint32_t kNone = 0xffffffffu;
 /// Loop vertices of a fan: n for a ring, n + 1 for an open fan.
 constexpr int kMaxLoop = static_cast<int>(kMaxDecimationValence) + 1;
 /// A new triangle is degenerate if the sine of its angle at the first corner is

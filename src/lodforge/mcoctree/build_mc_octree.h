@@ -27,8 +27,8 @@ enum class McPriorityMetric {
   kArea,
   /// How far the finest surface inside the node lies from the node's own
   /// triangles (the sum over the surface points): the error a coarse level
-  /// shows. Lower deviation at every level (bunny: mean 10-25 % lower at
-  /// 80-5 %, see docs/RESULTS.md) at about 10 % more build time.
+  /// shows. Lower deviation at every level at somewhat more build time
+  /// (docs/RESULTS.md).
   kDistance
 };
 
@@ -54,11 +54,9 @@ struct McBuildOptions {
   /// finest crossing its edge picks moved along its normal (by at most a
   /// quarter of the level's cell) to where the quadric of the finest surface
   /// in the cells around the edge is least, so that coarse triangles straddle
-  /// the surface instead of cutting chords on one side of it (bunny, the
-  /// larger one-sided mean deviation at 60 / 40 / 20 / 5 %: -9 / -16 / -20 /
-  /// -18 %, Hausdorff at 20 % 1.18 -> 0.73 % of the diagonal; docs/RESULTS.md),
-  /// unless the move is under 5 % of a finest cell (then the finer level's
-  /// vertex serves). Costs a fifth more vertices and 6 bytes per
+  /// the surface instead of cutting chords on one side of it (lower
+  /// deviation at the coarse levels; docs/RESULTS.md), unless the move is
+  /// under 5 % of a finest cell (then the finer level's vertex serves). Costs a fifth more vertices and 6 bytes per
   /// full-resolution triangle at run time. false: every vertex of every level
   /// is a finest crossing, on the input surface.
   bool place_coarse_vertices = true;
@@ -137,8 +135,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// where more scans see the point behind a measured surface than see it
 /// beyond their data (outside the silhouette or the window), else outside
 /// (a line through a gap in a scan's data says nothing). Where no scan saw
-/// the surface (under the Stanford bunny, which stood on the turntable) the
-/// model is closed by a cap where the vote changes, near the rim of the
+/// the surface (under an object that stood on a turntable) the model is closed by a cap where the vote changes, near the rim of the
 /// unseen region. Normals and colours: the same weighted average of the
 /// nearby points' normals and colours.
 ///

@@ -14,13 +14,11 @@
 /// floating point: a renderer uploads the vertex table once and an index
 /// buffer per level (continuous LOD by index buffer).
 ///
-/// Size: about 57-60 bytes per full-resolution triangle (the bunny, the
-/// horse, fandisk, the cow, the bunny's range scans), of which about 33 are
-/// the stored triangles (about 2.7 per full-resolution triangle: coarser
-/// levels and split variants), 10 the vertices (12-byte position, 4-byte
-/// normal; coarse levels' placed vertices included, McBuildOptions::
-/// place_coarse_vertices), 13 the cells and intervals. Without placed
-/// vertices about 52.
+/// Size: memory_bytes() per full-resolution triangle is the stored
+/// triangles (coarser levels and split variants), the vertices (12-byte
+/// position, 4-byte normal; coarse levels' placed vertices included,
+/// McBuildOptions::place_coarse_vertices), the cells and the intervals
+/// (measured figures in docs/RESULTS.md).
 ///
 /// Cells are grouped by their parent's priority (group 0: the root), so the
 /// cells priority N can emit are a prefix of the cell array. Vertices are

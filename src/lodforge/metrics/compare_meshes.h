@@ -14,7 +14,7 @@ namespace lodforge {
 
 struct CompareOptions {
   /// Area samples per direction. 0 picks max(10 x the larger triangle count,
-  /// 100 000), at most 4 000 000 (for the Stanford bunny: 694 510).
+  /// 100 000), at most 4 000 000.
   std::size_t samples = 0;
   std::uint64_t seed = 1;        ///< A is sampled with `seed`, B with `seed + 1`
   int threads = 0;               ///< worker threads; 0 = all cores

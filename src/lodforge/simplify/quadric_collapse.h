@@ -29,10 +29,8 @@
 /// inequality and the convexity of the distance to a triangle,
 /// e(T') <= e(T) + dist(w, T) <= e(T) + |w - p| (p lies on T). The bound adds
 /// |w - p|: one distance per collapse and side instead of a point-triangle
-/// distance per triangle, at the price of counting the whole corner motion
-/// (on the bunny 10-22 % above the point-triangle form at 50-99 %
-/// reduction). The
-/// result's error is the largest e over its triangles; the error budget
+/// distance per triangle, at the price of counting the whole corner motion.
+/// The result's error is the largest e over its triangles; the error budget
 /// `target.max_error` rejects every collapse that would raise a bound above
 /// it.
 ///
@@ -40,9 +38,8 @@
 /// (STYLE.md), so the BVH of metrics/ is out of reach, and a sampled
 /// measurement could still underestimate between samples. The price: the bound
 /// is conservative. It counts tangential motion, so on curved surfaces it is
-/// far above the measured Hausdorff distance (bunny: 0.011 vs 9.4e-5 at 50 %,
-/// 0.091 vs 2.4e-3 at 99 % reduction), and on flat regions it grows where the
-/// real deviation stays 0. Callers that need the real value
+/// far above the measured Hausdorff distance, and on flat regions it grows
+/// where the real deviation stays 0. Callers that need the real value
 /// measure it with metrics/compare_meshes (the LOD pipeline may use either;
 /// the bound is the safe default).
 ///
@@ -55,12 +52,9 @@
 /// of the mesh side by side on TBB's threads, each on its own queue, in rounds up to a common cost
 /// limit, down to twice the target (at most nine tenths of the collapses); the vertices on the cuts
 /// wait for the second phase, one queue over the whole mesh on the calling
-/// thread. On the bunny this changes the mean deviation by under 1 % at
-/// 80-99 % reduction. The regions and rounds depend on the mesh and target
-/// only: the result is the same on any number of threads. On the bunny and
-/// igea 1.0-1.45x the wall time of meshopt_simplify at 50 % and 1.2-1.45x at
-/// 99 % reduction (meshopt places vertices at edge ends and has no attribute
-/// quadrics; figures in docs/RESULTS.md). The result does not depend on the
+/// thread. The regions and rounds depend on the mesh and target only: the
+/// result is the same on any number of threads. Speed and quality beside
+/// meshopt_simplify: docs/RESULTS.md. The result does not depend on the
 /// model's unit: a copy scaled by a power of two gives the same triangles,
 /// with positions and error scaled exactly.
 #include <cstddef>

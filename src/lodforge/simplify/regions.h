@@ -20,8 +20,8 @@ namespace lodforge::regions {
 /// The phase runs from this many triangles on ...
 inline constexpr std::size_t kMinTriangles = 32768;
 /// ... in regions of about this many triangles, at most kMaxParts (every cut
-/// leaves a seam that waits for the second phase; on the bunny 8 regions
-/// cost quadric collapse 6 % in mean deviation and flipped a triangle).
+/// leaves a seam that waits for the second phase, so more regions cost
+/// quality).
 inline constexpr std::size_t kTrianglesPerPart = 16384;
 inline constexpr int kMaxParts = 4;
 /// Region id of a vertex that is on a seam.

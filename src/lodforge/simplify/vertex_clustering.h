@@ -46,13 +46,10 @@
 /// attributes and the vertex_map entry of the nearest vertex of the cell.
 ///
 /// Why the default quadric weight 32: with the thesis' heuristics alone
-/// (`quadric_weight = 0`, the thesis' method exactly) the bunny misses the
-/// thesis' own published figures at 50 % and 99 % reduction (measured: mean
-/// deviation 4.97e-5 m at 67.6 %, 1.96e-4 m at 91.0 %, 1.86e-3 m at 99.4 %,
-/// against 4.17e-5, 2.00e-4, 1.69e-3). With weight 32 the quadric point wins
-/// most cells but the area and volume terms still vote (3.15e-5, 1.21e-4,
-/// 1.37e-3); 8 gives 3.26e-5, 1.28e-4, 1.45e-3; 1000 or the quadric alone
-/// 3.05e-5, 1.17e-4, 1.40e-3.
+/// (`quadric_weight = 0`, the thesis' method exactly) the results miss the
+/// thesis' own published deviations; with weight 32 the quadric point wins
+/// most cells while the area and volume terms still vote, within a few
+/// percent of the quadric alone (figures in docs/RESULTS.md).
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"

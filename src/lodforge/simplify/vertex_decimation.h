@@ -74,9 +74,8 @@ enum class DecimationPriority {
   /// vertex, d x the area of the triangle (neighbour, vertex, neighbour) its
   /// line cuts off: the criterion d weighted by the area it affects, measured
   /// on the actual re-triangulation. It minimises the added
-  /// mean deviation per removal; on the Stanford bunny it lowers the mean
-  /// deviation by 30-50 % against kDistance at the same triangle count (50 %
-  /// reduction: 1.20e-5 instead of 2.14e-5). It costs a planned
+  /// mean deviation per removal (lower mean deviation than kDistance at the
+  /// same triangle count: docs/RESULTS.md). It costs a planned
   /// re-triangulation per queued vertex.
   kErrorVolume,
   /// Schroeder's criterion d itself (distance to the average plane or the
@@ -101,7 +100,7 @@ struct VertexDecimationOptions {
   /// material/seam feature by the average-plane distance (Schroeder's option
   /// for noisy meshes). Off by default: on scanned meshes the coarse levels'
   /// own dihedral angles exceed any feature angle and freezing them costs
-  /// quality (Stanford bunny at 99 %: mean deviation 1.0e-3 instead of 7.1e-4).
+  /// quality.
   bool preserve_feature_edges = false;
   /// Removal order (see DecimationPriority). Either way, a vertex is removable
   /// and its error accumulates by its criterion d.
@@ -126,9 +125,8 @@ inline constexpr std::size_t kMaxDecimationValence = 64;
 /// regions side by side on TBB's threads, each region only the vertices whose
 /// whole ring it owns, with its own queue, in rounds up to a common priority
 /// limit, down to 4x the target; then every vertex left is planned again and
-/// one queue over the whole mesh goes on. Against one queue on the bunny: mean
-/// deviation +2 % at 50 %, -0.7 % at 90 %, -5 % at 99 % reduction. The
-/// result is the same on any number of threads. vertex_decimation_chain
+/// one queue over the whole mesh goes on (about the quality of one queue:
+/// docs/RESULTS.md). The result is the same on any number of threads. vertex_decimation_chain
 /// (below) always runs one queue.
 ///
 /// Result (see SimplifyResult): `mesh` holds the used input vertices (in input
@@ -142,8 +140,8 @@ inline constexpr std::size_t kMaxDecimationValence = 64;
 /// model units. It is an estimate, in the spirit of an upper bound, of the
 /// distance between the original surface and the simplified one (it adds up
 /// the plane/line distances of the vertices removed beneath each triangle),
-/// not a measurement and not a proven bound: on the Stanford bunny it is 4 to 5
-/// times the measured Hausdorff distance (50 %: 1.1e-3 vs 2.1e-4).
+/// not a measurement and not a proven bound (lod/measured_simplify.h
+/// measures the result).
 /// `stop_detail` says why vertices could not be removed. Throws DataError
 /// when an index is out of range or a used coordinate is not finite.
 SimplifyResult vertex_decimation(const TriangleMesh& mesh,

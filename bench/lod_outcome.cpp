@@ -163,8 +163,7 @@ Outcome measure(const std::string& path, bool curve) {
       const std::size_t bound = drawn(fine, k, d, vanish);
       o.peer += double(s.occurrences * theirs);
       o.fine += double(s.occurrences * bound);
-      if (curve)
-        fmt::print(stderr, "  {:.2f} {} {} {}\n", d / (k * s.radius), ours, theirs, bound);
+      if (curve) fmt::print(stderr, "  {:.2f} {} {} {}\n", d / (k * s.radius), ours, theirs, bound);
     }
   }
   return o;

@@ -86,10 +86,10 @@ TEST(TriangleBvh, SearchEndsAtATriangleWithinTheStopDistance) {
       ++ended;
     }
     const auto& t = m.triangles[c.triangle];
-    EXPECT_NEAR(closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]],
-                                          m.positions[t[2]])
-                    .distance_squared,
-                c.distance_squared, 1e-4f);
+    EXPECT_NEAR(
+        closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])
+            .distance_squared,
+        c.distance_squared, 1e-4f);
   }
   // Both kinds of answer were asked for.
   EXPECT_GT(ended, 100);

@@ -105,8 +105,8 @@ int run_mco_build(const Build& b) {
     what = fmt::format(
         "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
         "filled, {} bubbles dropped)",
-        scans.size(), points, r.stats.band_points, r.stats.carved_points,
-        r.stats.flooded_points, r.stats.filled_voids, r.stats.dropped_parts);
+        scans.size(), points, r.stats.band_points, r.stats.carved_points, r.stats.flooded_points,
+        r.stats.filled_voids, r.stats.dropped_parts);
   } else {
     TriangleMesh mesh = load_geometry(b.input, 0, b.read);
     if (const double bytes = mc_build_bytes(mesh.bounds(), b.resolution);
@@ -225,7 +225,6 @@ void add_mco_extract(CLI::App* mco, Runner& run) {
       return 0;
     };
   });
-
 }
 
 struct Info {
@@ -279,7 +278,6 @@ void add_mco_info(CLI::App* mco, Runner& run) {
       return 0;
     };
   });
-
 }
 
 struct Scan {

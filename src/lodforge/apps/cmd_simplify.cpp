@@ -226,7 +226,8 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"ply", "obj", "off", "stl"}));
   cmd->add_flag("--ascii", s->ascii, "ASCII PLY / STL (default binary)");
   cmd->add_flag("--json", s->json, "Print the JSON summary on stdout (no human text)");
-  cmd->add_flag("-q,--quiet", s->quiet, "No summary, no reader warnings and no progress bar on stderr");
+  cmd->add_flag("-q,--quiet", s->quiet,
+                "No summary, no reader warnings and no progress bar on stderr");
   add_expansion_options(*cmd, s->read);
   cmd->callback([s, &run] { run = [s] { return run_simplify(*s); }; });
 }

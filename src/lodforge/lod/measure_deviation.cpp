@@ -137,10 +137,9 @@ double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
   for (std::size_t i = 0; i < n; ++i)
     if (d[i] >= 0) order.push_back(i);
   const std::size_t k = std::min(refine, order.size());
-  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k), order.end(),
-                    [&](std::size_t x, std::size_t y) {
-                      return d[x] > d[y] || (d[x] == d[y] && x < y);
-                    });
+  std::partial_sort(
+      order.begin(), order.begin() + std::ptrdiff_t(k), order.end(),
+      [&](std::size_t x, std::size_t y) { return d[x] > d[y] || (d[x] == d[y] && x < y); });
   double best = d[order[0]];
   std::vector<double> refined(k, 0.0);
   tbb::parallel_for(std::size_t(0), k, [&](std::size_t i) {
@@ -207,6 +206,5 @@ double DeviationMeter::distance_to_reference(const TriangleMesh& level,
   return one_sided(other, *impl_->reference.bvh, impl_->options.refine,
                    level_to_reference(face_map, level, reference));
 }
-
 
 }  // namespace lodforge

@@ -36,8 +36,7 @@ class DeviationMeter {
   /// triangle) only tells where each search starts: the result is the same
   /// with or without it, found faster with it. A map of the wrong size or
   /// with an index out of range is ignored.
-  double hausdorff(const TriangleMesh& level,
-                   std::span<const std::uint32_t> face_map = {}) const;
+  double hausdorff(const TriangleMesh& level, std::span<const std::uint32_t> face_map = {}) const;
 
   /// One-sided: the largest distance from a point of `level` to the
   /// reference, in model units; 0 if either has no triangles. Cheaper than

@@ -148,9 +148,8 @@ class FaceSetReader {
     normal_field_ = st_.normal ? scene::field_or_default(*st_.normal, "vector") : nullptr;
     nnormals_ = normal_field_ ? normal_field_->floats.size() / 3 : 0;
     if (lines_ || nnormals_ == 0) nbind_ = Bind::kOverall;
-    tc_field_ = st_.texture_coordinate2
-                    ? scene::field_or_default(*st_.texture_coordinate2, "point")
-                    : nullptr;
+    tc_field_ = st_.texture_coordinate2 ? scene::field_or_default(*st_.texture_coordinate2, "point")
+                                        : nullptr;
     ntex_ = tc_field_ ? tc_field_->floats.size() / 2 : 0;
     nmat_ = material_rows(mat_);
     if (mbind_ != Bind::kOverall && nmat_ <= 1 && mbind_ != Bind::kPerFaceIndexed &&
@@ -161,8 +160,8 @@ class FaceSetReader {
     tex_ok_ = !lines_ && ntex_ > 0;
     mindex_ = {mbind_, &scene::field_or_default(shape_, "materialIndex")->ints, &ci_};
     nindex_ = {nbind_, &scene::field_or_default(shape_, "normalIndex")->ints, &ci_};
-    tindex_ = {Bind::kPerVertexIndexed,
-               &scene::field_or_default(shape_, "textureCoordIndex")->ints, &ci_};
+    tindex_ = {Bind::kPerVertexIndexed, &scene::field_or_default(shape_, "textureCoordIndex")->ints,
+               &ci_};
   }
 
   // Switches an attribute off for the out-of-range index `bad`, with a warning.
@@ -170,10 +169,10 @@ class FaceSetReader {
     if (!ok) return;
     ok = false;
     repaired_ = true;
-    log_.warn(LogCategory::kParse,
-              fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
-                          shape_.first_line, shape_.type, what, bad, std::int64_t(limit) - 1,
-                          what));
+    log_.warn(
+        LogCategory::kParse,
+        fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
+                    shape_.first_line, shape_.type, what, bad, std::int64_t(limit) - 1, what));
   }
 
   Vec3 normal_value(std::int64_t n) const {
@@ -213,8 +212,7 @@ class FaceSetReader {
       drop(normal_ok_, "normal", fnorm, nnormals_);
     corners_.clear();
     for (std::size_t p = b; p < e; ++p, ++corner_seq_) corners_.push_back(read_corner(f, p, g));
-    if (was_ok[0] != material_ok_ || was_ok[1] != normal_ok_ || was_ok[2] != tex_ok_)
-      return false;
+    if (was_ok[0] != material_ok_ || was_ok[1] != normal_ok_ || was_ok[2] != tex_ok_) return false;
     const std::uint32_t face_mat = material_ok_ && fmat >= 0 ? add_material(fmat) : kNone;
     const std::uint32_t face_norm = normal_ok_ && fnorm >= 0 ? add_normal(fnorm) : kNone;
     ++g.input_faces;
@@ -354,7 +352,7 @@ class FaceSetReader {
     g.material_binding = !material_ok_        ? AttributeBinding::kNone
                          : per_vertex(mbind_) ? AttributeBinding::kPerVertex
                                               : AttributeBinding::kPerFace;
-    g.normal_binding = !normal_ok_        ? AttributeBinding::kNone
+    g.normal_binding = !normal_ok_          ? AttributeBinding::kNone
                        : per_vertex(nbind_) ? AttributeBinding::kPerVertex
                                             : AttributeBinding::kPerFace;
     g.has_texcoords = tex_ok_;

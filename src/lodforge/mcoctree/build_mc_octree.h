@@ -56,9 +56,9 @@ struct McBuildOptions {
   /// in the cells around the edge is least, so that coarse triangles straddle
   /// the surface instead of cutting chords on one side of it (lower
   /// deviation at the coarse levels; docs/RESULTS.md), unless the move is
-  /// under 5 % of a finest cell (then the finer level's vertex serves). Costs a fifth more vertices and 6 bytes per
-  /// full-resolution triangle at run time. false: every vertex of every level
-  /// is a finest crossing, on the input surface.
+  /// under 5 % of a finest cell (then the finer level's vertex serves). Costs a fifth more vertices
+  /// and 6 bytes per full-resolution triangle at run time. false: every vertex of every level is a
+  /// finest crossing, on the input surface.
   bool place_coarse_vertices = true;
   /// The build may take at most this many bytes, as mc_build_bytes estimates
   /// them before the lattice is allocated (DataError if more). 0: no limit.
@@ -135,9 +135,9 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// where more scans see the point behind a measured surface than see it
 /// beyond their data (outside the silhouette or the window), else outside
 /// (a line through a gap in a scan's data says nothing). Where no scan saw
-/// the surface (under an object that stood on a turntable) the model is closed by a cap where the vote changes, near the rim of the
-/// unseen region. Normals and colours: the same weighted average of the
-/// nearby points' normals and colours.
+/// the surface (under an object that stood on a turntable) the model is closed by a cap where the
+/// vote changes, near the rim of the unseen region. Normals and colours: the same weighted average
+/// of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
 /// size, a world coordinate outside the range of check_coordinate_range;

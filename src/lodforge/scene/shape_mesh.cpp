@@ -124,10 +124,10 @@ class DefaultMapping {
 // coordinate (a face's own colour, a texture seam).
 class CornerVertices {
  public:
+  // Without appearance `pts` must be out.mesh.positions itself (one vertex
+  // per coordinate, nothing copied).
   CornerVertices(ShapeSurface& out, const std::vector<Vec3>& pts, bool appearance)
-      : out_(out), pts_(pts), appearance_(appearance) {
-    if (!appearance_) out_.mesh.positions = pts;
-  }
+      : out_(out), pts_(pts), appearance_(appearance) {}
   // `texcoord` is an index into `texcoords`, or -1 for the default mapping
   // (ignored when the shape is not textured).
   std::uint32_t vertex(std::int32_t coord, std::size_t row, std::int64_t texcoord,
@@ -196,7 +196,9 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
                  ShapeSurface& out) {
   const Node& shape = visit.shape;
   const bool line_set = shape.type == "IndexedLineSet";
-  const std::vector<Vec3> pts = coordinates(visit.state, shape);
+  std::vector<Vec3> coords = coordinates(visit.state, shape);
+  if (!options.appearance) out.mesh.positions = std::move(coords);
+  const std::vector<Vec3>& pts = options.appearance ? coords : out.mesh.positions;
   const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
   CornerVertices vertices(out, pts, options.appearance);
 

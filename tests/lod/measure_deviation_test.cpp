@@ -6,7 +6,6 @@
 
 #include "lodforge/simplify/quadric_collapse.h"
 #include "mesh/test_meshes.h"
-#include "metrics/mesh_builders.h"
 
 namespace lodforge {
 namespace {
@@ -42,7 +41,7 @@ TEST(DeviationMeter, FindsTheTipOfABump) {
 // The face map only says where searches start: the same distance with it,
 // without it, and with a map that does not fit (ignored).
 TEST(DeviationMeter, FaceMapChangesNothingButTheTime) {
-  TriangleMesh sphere = test::icosphere(4);
+  TriangleMesh sphere = test::make_icosphere(4);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> bump(0.97f, 1.03f);
   for (auto& p : sphere.positions) p *= bump(rng);

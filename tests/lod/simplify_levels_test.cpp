@@ -5,13 +5,13 @@
 #include <random>
 
 #include "lodforge/lod/measure_deviation.h"
-#include "metrics/mesh_builders.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
 
 TriangleMesh bumpy_sphere() {
-  TriangleMesh m = test::icosphere(4);
+  TriangleMesh m = test::make_icosphere(4);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> bump(0.97f, 1.03f);
   for (auto& p : m.positions) p *= bump(rng);

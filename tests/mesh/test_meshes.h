@@ -21,11 +21,13 @@ inline TriangleMesh make_tetrahedron() {
   return m;
 }
 
-/// Axis-aligned cube [0,size]^3: 8 vertices, 12 triangles, closed, genus 0.
-inline TriangleMesh make_cube(float size = 1.0f) {
+/// Axis-aligned cube [0,size]^3 + offset: 8 vertices, 12 triangles, closed,
+/// genus 0.
+inline TriangleMesh make_cube(float size = 1.0f, Vec3 offset = {}) {
   TriangleMesh m;
   for (int i = 0; i < 8; ++i)
-    m.positions.push_back({(i & 1) ? size : 0.0f, (i & 2) ? size : 0.0f, (i & 4) ? size : 0.0f});
+    m.positions.push_back(
+        offset + Vec3{(i & 1) ? size : 0.0f, (i & 2) ? size : 0.0f, (i & 4) ? size : 0.0f});
   // Quads as (a, b, c, d) counter-clockwise from outside.
   const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                      {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
@@ -33,6 +35,19 @@ inline TriangleMesh make_cube(float size = 1.0f) {
     m.triangles.push_back({q[0], q[1], q[2]});
     m.triangles.push_back({q[0], q[2], q[3]});
   }
+  return m;
+}
+
+/// Axis-aligned cube [-half, half]^3 around `center`.
+inline TriangleMesh make_centered_cube(float half = 1.0f, Vec3 center = {}) {
+  return make_cube(2 * half, center - Vec3{half, half, half});
+}
+
+/// Square [x0,x1] x [y0,y1] in the plane z = 0 as two triangles facing +z.
+inline TriangleMesh make_square(float x0, float y0, float x1, float y1) {
+  TriangleMesh m;
+  m.positions = {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
   return m;
 }
 
@@ -104,9 +119,9 @@ inline TriangleMesh make_uv_sphere(int slices = 16, int stacks = 8, float r = 1.
   return m;
 }
 
-/// Icosphere of radius 1: 12 vertices and 20 triangles at subdiv 0; each
-/// subdivision multiplies the triangles by 4 (V = 10 * 4^s + 2).
-inline TriangleMesh make_icosphere(int subdiv = 1) {
+/// Icosphere of radius `radius`: 12 vertices and 20 triangles at subdiv 0;
+/// each subdivision multiplies the triangles by 4 (V = 10 * 4^s + 2).
+inline TriangleMesh make_icosphere(int subdiv = 1, float radius = 1.0f) {
   TriangleMesh m;
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
   Vec3 p[12] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
@@ -131,6 +146,8 @@ inline TriangleMesh make_icosphere(int subdiv = 1) {
     }
     m.triangles = std::move(next);
   }
+  if (radius != 1.0f)
+    for (Vec3& p : m.positions) p *= radius;
   return m;
 }
 
@@ -154,6 +171,48 @@ inline TriangleMesh make_torus(float R = 1.0f, float r = 0.25f, int major = 24, 
       m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
+  return m;
+}
+
+/// UV sphere of radius r: `rings` latitude bands, `segments` longitude bands.
+/// Like many real meshes it repeats vertices: a ring of copies at each pole and
+/// a seam at longitude 0, at exactly equal positions.
+inline TriangleMesh make_seamed_sphere(float r = 1, int rings = 24, int segments = 48) {
+  TriangleMesh m;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i <= rings; ++i) {
+    const double theta = pi * i / rings;  // from +Y down
+    const double ring_r = (i == 0 || i == rings) ? 0 : r * std::sin(theta);
+    for (int j = 0; j <= segments; ++j) {
+      const double phi = 2 * pi * (j % segments) / segments;
+      m.positions.push_back({static_cast<float>(ring_r * std::sin(phi)),
+                             static_cast<float>(r * std::cos(theta)),
+                             static_cast<float>(ring_r * std::cos(phi))});
+    }
+  }
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (segments + 1) + j); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      if (i > 0) m.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+      if (i < rings - 1) m.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+    }
+  return m;
+}
+
+/// The same surface as a triangle soup: three vertices of its own per triangle.
+inline TriangleMesh as_soup(const TriangleMesh& m) {
+  TriangleMesh s;
+  for (const auto& t : m.triangles) {
+    const auto base = static_cast<std::uint32_t>(s.positions.size());
+    for (auto i : t) s.positions.push_back(m.positions[i]);
+    s.triangles.push_back({base, base + 1, base + 2});
+  }
+  return s;
+}
+
+/// Gives every vertex one colour.
+inline TriangleMesh with_color(TriangleMesh m, Vec3 rgb) {
+  m.colors.assign(m.positions.size(), rgb);
   return m;
 }
 

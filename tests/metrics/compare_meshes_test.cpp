@@ -15,17 +15,17 @@
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 #include "lodforge/metrics/sample_surface.h"
-#include "metrics/mesh_builders.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
 
-using test::icosphere;
-using test::square;
-using test::unit_cube;
+using test::make_cube;
+using test::make_icosphere;
+using test::make_square;
 
 TEST(CompareMeshes, IdenticalMeshesAreExactlyZero) {
-  for (const TriangleMesh& m : {unit_cube(), icosphere(3)}) {
+  for (const TriangleMesh& m : {make_cube(), make_icosphere(3)}) {
     CompareResult r = compare_meshes(m, m, {.samples = 20'000, .edge_samples = 1000});
     for (const Deviation* d : {&r.a_to_b, &r.b_to_a}) {
       EXPECT_EQ(d->max, 0);
@@ -44,7 +44,7 @@ TEST(CompareMeshes, IdenticalMeshesAreExactlyZero) {
 // A sample count whose samples cannot fit the memory budget is refused
 // before anything is allocated, with the estimate.
 TEST(CompareMeshes, SamplesBeyondTheMemoryBudgetAreRefused) {
-  const TriangleMesh m = unit_cube();
+  const TriangleMesh m = make_cube();
   try {
     compare_meshes(m, m, {.samples = std::numeric_limits<std::size_t>::max()});
     ADD_FAILURE() << "no error";
@@ -58,7 +58,7 @@ TEST(CompareMeshes, SamplesBeyondTheMemoryBudgetAreRefused) {
 }
 
 TEST(CompareMeshes, IdenticalMeshesWithVertexNormals) {
-  TriangleMesh m = icosphere(3);
+  TriangleMesh m = make_icosphere(3);
   m.normals = m.positions;  // unit sphere: the position is the normal
   CompareResult r = compare_meshes(m, m, {.samples = 20'000});
   EXPECT_TRUE(r.vertex_normals);
@@ -76,8 +76,8 @@ TriangleMesh colored_by_position(TriangleMesh m) {
 }
 
 TEST(CompareMeshes, ColourDeviationFollowsTheInterpolatedColours) {
-  TriangleMesh fine = colored_by_position(icosphere(4));
-  TriangleMesh coarse = colored_by_position(icosphere(2));
+  TriangleMesh fine = colored_by_position(make_icosphere(4));
+  TriangleMesh coarse = colored_by_position(make_icosphere(2));
   CompareResult r = compare_meshes(fine, coarse, {.samples = 20'000});
   for (const Deviation* d : {&r.a_to_b, &r.b_to_a}) {
     EXPECT_GT(d->color.samples, 20'000u);
@@ -95,7 +95,7 @@ TEST(CompareMeshes, ColourDeviationFollowsTheInterpolatedColours) {
   EXPECT_NEAR(same.b_to_a.color.max, 0.1, 1e-4);
 
   // Colours on one side only: nothing to compare.
-  CompareResult one = compare_meshes(fine, icosphere(2), {.samples = 5'000});
+  CompareResult one = compare_meshes(fine, make_icosphere(2), {.samples = 5'000});
   EXPECT_EQ(one.a_to_b.color.samples, 0u);
   EXPECT_EQ(one.b_to_a.color.samples, 0u);
 }
@@ -104,7 +104,7 @@ TEST(CompareMeshes, EstimatedNormalsAreSmooth) {
   // A fine sphere against a coarser one: face normals differ by about the
   // coarse facets' angular size; estimated vertex normals interpolate towards
   // the true radial normal on both, so the deviation shrinks.
-  TriangleMesh fine = icosphere(4), coarse = icosphere(2);
+  TriangleMesh fine = make_icosphere(4), coarse = make_icosphere(2);
   CompareResult faceted = compare_meshes(fine, coarse, {.samples = 20'000});
   CompareResult smooth =
       compare_meshes(fine, coarse, {.samples = 20'000, .estimate_normals = true});
@@ -117,7 +117,7 @@ TEST(CompareMeshes, EstimatedNormalsAreSmooth) {
 
 TEST(CompareMeshes, CubeOffsetAlongAnAxisHasHausdorffD) {
   const float d = 0.25f;
-  CompareResult r = compare_meshes(unit_cube(), unit_cube({d, 0, 0}), {.samples = 50'000});
+  CompareResult r = compare_meshes(make_cube(), make_cube(1, {d, 0, 0}), {.samples = 50'000});
   EXPECT_NEAR(r.a_to_b.max, d, 1e-6);
   EXPECT_NEAR(r.b_to_a.max, d, 1e-6);
   EXPECT_NEAR(r.hausdorff, d, 1e-6);
@@ -155,7 +155,7 @@ TEST(CompareMeshes, SphereAgainstItsIcosahedron) {
   // over one face), integrated here on a fine subdivision.
   const double R = 1, r = R * std::sqrt((5 + 2 * std::sqrt(5.0)) / 15);
   const double sag = 3e-4;  // how far S's flat triangles dip below the sphere
-  TriangleMesh s = icosphere(5), ico = icosphere(0);
+  TriangleMesh s = make_icosphere(5), ico = make_icosphere(0);
   CompareResult res = compare_meshes(s, ico, {.samples = 200'000});
   EXPECT_NEAR(res.a_to_b.max, R - r, sag);
   EXPECT_NEAR(res.b_to_a.max, R - r, sag);
@@ -188,7 +188,7 @@ TEST(CompareMeshes, OneSidedDistancesDifferForAPatchOnAPlane) {
   // Figure 5.3 of seed 000: a small patch lying on a large plane. Every
   // point of the patch is on the plane, but the plane's far corner
   // (-10,-10) is 10 sqrt 2 from the patch's corner (0,0).
-  TriangleMesh patch = square(0, 0, 1, 1), plane = square(-10, -10, 10, 10);
+  TriangleMesh patch = make_square(0, 0, 1, 1), plane = make_square(-10, -10, 10, 10);
   CompareResult r = compare_meshes(patch, plane, {.samples = 20'000});
   EXPECT_EQ(r.a_to_b.max, 0);
   EXPECT_NEAR(r.b_to_a.max, 10 * std::sqrt(2.0), 1e-5);
@@ -202,40 +202,40 @@ TEST(CompareMeshes, OneSidedDistancesDifferForAPatchOnAPlane) {
 
 TEST(CompareMeshes, EmptyMeshThrowsNamingIt) {
   TriangleMesh empty;
-  EXPECT_THAT([&] { compare_meshes(unit_cube(), empty, {.b_name = "out.ply"}); },
+  EXPECT_THAT([&] { compare_meshes(make_cube(), empty, {.b_name = "out.ply"}); },
               testing::ThrowsMessage<DataError>(
                   "compare: out.ply has no triangles, so there is no surface to measure"));
-  EXPECT_THAT([&] { compare_meshes(empty, unit_cube()); },
+  EXPECT_THAT([&] { compare_meshes(empty, make_cube()); },
               testing::ThrowsMessage<DataError>(
                   "compare: A has no triangles, so there is no surface to measure"));
-  TriangleMesh points = unit_cube();
+  TriangleMesh points = make_cube();
   points.triangles.clear();  // vertices but no surface
-  EXPECT_THROW(compare_meshes(unit_cube(), points), DataError);
+  EXPECT_THROW(compare_meshes(make_cube(), points), DataError);
 }
 
 TEST(CompareMeshes, BadDataThrows) {
-  TriangleMesh bad = unit_cube();
+  TriangleMesh bad = make_cube();
   bad.triangles.push_back({0, 1, 99});
   EXPECT_THAT(
-      [&] { compare_meshes(unit_cube(), bad); },
+      [&] { compare_meshes(make_cube(), bad); },
       testing::ThrowsMessage<DataError>("compare: B: triangle 12 uses vertex 99 of only 8"));
-  TriangleMesh nan = unit_cube();
+  TriangleMesh nan = make_cube();
   nan.positions[3].y = std::nanf("");
-  EXPECT_THAT([&] { compare_meshes(nan, unit_cube()); },
+  EXPECT_THAT([&] { compare_meshes(nan, make_cube()); },
               testing::ThrowsMessage<DataError>(testing::HasSubstr("non-finite")));
 }
 
 TEST(CompareMeshes, AwkwardTopologyIsHandled) {
   // Duplicate vertices (each triangle its own three), an open border (a
   // missing face), a degenerate triangle and a second component.
-  TriangleMesh cube = unit_cube(), soup;
+  TriangleMesh cube = make_cube(), soup;
   for (std::size_t f = 0; f + 1 < cube.triangles.size(); ++f) {
     auto base = std::uint32_t(soup.positions.size());
     for (auto v : cube.triangles[f]) soup.positions.push_back(cube.positions[v]);
     soup.triangles.push_back({base, base + 1, base + 2});
   }
   soup.triangles.push_back({0, 0, 1});
-  TriangleMesh far = unit_cube({5, 0, 0});
+  TriangleMesh far = make_cube(1, {5, 0, 0});
   auto base = std::uint32_t(soup.positions.size());
   soup.positions.insert(soup.positions.end(), far.positions.begin(), far.positions.end());
   for (auto t : far.triangles) soup.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
@@ -246,7 +246,7 @@ TEST(CompareMeshes, AwkwardTopologyIsHandled) {
   // is 5 from the cube. Back, the hole left by the missing triangle
   // (1,1,0)-(1,1,1)-(1,0,1) is farthest from the soup at its incentre, the
   // inradius (2 - sqrt 2) / 2 from all three edges.
-  CompareResult r = compare_meshes(soup, unit_cube(), {.samples = 10'000});
+  CompareResult r = compare_meshes(soup, make_cube(), {.samples = 10'000});
   EXPECT_NEAR(r.a_to_b.max, 5, 1e-5);
   const double inradius = (2 - std::sqrt(2.0)) / 2;
   EXPECT_LE(r.b_to_a.max, inradius + 1e-6);
@@ -254,7 +254,7 @@ TEST(CompareMeshes, AwkwardTopologyIsHandled) {
 }
 
 TEST(CompareMeshes, DeterministicWhateverTheThreadCount) {
-  TriangleMesh s = icosphere(4), ico = icosphere(1);
+  TriangleMesh s = make_icosphere(4), ico = make_icosphere(1);
   CompareResult one = compare_meshes(s, ico, {.samples = 30'000, .seed = 5, .threads = 1});
   CompareResult two = compare_meshes(s, ico, {.samples = 30'000, .seed = 5, .threads = 2});
   EXPECT_EQ(one.a_to_b.mean, two.a_to_b.mean);
@@ -265,7 +265,8 @@ TEST(CompareMeshes, DeterministicWhateverTheThreadCount) {
 
 TEST(CompareMeshes, ReportsTheSamplesOfEachDirection) {
   test::ProgressRecorder progress;
-  compare_meshes(unit_cube(), icosphere(3), {.samples = 100'000, .progress = progress.callback()});
+  compare_meshes(make_cube(), make_icosphere(3),
+                 {.samples = 100'000, .progress = progress.callback()});
   EXPECT_EQ(progress.stages(), (std::vector<std::string>{"A to B", "B to A", "vertices"}));
   for (const auto& stage : progress.stages()) EXPECT_TRUE(progress.completed(stage)) << stage;
   // Every 16 384 samples, not every sample.
@@ -273,7 +274,7 @@ TEST(CompareMeshes, ReportsTheSamplesOfEachDirection) {
 }
 
 TEST(CompareMeshes, DefaultSampleCount) {
-  TriangleMesh s = icosphere(4);  // 5120 triangles -> 10 x 5120 < 100 000
+  TriangleMesh s = make_icosphere(4);  // 5120 triangles -> 10 x 5120 < 100 000
   CompareResult r = compare_meshes(s, s, {.per_vertex = false});
   EXPECT_EQ(r.samples, 100'000u);
   EXPECT_TRUE(r.vertex_deviation.empty());

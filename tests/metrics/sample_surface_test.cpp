@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "lodforge/metrics/closest_point_on_triangle.h"
-#include "metrics/mesh_builders.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
@@ -39,7 +39,7 @@ TEST(SampleSurface, AreaWeightedAndOnTheirTriangles) {
 }
 
 TEST(SampleSurface, DeterministicForASeed) {
-  TriangleMesh m = test::icosphere(2);
+  TriangleMesh m = test::make_icosphere(2);
   auto s1 = sample_surface(m, {.count = 5000, .seed = 7});
   auto s2 = sample_surface(m, {.count = 5000, .seed = 7});
   auto s3 = sample_surface(m, {.count = 5000, .seed = 8});
@@ -49,7 +49,7 @@ TEST(SampleSurface, DeterministicForASeed) {
 }
 
 TEST(SampleSurface, VerticesFirstThenEdgesThenArea) {
-  TriangleMesh m = test::unit_cube();
+  TriangleMesh m = test::make_cube();
   m.positions.push_back({5, 5, 5});  // unused: not on the surface, not sampled
   auto s = sample_surface(m, {.count = 100, .edge_count = 50});
   EXPECT_EQ(s.vertex_samples, 8u);

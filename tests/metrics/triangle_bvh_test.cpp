@@ -5,7 +5,7 @@
 #include <random>
 
 #include "lodforge/metrics/closest_point_on_triangle.h"
-#include "metrics/mesh_builders.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
@@ -23,7 +23,7 @@ float brute_force(const TriangleMesh& m, const Vec3& p) {
 // A bumpy sphere plus a detached sheet, a sliver, a collapsed triangle and
 // duplicated vertices: the shapes a BVH must not mishandle.
 TriangleMesh awkward_mesh() {
-  TriangleMesh m = test::icosphere(3);
+  TriangleMesh m = test::make_icosphere(3);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> bump(0.9f, 1.1f);
   for (auto& p : m.positions) p *= bump(rng);
@@ -100,7 +100,7 @@ TEST(TriangleBvh, SearchEndsAtATriangleWithinTheStopDistance) {
 }
 
 TEST(TriangleBvh, QueriesNearTheSurface) {
-  TriangleMesh m = test::icosphere(4);
+  TriangleMesh m = test::make_icosphere(4);
   TriangleBvh bvh(m);
   EXPECT_GT(bvh.node_count(), 1u);
   EXPECT_LE(bvh.depth(), 60);
@@ -132,7 +132,7 @@ TEST(TriangleBvh, AllCentroidsEqualStillSplits) {
 TEST(TriangleBvh, NormalTieRulePrefersTheCloserNormal) {
   // A point at the cube's corner vertex is equally close to the three faces
   // there; the preferred normal picks among them.
-  TriangleMesh m = test::unit_cube();
+  TriangleMesh m = test::make_cube();
   TriangleBvh bvh(m);
   for (Vec3 n : {Vec3{0, 0, -1}, Vec3{0, -1, 0}, Vec3{-1, 0, 0}}) {
     ClosestPoint c = bvh.closest_point({0, 0, 0}, n);
@@ -146,7 +146,7 @@ TEST(TriangleBvh, NormalTieRulePrefersTheCloserNormal) {
 }
 
 TEST(TriangleBvh, NormalAtInterpolatesVertexNormals) {
-  TriangleMesh m = test::square(0, 0, 1, 1);
+  TriangleMesh m = test::make_square(0, 0, 1, 1);
   m.normals = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}};
   TriangleBvh smooth(m);
   ClosestPoint c = smooth.closest_point({0.5f, 0.5f, 1});

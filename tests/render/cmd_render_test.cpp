@@ -12,7 +12,8 @@
 #include <string>
 
 #include "lodforge/render/texture_image.h"
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {
@@ -44,7 +45,7 @@ class CmdRender : public ::testing::Test {
   }
   // An ASCII PLY of a cube with every vertex red.
   std::string red_cube_ply() {
-    const TriangleMesh m = test::cube();
+    const TriangleMesh m = test::make_centered_cube();
     const std::string path = dir_ + "/red_cube.ply";
     std::ofstream out(path);
     out << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"

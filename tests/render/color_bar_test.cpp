@@ -3,7 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {

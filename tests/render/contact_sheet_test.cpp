@@ -6,17 +6,19 @@
 
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/render/write_png.h"
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {
 
-using test::cube;
+using test::make_centered_cube;
+using test::make_seamed_sphere;
 using test::pixel_stats;
-using test::sphere;
 
 TEST(ContactSheet, ThreePanelsSideBySideEachWithContentAndLabels) {
-  const TriangleMesh levels[3] = {sphere(1, 24, 48), sphere(1, 8, 16), sphere(1, 3, 6)};
+  const TriangleMesh levels[3] = {make_seamed_sphere(1, 24, 48), make_seamed_sphere(1, 8, 16),
+                                  make_seamed_sphere(1, 3, 6)};
   std::vector<ContactSheetPanel> panels;
   for (std::size_t k = 0; k < 3; ++k)
     panels.push_back({.mesh = &levels[k], .labels = lod_labels(levels[k].triangle_count(), k)});
@@ -48,7 +50,7 @@ TEST(ContactSheet, ThreePanelsSideBySideEachWithContentAndLabels) {
 }
 
 TEST(ContactSheet, PanelsShareOneCameraSoSizesCompare) {
-  const TriangleMesh big = cube(1), small = cube(0.5f);
+  const TriangleMesh big = make_centered_cube(1), small = make_centered_cube(0.5f);
   const ContactSheetPanel panels[2] = {{.mesh = &big}, {.mesh = &small}};
   const ContactSheetResult r =
       render_contact_sheet(panels, {.panel = {.width = 120, .height = 120}});
@@ -59,7 +61,7 @@ TEST(ContactSheet, PanelsShareOneCameraSoSizesCompare) {
 }
 
 TEST(ContactSheet, EmptyPanelsKeepTheirPlace) {
-  const TriangleMesh m = cube();
+  const TriangleMesh m = make_centered_cube();
   const TriangleMesh empty;
   const ContactSheetPanel panels[3] = {
       {.mesh = &m, .labels = {"level 0"}}, {.mesh = &empty, .labels = {"empty"}}, {}};
@@ -97,7 +99,7 @@ TEST(ContactSheet, BunnyResolutions) {
 TEST(ContactSheet, RowsOfPanelsWithTheirOwnCameras) {
   // Two rows of two, the second row's camera twice as far: its sphere covers
   // a quarter of the first row's, and both cells of a row agree.
-  const TriangleMesh m = sphere();
+  const TriangleMesh m = make_seamed_sphere();
   const LookAt near{.eye = {0, 0, 8}}, far{.eye = {0, 0, 16}};
   const ContactSheetPanel panels[4] = {{.mesh = &m, .labels = {"a"}, .camera = near},
                                        {.mesh = &m, .labels = {"b"}, .camera = near},

@@ -10,18 +10,19 @@
 #include "lodforge/core/error.h"
 #include "lodforge/render/texture_image.h"
 #include "lodforge/render/write_png.h"
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {
 
-using test::colored;
-using test::cube;
+using test::make_centered_cube;
+using test::make_seamed_sphere;
 using test::pixel_stats;
-using test::sphere;
+using test::with_color;
 
 TEST(RenderMesh, CubeIsLitAndNotBlank) {
-  const RenderResult r = render_mesh(cube(), {.width = 200, .height = 150});
+  const RenderResult r = render_mesh(make_centered_cube(), {.width = 200, .height = 150});
   write_png(r.image, test::output_dir() + "/cube.png");
   ASSERT_EQ(r.image.width, 200);
   ASSERT_EQ(r.image.height, 150);
@@ -34,7 +35,7 @@ TEST(RenderMesh, CubeIsLitAndNotBlank) {
 }
 
 TEST(RenderMesh, SphereIsCentredAndFillsTheView) {
-  const RenderResult r = render_mesh(sphere(), {.width = 160, .height = 160});
+  const RenderResult r = render_mesh(make_seamed_sphere(), {.width = 160, .height = 160});
   write_png(r.image, test::output_dir() + "/sphere.png");
   const auto s = pixel_stats(r.image);
   // The framed sphere (4 % margin) is a disc of diameter ~0.96 of the picture.
@@ -46,7 +47,8 @@ TEST(RenderMesh, SphereIsCentredAndFillsTheView) {
 }
 
 TEST(RenderMesh, LightComesFromAboveSoTopIsBrighter) {
-  const Image img = render_mesh(sphere(), {.width = 100, .height = 100, .elevation = 0}).image;
+  const Image img =
+      render_mesh(make_seamed_sphere(), {.width = 100, .height = 100, .elevation = 0}).image;
   const auto top = pixel_stats(img, 0, 0, 100, 50);
   const auto bottom = pixel_stats(img, 0, 50, 100, 50);
   EXPECT_GT(top.mean_r + top.mean_g + top.mean_b, bottom.mean_r + bottom.mean_g + bottom.mean_b);
@@ -54,7 +56,7 @@ TEST(RenderMesh, LightComesFromAboveSoTopIsBrighter) {
 
 TEST(RenderMesh, PictureIsNotUpsideDownNorMirrored) {
   // +Y red, -Y blue; at azimuth 0 also +X must appear on the right.
-  TriangleMesh m = sphere();
+  TriangleMesh m = make_seamed_sphere();
   for (const auto& p : m.positions)
     m.colors.push_back(p.y > 0 ? Vec3{1, 0, 0} : (p.x > 0 ? Vec3{0, 1, 0} : Vec3{0, 0, 1}));
   const Image img =
@@ -77,7 +79,8 @@ TEST(RenderMesh, PictureIsNotUpsideDownNorMirrored) {
 }
 
 TEST(RenderMesh, VertexColoursShow) {
-  const Image img = render_mesh(colored(cube(), {1, 0, 0}), {.width = 120, .height = 120}).image;
+  const Image img =
+      render_mesh(with_color(make_centered_cube(), {1, 0, 0}), {.width = 120, .height = 120}).image;
   write_png(img, test::output_dir() + "/red_cube.png");
   const auto s = pixel_stats(img);
   EXPECT_GT(s.covered_fraction, 0.1);
@@ -86,29 +89,29 @@ TEST(RenderMesh, VertexColoursShow) {
 }
 
 TEST(RenderMesh, NoColoursIgnoresVertexColours) {
-  const Image img =
-      render_mesh(colored(cube(), {1, 0, 0}), {.width = 120, .height = 120, .use_colors = false})
-          .image;
+  const Image img = render_mesh(with_color(make_centered_cube(), {1, 0, 0}),
+                                {.width = 120, .height = 120, .use_colors = false})
+                        .image;
   const auto s = pixel_stats(img);
   EXPECT_NEAR(s.mean_r, s.mean_b, 30);
 }
 
 TEST(RenderMesh, DifferentMeshesAndViewsGiveDifferentPictures) {
   const RenderOptions o{.width = 120, .height = 90};
-  const Image a = render_mesh(cube(), o).image;
-  const Image b = render_mesh(sphere(), o).image;
+  const Image a = render_mesh(make_centered_cube(), o).image;
+  const Image b = render_mesh(make_seamed_sphere(), o).image;
   RenderOptions other_view = o;
   other_view.azimuth = 75;
   other_view.elevation = -30;
-  const Image c = render_mesh(cube(), other_view).image;
+  const Image c = render_mesh(make_centered_cube(), other_view).image;
   EXPECT_GT(test::difference_fraction(a, b), 0.05);
   EXPECT_GT(test::difference_fraction(a, c), 0.05);
   // Deterministic: the same input gives the same picture.
-  EXPECT_EQ(render_mesh(cube(), o).image.pixels, a.pixels);
+  EXPECT_EQ(render_mesh(make_centered_cube(), o).image.pixels, a.pixels);
 }
 
 TEST(RenderMesh, FlatAndSmoothShadingDiffer) {
-  const TriangleMesh coarse = sphere(1, 6, 12);
+  const TriangleMesh coarse = make_seamed_sphere(1, 6, 12);
   const Image smooth = render_mesh(coarse, {.width = 100, .height = 100}).image;
   const Image flat =
       render_mesh(coarse, {.width = 100, .height = 100, .shading = Shading::kFlat}).image;
@@ -119,7 +122,7 @@ TEST(RenderMesh, FlatAndSmoothShadingDiffer) {
 }
 
 TEST(RenderMesh, GivenNormalsAreUsed) {
-  TriangleMesh m = sphere(1, 8, 16);
+  TriangleMesh m = make_seamed_sphere(1, 8, 16);
   const Image computed = render_mesh(m, {.width = 80, .height = 80}).image;
   m.normals.assign(m.positions.size(), Vec3{0, 0, 1});  // all facing the default camera
   const Image given = render_mesh(m, {.width = 80, .height = 80}).image;
@@ -128,12 +131,13 @@ TEST(RenderMesh, GivenNormalsAreUsed) {
 
 TEST(RenderMesh, ComputedNormalsAreSmoothAcrossRepeatedVertices) {
   const RenderOptions o{.width = 100, .height = 100};
-  const Image indexed = render_mesh(sphere(), o).image;
-  const Image triangle_soup = render_mesh(test::soup(sphere()), o).image;
+  const Image indexed = render_mesh(make_seamed_sphere(), o).image;
+  const Image triangle_soup = render_mesh(test::as_soup(make_seamed_sphere()), o).image;
   EXPECT_LT(test::difference_fraction(indexed, triangle_soup), 0.01);
   // ... while a cube keeps its sharp edges: each visible face is one colour.
   const Image box =
-      render_mesh(cube(), {.width = 100, .height = 100, .azimuth = 0, .elevation = 0}).image;
+      render_mesh(make_centered_cube(), {.width = 100, .height = 100, .azimuth = 0, .elevation = 0})
+          .image;
   EXPECT_EQ(pixel_stats(box, 35, 35, 30, 30).distinct_colors, 1u);
 }
 
@@ -141,8 +145,8 @@ TEST(RenderMesh, WireframeAddsDarkEdges) {
   const RenderOptions o{.width = 150, .height = 150};
   RenderOptions wire = o;
   wire.wireframe = true;
-  const Image plain = render_mesh(sphere(1, 8, 16), o).image;
-  const Image edges = render_mesh(sphere(1, 8, 16), wire).image;
+  const Image plain = render_mesh(make_seamed_sphere(1, 8, 16), o).image;
+  const Image edges = render_mesh(make_seamed_sphere(1, 8, 16), wire).image;
   write_png(edges, test::output_dir() + "/wireframe.png");
   EXPECT_GT(test::difference_fraction(plain, edges), 0.03);
   EXPECT_LT(pixel_stats(edges).mean_r, pixel_stats(plain).mean_r);
@@ -170,7 +174,7 @@ TEST(RenderMesh, EmptyMeshGivesTheBackground) {
 }
 
 TEST(RenderMesh, DegenerateInputDoesNotCrash) {
-  TriangleMesh m = cube();
+  TriangleMesh m = make_centered_cube();
   m.positions.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});
   m.triangles.push_back({0, 1, 8});  // uses the NaN vertex: skipped
   m.triangles.push_back({0, 0, 0});  // zero area
@@ -185,15 +189,15 @@ TEST(RenderMesh, DegenerateInputDoesNotCrash) {
 }
 
 TEST(RenderMesh, LookingStraightDownWorks) {
-  const auto s =
-      pixel_stats(render_mesh(cube(), {.width = 64, .height = 64, .elevation = 90}).image);
+  const auto s = pixel_stats(
+      render_mesh(make_centered_cube(), {.width = 64, .height = 64, .elevation = 90}).image);
   EXPECT_GT(s.covered_fraction, 0.2);
 }
 
 TEST(RenderMesh, ExplicitCameraShowsTheTruePerspective) {
   // A unit sphere seen from d with a vertical angle of 45 degrees: a disc of
   // radius focal * tan(asin(1 / d)) pixels, focal = (height / 2) / tan(22.5).
-  const TriangleMesh s = sphere();
+  const TriangleMesh s = make_seamed_sphere();
   const auto from = [&](Vec3 eye, Vec3 target = {}) {
     return pixel_stats(
         render_mesh(s,
@@ -216,13 +220,13 @@ TEST(RenderMesh, ExplicitCameraShowsTheTruePerspective) {
 }
 
 TEST(RenderMesh, BadDataThrowsDataError) {
-  TriangleMesh m = cube();
+  TriangleMesh m = make_centered_cube();
   m.triangles.push_back({0, 1, 99});
   EXPECT_THROW(render_mesh(m), DataError);
-  TriangleMesh c = cube();
+  TriangleMesh c = make_centered_cube();
   c.colors.assign(3, Vec3{1, 0, 0});
   EXPECT_THROW(render_mesh(c), DataError);
-  TriangleMesh l = cube();
+  TriangleMesh l = make_centered_cube();
   l.lines.push_back({0, 8});
   try {
     render_mesh(l);
@@ -233,7 +237,7 @@ TEST(RenderMesh, BadDataThrowsDataError) {
 }
 
 TEST(RenderMesh, BoundingSphereOfUsedVertices) {
-  TriangleMesh m = cube(1, {10, 0, 0});
+  TriangleMesh m = make_centered_cube(1, {10, 0, 0});
   m.positions.push_back({1000, 1000, 1000});  // unused: ignored
   const FrameSphere s = bounding_sphere(m);
   EXPECT_NEAR(s.center.x, 10, 1e-5);
@@ -253,7 +257,7 @@ TriangleMesh textured_square() {
 
 TEST(RenderMesh, TextureReplacesTheVertexColourAndIsLit) {
   const Texture green = sfimage_texture(std::vector<std::int32_t>{1, 1, 3, 0x00ff00});
-  const TriangleMesh m = test::colored(textured_square(), {1, 0, 0});
+  const TriangleMesh m = test::with_color(textured_square(), {1, 0, 0});
   RenderOptions o{.width = 64, .height = 64, .azimuth = 0, .elevation = 0};
   o.appearance.textures = std::span(&green, 1);
   const Image img = render_mesh(m, o).image;
@@ -284,8 +288,8 @@ TEST(RenderMesh, TextureIsNotMirrored) {
 
 TEST(RenderMesh, TransparentSurfaceShowsWhatIsBehind) {
   // A red square in front of a blue one, the red one 75 % transparent.
-  TriangleMesh front = test::colored(textured_square(), {1, 0, 0});
-  TriangleMesh back = test::colored(textured_square(), {0, 0, 1});
+  TriangleMesh front = test::with_color(textured_square(), {1, 0, 0});
+  TriangleMesh back = test::with_color(textured_square(), {0, 0, 1});
   for (auto& p : back.positions) p.z = -1;
   TriangleMesh both = front;
   for (const auto& p : back.positions) both.positions.push_back(p);

@@ -8,7 +8,8 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/render/write_png.h"
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {

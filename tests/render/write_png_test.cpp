@@ -9,7 +9,8 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/render/render_mesh.h"
-#include "render/test_meshes.h"
+#include "mesh/test_meshes.h"
+#include "render/pixel_checks.h"
 
 namespace lodforge {
 namespace {
@@ -31,7 +32,7 @@ Decoded decode(const std::string& png) {
 }
 
 TEST(WritePng, EncodesLosslessly) {
-  const Image img = render_mesh(test::sphere(), {.width = 37, .height = 23}).image;
+  const Image img = render_mesh(test::make_seamed_sphere(), {.width = 37, .height = 23}).image;
   const Decoded d = decode(encode_png(img));
   ASSERT_EQ(d.width, 37);
   ASSERT_EQ(d.height, 23);
@@ -39,7 +40,7 @@ TEST(WritePng, EncodesLosslessly) {
 }
 
 TEST(WritePng, WrittenFileDecodesToTheSameSize) {
-  const Image img = render_mesh(test::cube(), {.width = 150, .height = 100}).image;
+  const Image img = render_mesh(test::make_centered_cube(), {.width = 150, .height = 100}).image;
   const std::string path = test::output_dir() + "/write_png_test.png";
   write_png(img, path);
   std::ifstream in(path, std::ios::binary);

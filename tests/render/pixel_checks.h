@@ -1,5 +1,5 @@
 #pragma once
-// Small named meshes and pixel statistics shared by the render tests.
+// Pixel statistics shared by the render tests.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -10,64 +10,6 @@
 #include "lodforge/render/image.h"
 
 namespace lodforge::test {
-
-/// Axis-aligned cube [-h, h]^3 around `center`, 8 shared vertices, 12
-/// counter-clockwise triangles seen from outside.
-inline TriangleMesh cube(float h = 1, Vec3 center = {}) {
-  TriangleMesh m;
-  for (int i = 0; i < 8; ++i)
-    m.positions.push_back(center + Vec3{(i & 1) ? h : -h, (i & 2) ? h : -h, (i & 4) ? h : -h});
-  // Quads as (a, b, c, d) counter-clockwise from outside.
-  const std::uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (const auto& q : quads) {
-    m.triangles.push_back({q[0], q[1], q[2]});
-    m.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return m;
-}
-
-/// UV sphere of radius r: `rings` latitude bands, `segments` longitude bands.
-/// Like many real meshes it repeats vertices: a ring of copies at each pole and
-/// a seam at longitude 0, at exactly equal positions.
-inline TriangleMesh sphere(float r = 1, int rings = 24, int segments = 48) {
-  TriangleMesh m;
-  const double pi = 3.14159265358979323846;
-  for (int i = 0; i <= rings; ++i) {
-    const double theta = pi * i / rings;  // from +Y down
-    const double ring_r = (i == 0 || i == rings) ? 0 : r * std::sin(theta);
-    for (int j = 0; j <= segments; ++j) {
-      const double phi = 2 * pi * (j % segments) / segments;
-      m.positions.push_back({static_cast<float>(ring_r * std::sin(phi)),
-                             static_cast<float>(r * std::cos(theta)),
-                             static_cast<float>(ring_r * std::cos(phi))});
-    }
-  }
-  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (segments + 1) + j); };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      if (i > 0) m.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
-      if (i < rings - 1) m.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
-    }
-  return m;
-}
-
-/// The same surface as a triangle soup: three vertices of its own per triangle.
-inline TriangleMesh soup(const TriangleMesh& m) {
-  TriangleMesh s;
-  for (const auto& t : m.triangles) {
-    const auto base = static_cast<std::uint32_t>(s.positions.size());
-    for (auto i : t) s.positions.push_back(m.positions[i]);
-    s.triangles.push_back({base, base + 1, base + 2});
-  }
-  return s;
-}
-
-/// Gives every vertex one colour.
-inline TriangleMesh colored(TriangleMesh m, Vec3 rgb) {
-  m.colors.assign(m.positions.size(), rgb);
-  return m;
-}
 
 struct PixelStats {
   double covered_fraction = 0;  ///< pixels differing from the background

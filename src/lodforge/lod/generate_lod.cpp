@@ -11,8 +11,8 @@
 #include "lodforge/lod/generate_lod.h"
 
 #include <fmt/format.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -150,14 +150,17 @@ class Pipeline {
     unshare_property_contexts(result_.scene,
                               [](const Node& shape) { return is_lod_shape(shape.type); });
     collect();
-    const int threads = opt_.threads > 0 ? opt_.threads : 0;
-    std::optional<tbb::global_control> limit;
-    if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
     size_scale();
     start_progress();
-    tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
-      make_levels(jobs_[i]);
-      credit(i, 1.0);
+    // An arena of the requested size bounds this call's parallelism (nested
+    // parallel loops of the simplifiers and the measurement run in it too)
+    // without touching the process's other work.
+    tbb::task_arena arena(opt_.threads > 0 ? opt_.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
+        make_levels(jobs_[i]);
+        credit(i, 1.0);
+      });
     });
     for (auto& j : jobs_) result_.log.merge(j.log);
     replace();

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/special_files.h"
@@ -117,6 +118,50 @@ TEST_F(WriteFileAtomic, NodesThatAreNotRegularFilesAreRefusedAndStayWhatTheyWere
     EXPECT_THAT(listing(), ::testing::ElementsAre("node"));
     fs::remove(p);
   }
+}
+
+}  // namespace
+}  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+class FileBytesTest : public testing::TempDirTest {};
+
+TEST_F(FileBytesTest, ARegularFileGivesItsBytes) {
+  const std::string text = std::string("#VRML V1.0 ascii\n") + std::string(100000, 'x') + "\n";
+  const std::string p = write("plain.wrl", text);
+  const FileBytes bytes(p);
+  EXPECT_EQ(bytes.view(), text);
+  EXPECT_EQ(read_file(p), text);
+}
+
+TEST_F(FileBytesTest, GzipDataIsInflated) {
+  const std::string text = "#VRML V1.0 ascii\nSeparator {}\n";
+  const std::string p = write("packed.wrl.gz", gzip(text));
+  EXPECT_EQ(FileBytes(p).view(), text);
+}
+
+TEST_F(FileBytesTest, AnEmptyFileIsEmpty) {
+  EXPECT_TRUE(FileBytes(write("empty.wrl", "")).view().empty());
+}
+
+TEST_F(FileBytesTest, MissingFilesAndFoldersAreDataErrors) {
+  EXPECT_THAT([&] { FileBytes b(path("none.wrl")); },
+              ::testing::ThrowsMessage<DataError>(HasSubstr("cannot open")));
+  fs::create_directories(path("folder"));
+  EXPECT_THAT([&] { FileBytes b(path("folder")); },
+              ::testing::ThrowsMessage<DataError>(HasSubstr("is a directory")));
+}
+
+TEST_F(FileBytesTest, AFifoIsReadThroughOnceNotMapped) {
+  const std::string p = path("pipe");
+  ASSERT_TRUE(test::make_special(p, test::Special::kFifo));
+  const std::string text = "data through a pipe\n";
+  std::thread writer([&] { std::ofstream(p) << text; });
+  const FileBytes bytes(p);
+  writer.join();
+  EXPECT_EQ(bytes.view(), text);
 }
 
 }  // namespace

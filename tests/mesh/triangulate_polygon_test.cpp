@@ -259,3 +259,26 @@ TEST(TriangulatePolygon, HugePolygonsAreComplete) {
 
 }  // namespace
 }  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST(TriangleIsDegenerate, AgreesWithTriangulatePolygon) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int flagged = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)}, c{u(rng), u(rng), u(rng)};
+    if (i % 4 == 1) c = a + (b - a) * u(rng);                    // collinear
+    if (i % 4 == 2) c = b;                                       // two corners at one place
+    if (i % 4 == 3) c = a + (b - a) * 0.5f + Vec3{0, 0, 1e-9f};  // almost collinear
+    const Vec3 corners[3] = {a, b, c};
+    const bool expected = triangulate_polygon(corners).degenerate;
+    EXPECT_EQ(triangle_is_degenerate(a, b, c), expected) << i;
+    flagged += expected;
+  }
+  EXPECT_GE(flagged, 5000);  // the coincident corners at least
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -1,6 +1,8 @@
 #include "lodforge/core/file_io.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -138,6 +140,37 @@ std::string read_file(const std::string& path) {
   }
   if (is_gzip(data)) return gunzip(data, path == "-" ? "<stdin>" : path);
   return data;
+}
+
+FileBytes::FileBytes(const std::string& path) {
+  // Only a regular file is opened here: opening a FIFO would block or take
+  // its data from the reader below.
+  struct stat st {};
+  const bool regular = path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  const int fd = regular ? ::open(path.c_str(), O_RDONLY | O_CLOEXEC) : -1;
+  if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    void* m = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+    if (m != MAP_FAILED) {
+      map_ = m;
+      map_size_ = static_cast<std::size_t>(st.st_size);
+      ::madvise(map_, map_size_, MADV_SEQUENTIAL);
+    }
+  }
+  if (fd >= 0) ::close(fd);
+  if (map_) {
+    view_ = std::string_view(static_cast<const char*>(map_), map_size_);
+    if (!is_gzip(view_)) return;
+    data_ = gunzip(view_, path);
+    ::munmap(map_, map_size_);
+    map_ = nullptr;
+  } else {
+    data_ = read_file(path);  // standard input, pipes, empty files, and every error message
+  }
+  view_ = data_;
+}
+
+FileBytes::~FileBytes() {
+  if (map_) ::munmap(map_, map_size_);
 }
 
 void write_file_atomic(const std::string& path, std::string_view content) {

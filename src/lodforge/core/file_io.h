@@ -16,6 +16,26 @@ namespace lodforge {
 /// DataError if it cannot be read or the compressed stream is corrupt.
 std::string read_file(const std::string& path);
 
+/// A whole file's bytes for reading, as read_file gives them, without the
+/// copy where it can: an uncompressed regular file is mapped into memory
+/// read-only; standard input, pipes and gzip data are read (and inflated)
+/// into memory. Throws as read_file. The file must not shrink while the
+/// bytes are in use.
+class FileBytes {
+ public:
+  explicit FileBytes(const std::string& path);
+  ~FileBytes();
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  std::string_view view() const { return view_; }
+
+ private:
+  void* map_ = nullptr;
+  std::size_t map_size_ = 0;
+  std::string data_;
+  std::string_view view_;
+};
+
 /// True if `data` starts with the gzip magic bytes.
 bool is_gzip(std::string_view data);
 

@@ -309,8 +309,8 @@ TriangleMesh read_mesh_data(std::string_view data, MeshFormat format,
 TriangleMesh read_mesh(const std::string& path, const MeshReadOptions& options) {
   MeshFormat format = options.format;
   if (format == MeshFormat::kAuto) format = format_from_path(path);
-  std::string data = read_file(path);
-  return read_mesh_data(data, format, path, options);
+  const FileBytes data(path);
+  return read_mesh_data(data.view(), format, path, options);
 }
 
 std::string write_mesh_data(const TriangleMesh& mesh, const MeshWriteOptions& options) {

@@ -27,6 +27,7 @@
 #include "lodforge/mesh/triangulate_polygon.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -371,25 +372,25 @@ void fan(std::size_t n, TriangulateResult& out) {
   for (std::uint32_t i = 1; i + 1 < n; ++i) out.triangles.push_back({0, i, i + 1});
 }
 
-}  // namespace
+/// A polygon projected onto the plane of its Newell normal: corners
+/// relative to the first (`q`, in 3D) and in the plane (`p`, counter-
+/// clockwise), with the scale below which areas are rounding noise.
+struct Projection {
+  double extent = 0;  ///< largest coordinate difference from the first corner
+  double eps = 0;     ///< twice an area below this is noise of float input
+  D3 normal;          ///< unit; zero when `flat`
+  bool flat = false;  ///< (almost) no area: nothing projected
+};
 
-TriangulateResult triangulate_polygon(std::span<const Vec3> points,
-                                      const TriangulateOptions& options) {
-  TriangulateResult out;
-  std::size_t n = points.size();
-  if (n < 3) {
-    out.degenerate = true;
-    return out;
-  }
-  out.triangles.reserve(n - 2);
-
+/// Fills q and p (both of points.size()) unless the polygon is flat.
+Projection project(std::span<const Vec3> points, std::span<D3> q, std::span<P2> p) {
+  const std::size_t n = points.size();
+  Projection out;
   // Newell normal, in double, about the first corner to limit cancellation.
-  std::vector<D3> q(n);
-  D3 origin = to_d3(points[0]);
-  double extent = 0;
+  const D3 origin = to_d3(points[0]);
   for (std::size_t i = 0; i < n; ++i) {
     q[i] = sub(to_d3(points[i]), origin);
-    extent = std::max({extent, std::abs(q[i].x), std::abs(q[i].y), std::abs(q[i].z)});
+    out.extent = std::max({out.extent, std::abs(q[i].x), std::abs(q[i].y), std::abs(q[i].z)});
   }
   D3 normal;
   for (std::size_t i = 0; i < n; ++i) {
@@ -399,31 +400,84 @@ TriangulateResult triangulate_polygon(std::span<const Vec3> points,
     normal.y += (a.z - b.z) * (a.x + b.x);
     normal.z += (a.x - b.x) * (a.y + b.y);
   }
-  double nl = len3(normal);
+  const double nl = len3(normal);
   // Twice the polygon's area is nl; below this it is noise of float input.
-  if (!(extent > 0) || !(nl > extent * extent * 1e-12) || !std::isfinite(nl)) {
+  out.eps = out.extent * out.extent * 1e-12;
+  if (!(out.extent > 0) || !(nl > out.eps) || !std::isfinite(nl)) {
+    out.flat = true;
+    return out;
+  }
+  out.normal = {normal.x / nl, normal.y / nl, normal.z / nl};
+  // Orthonormal basis (u, v) of the plane with u x v = normal, so that the
+  // projected polygon is counter-clockwise.
+  const D3 axis = std::abs(out.normal.x) < 0.6 ? D3{1, 0, 0} : D3{0, 1, 0};
+  D3 u = cross3(axis, out.normal);
+  const double ul = len3(u);
+  u = {u.x / ul, u.y / ul, u.z / ul};
+  const D3 v = cross3(out.normal, u);
+  for (std::size_t i = 0; i < n; ++i) p[i] = {dot3(q[i], u), dot3(q[i], v)};
+  return out;
+}
+
+/// Storage for n items, on the stack for the triangles and quads that most
+/// polygons are (no allocation on the common path).
+template <class T>
+class SmallBuffer {
+ public:
+  explicit SmallBuffer(std::size_t n) {
+    if (n > small_.size()) big_.resize(n);
+    items_ = n > small_.size() ? std::span<T>(big_) : std::span<T>(small_.data(), n);
+  }
+  std::span<T> span() { return items_; }
+  std::vector<T> take() {
+    return big_.empty() ? std::vector<T>(items_.begin(), items_.end()) : std::move(big_);
+  }
+
+ private:
+  std::array<T, 4> small_;
+  std::vector<T> big_;
+  std::span<T> items_;
+};
+
+bool degenerate_triangle(const Projection& pr, std::span<const P2> p) {
+  return pr.flat || orient(p[0], p[1], p[2]) <= pr.eps;
+}
+
+}  // namespace
+
+bool triangle_is_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 corners[3] = {a, b, c};
+  std::array<D3, 3> q;
+  std::array<P2, 3> p;
+  return degenerate_triangle(project(corners, q, p), p);
+}
+
+TriangulateResult triangulate_polygon(std::span<const Vec3> points,
+                                      const TriangulateOptions& options) {
+  TriangulateResult out;
+  const std::size_t n = points.size();
+  if (n < 3) {
+    out.degenerate = true;
+    return out;
+  }
+  out.triangles.reserve(n - 2);
+  SmallBuffer<D3> q_buffer(n);
+  SmallBuffer<P2> p_buffer(n);
+  const std::span<D3> q = q_buffer.span();
+  const std::span<P2> p = p_buffer.span();
+  const Projection pr = project(points, q, p);
+  if (pr.flat) {
     out.degenerate = true;
     fan(n, out);
     return out;
   }
-  normal = {normal.x / nl, normal.y / nl, normal.z / nl};
-  out.normal = {static_cast<float>(normal.x), static_cast<float>(normal.y),
-                static_cast<float>(normal.z)};
-
-  // Orthonormal basis (u, v) of the plane with u x v = normal, so that the
-  // projected polygon is counter-clockwise.
-  D3 axis = std::abs(normal.x) < 0.6 ? D3{1, 0, 0} : D3{0, 1, 0};
-  D3 u = cross3(axis, normal);
-  double ul = len3(u);
-  u = {u.x / ul, u.y / ul, u.z / ul};
-  D3 v = cross3(normal, u);
-  std::vector<P2> p(n);
-  for (std::size_t i = 0; i < n; ++i) p[i] = {dot3(q[i], u), dot3(q[i], v)};
-  double eps = extent * extent * 1e-12;
+  out.normal = {static_cast<float>(pr.normal.x), static_cast<float>(pr.normal.y),
+                static_cast<float>(pr.normal.z)};
+  const double eps = pr.eps;
 
   if (n == 3) {
     out.triangles.push_back({0, 1, 2});
-    if (orient(p[0], p[1], p[2]) <= eps) out.degenerate = true;
+    out.degenerate = degenerate_triangle(pr, p);
     return out;
   }
   if (n == 4) {
@@ -443,23 +497,23 @@ TriangulateResult triangulate_polygon(std::span<const Vec3> points,
       return out;
     }
   }
+  std::vector<P2> corners = p_buffer.take();
   if (n <= kBestEarLimit)
-    EarClipper(std::move(p), eps).run(out);
-  else if (!triangulate_convex(p, extent, eps, out))
-    GridEarClipper(std::move(p), eps).run(out);
+    EarClipper(std::move(corners), eps).run(out);
+  else if (!triangulate_convex(corners, pr.extent, eps, out))
+    GridEarClipper(std::move(corners), eps).run(out);
   return out;
 }
 
 TriangulateResult triangulate_polygon(std::span<const Vec3> positions,
                                       std::span<const std::uint32_t> indices,
                                       const TriangulateOptions& options) {
-  std::vector<Vec3> points;
-  points.reserve(indices.size());
-  for (std::uint32_t i : indices) {
-    assert(i < positions.size());
-    points.push_back(positions[i]);
+  SmallBuffer<Vec3> points(indices.size());
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    assert(indices[k] < positions.size());
+    points.span()[k] = positions[indices[k]];
   }
-  return triangulate_polygon(points, options);
+  return triangulate_polygon(points.span(), options);
 }
 
 }  // namespace lodforge

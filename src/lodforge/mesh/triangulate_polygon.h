@@ -59,4 +59,8 @@ TriangulateResult triangulate_polygon(std::span<const Vec3> positions,
                                       std::span<const std::uint32_t> indices,
                                       const TriangulateOptions& options = {});
 
+/// Whether triangulate_polygon flags the triangle (a, b, c) as degenerate,
+/// without building a result: for readers that pass triangles through.
+bool triangle_is_degenerate(const Vec3& a, const Vec3& b, const Vec3& c);
+
 }  // namespace lodforge

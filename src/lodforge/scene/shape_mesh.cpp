@@ -219,43 +219,51 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
   const std::optional<DefaultMapping> mapping =
       out.texture ? std::optional<DefaultMapping>(DefaultMapping(pts, ci)) : std::nullopt;
 
+  auto note_face = [&](std::size_t at, const char* what) {
+    log->add(LogLevel::kMessage, LogCategory::kTriangulator,
+             fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, at, what));
+  };
   std::vector<std::uint32_t> poly;
   std::size_t corner_seq = 0;
-  const auto runs = split_index_runs(ci);
-  for (std::size_t f = 0; f < runs.size(); ++f) {
-    const auto [b, e] = runs[f];
+  std::size_t f = 0;
+  for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
+    const std::size_t face = f++;
     poly.clear();
     for (std::size_t i = b; i < e; ++i, ++corner_seq) {
       check_index(ci[i], pts.size(), shape, i);
       const std::size_t row =
           options.appearance
-              ? std::size_t(material_row(mindex.at(f, corner_seq, i), materials.rows(), 0))
+              ? std::size_t(material_row(mindex.at(face, corner_seq, i), materials.rows(), 0))
               : 0;
       const std::int64_t t =
-          tc ? texcoord_index(tindex.at(f, corner_seq, i), ntex, -1) : std::int64_t(-1);
+          tc ? texcoord_index(tindex.at(face, corner_seq, i), ntex, -1) : std::int64_t(-1);
       poly.push_back(vertices.vertex(ci[i], row, t, materials, tc ? &tc->floats : nullptr,
                                      mapping ? &*mapping : nullptr));
     }
     if (line_set) {
       for (std::size_t i = 1; i < poly.size(); ++i)
         out.mesh.lines.push_back({poly[i - 1], poly[i]});
-      continue;
+      return;
     }
     if (poly.size() < 3) {
       if (log)
         log->warn(LogCategory::kFace, fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
                                                   "has {} vertices; skipped",
                                                   shape.first_line, b, poly.size()));
-      continue;
+      return;
+    }
+    if (poly.size() == 3) {  // a triangle passes through as it is
+      const auto& p = out.mesh.positions;
+      if (log && triangle_is_degenerate(p[poly[0]], p[poly[1]], p[poly[2]]))
+        note_face(b, "degenerate");
+      out.mesh.triangles.push_back({poly[0], poly[1], poly[2]});
+      return;
     }
     TriangulateResult tr = triangulate_polygon(out.mesh.positions, poly, options.triangulation);
-    if (log && tr.has_warning())
-      log->add(LogLevel::kMessage, LogCategory::kTriangulator,
-               fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, b,
-                           tr.degenerate ? "degenerate" : "not simple"));
+    if (log && tr.has_warning()) note_face(b, tr.degenerate ? "degenerate" : "not simple");
     for (const auto& tri : tr.triangles)
       out.mesh.triangles.push_back({poly[tri[0]], poly[tri[1]], poly[tri[2]]});
-  }
+  });
 }
 
 }  // namespace
@@ -263,13 +271,7 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
 std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
     const std::vector<std::int32_t>& index) {
   std::vector<std::pair<std::size_t, std::size_t>> runs;
-  std::size_t begin = 0;
-  for (std::size_t i = 0; i <= index.size(); ++i) {
-    if (i == index.size() || index[i] < 0) {
-      if (i > begin) runs.emplace_back(begin, i);
-      begin = i + 1;
-    }
-  }
+  for_each_index_run(index, [&](std::size_t b, std::size_t e) { runs.emplace_back(b, e); });
   return runs;
 }
 
@@ -330,6 +332,35 @@ ShapeSurface surface(const ShapeVisit& visit, const ShapeMeshOptions& options, L
 
 TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
   return surface(visit, options, log).mesh;
+}
+
+ShapeCounts shape_counts(const ShapeVisit& visit, const ShapeMeshOptions& options) {
+  const Node& shape = visit.shape;
+  const bool line_set = shape.type == "IndexedLineSet";
+  ShapeCounts counts;
+  if (!line_set && shape.type != "IndexedFaceSet") {
+    ShapeMeshOptions plain = options;
+    plain.appearance = false;
+    const TriangleMesh m = shape_mesh(visit, plain);
+    counts.triangles = m.triangle_count();
+    counts.vertices = m.vertex_count();
+    counts.segments = m.lines.size();
+    for (const Vec3& p : m.positions) counts.bounds.add(p);
+    return counts;
+  }
+  const std::vector<Vec3> pts = coordinates(visit.state, shape);
+  const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
+  for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) check_index(ci[i], pts.size(), shape, i);
+    if (line_set)
+      counts.segments += e - b - 1;
+    else if (e - b >= 3)
+      counts.triangles += e - b - 2;
+  });
+  counts.vertices = pts.size();
+  const bool move = options.world_space && !(visit.state.transform == Mat4{});
+  for (const Vec3& p : pts) counts.bounds.add(move ? visit.state.transform.transform_point(p) : p);
+  return counts;
 }
 
 ShapeSurface shape_surface(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {

@@ -34,6 +34,18 @@ struct ShapeMeshOptions {
 TriangleMesh shape_mesh(const ShapeVisit& visit, const ShapeMeshOptions& options = {},
                         Log* log = nullptr);
 
+/// What shape_mesh(visit, options) holds, counted: an IndexedFaceSet's or
+/// IndexedLineSet's faces are counted from coordIndex without being
+/// triangulated (a face of n >= 3 corners is n - 2 triangles), other shapes
+/// are built. Throws the DataErrors of shape_mesh.
+struct ShapeCounts {
+  std::size_t triangles = 0;
+  std::size_t vertices = 0;
+  std::size_t segments = 0;
+  Box3 bounds;  ///< of the positions, in world space with options.world_space
+};
+ShapeCounts shape_counts(const ShapeVisit& visit, const ShapeMeshOptions& options = {});
+
 /// A shape's mesh with its appearance (ShapeMeshOptions::appearance).
 ///
 /// Colours follow the VRML 1.0 lighting of a Material row as closely as one
@@ -62,9 +74,21 @@ struct ShapeSurface {
 ShapeSurface shape_surface(const ShapeVisit& visit, const ShapeMeshOptions& options = {},
                            Log* log = nullptr);
 
-/// Faces of an IndexedFaceSet's coordIndex (or polylines of an
-/// IndexedLineSet): runs separated by -1; a missing final -1 is allowed.
-/// Returns [begin, end) ranges into `index`.
+/// Calls visit(begin, end) for each face of an IndexedFaceSet's coordIndex
+/// (or polyline of an IndexedLineSet), in order: the non-empty runs
+/// separated by -1 (any negative index); a missing final -1 is allowed.
+template <class Visit>
+void for_each_index_run(const std::vector<std::int32_t>& index, Visit&& visit) {
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < index.size(); ++i)
+    if (index[i] < 0) {
+      if (i > begin) visit(begin, i);
+      begin = i + 1;
+    }
+  if (index.size() > begin) visit(begin, index.size());
+}
+
+/// The runs of for_each_index_run as [begin, end) ranges into `index`.
 std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
     const std::vector<std::int32_t>& index);
 

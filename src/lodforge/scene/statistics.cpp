@@ -32,27 +32,25 @@ SceneStatistics scene_statistics(const Scene& scene) {
     ++s.shapes_traversed;
     const std::string& t = v.shape.type;
     if (t == "IndexedFaceSet") {
-      const FieldValue* idx = field_or_default(v.shape, "coordIndex");
-      for (auto [b, e] : split_index_runs(idx->ints)) {
-        ++s.ifs_faces;
-        if (e - b >= 3) s.ifs_triangles += e - b - 2;
-      }
+      for_each_index_run(field_or_default(v.shape, "coordIndex")->ints,
+                         [&](std::size_t b, std::size_t e) {
+                           ++s.ifs_faces;
+                           if (e - b >= 3) s.ifs_triangles += e - b - 2;
+                         });
     } else if (t == "IndexedLineSet") {
-      const FieldValue* idx = field_or_default(v.shape, "coordIndex");
-      for (auto [b, e] : split_index_runs(idx->ints)) s.ils_segments += e - b - 1;
+      for_each_index_run(field_or_default(v.shape, "coordIndex")->ints,
+                         [&](std::size_t b, std::size_t e) { s.ils_segments += e - b - 1; });
     }
     try {
-      TriangleMesh m = shape_mesh(v);
-      s.total_triangles += m.triangle_count();
-      s.total_vertices += m.vertex_count();
-      Box3 box;
-      for (const auto& p : m.positions) box.add(p);
-      s.bounds.add(box);
+      const ShapeCounts c = shape_counts(v);
+      s.total_triangles += c.triangles;
+      s.total_vertices += c.vertices;
+      s.bounds.add(c.bounds);
       // What lod refuses: a shape whose switching distances cannot be floats.
-      if (!box.empty() && !std::isfinite(box.diagonal()))
+      if (!c.bounds.empty() && !std::isfinite(c.bounds.diagonal()))
         s.problems.push_back(fmt::format(
             "line {}: {} reaches beyond the float range (its extent is {}): lod refuses it",
-            v.shape.first_line, t, box.diagonal()));
+            v.shape.first_line, t, c.bounds.diagonal()));
     } catch (const DataError& e) {
       s.problems.emplace_back(e.what());
     }

@@ -704,8 +704,8 @@ ReadResult read_vrml1_file(const std::string& path, ReadOptions options) {
     std::filesystem::path p(path);
     options.base_dir = p.has_parent_path() ? p.parent_path().string() : ".";
   }
-  std::string text = read_file(path);
-  return read_vrml1(text, options);
+  const FileBytes text(path);
+  return read_vrml1(text.view(), options);
 }
 
 }  // namespace lodforge::vrml1

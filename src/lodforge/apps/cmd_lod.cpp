@@ -2,10 +2,13 @@
 // every shape of a VRML 1.0 scene becomes an LOD node (SPEC §2, §6).
 #include <fmt/core.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
+#include "lodforge/apps/batch.h"
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
 #include "lodforge/core/error.h"
@@ -57,7 +60,8 @@ std::pair<std::string, std::string> split_typed(const std::string& text, const s
 
 struct Settings {
   std::vector<std::string> inputs;
-  std::string output, out_dir, stats;
+  std::string output, out_dir, stats, manifest, shard_text, report;
+  Shard shard;
   std::string method = "qem", export_flavour = "spec";
   double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing,
          level_ratio = kDefaultLevelRatio;
@@ -144,26 +148,29 @@ nlohmann::ordered_json stats_json(const std::string& file, const LodResult& r) {
   return j;
 }
 
-// Where the LOD scene of `input` goes: -o, or --out-dir/<input's name
-// without .gz>.
-std::string output_of(const std::string& input, const Settings& s) {
+// Where the LOD scene of `item` goes: -o, or --out-dir/<its output name>
+// (a compressed input gives a compressed output).
+std::string output_of(const BatchItem& item, const Settings& s) {
   if (s.out_dir.empty()) return s.output;
-  // The input's own name: a compressed input gives a compressed output.
-  const std::string base =
-      input == "-" ? "stdin.wrl" : std::filesystem::path(input).filename().string();
-  return (std::filesystem::path(s.out_dir) / base).string();
+  return (std::filesystem::path(s.out_dir) / item.output_name).string();
 }
 
 // Refuses, before any scene is read, outputs that would replace an input,
 // land on one file twice (--out-dir and inputs of the same name) or share
 // standard output.
-void check_outputs(const Settings& s) {
+void check_outputs(const Settings& s, const std::vector<BatchItem>& items) {
   std::vector<OutputPath> outputs;
-  for (const auto& input : s.inputs)
-    outputs.push_back({output_of(input, s), fmt::format("the LOD scene of {}",
-                                                        input == "-" ? "standard input" : input)});
+  std::vector<std::string> inputs;
+  for (const auto& item : items) {
+    outputs.push_back(
+        {output_of(item, s),
+         fmt::format("the LOD scene of {}", item.input == "-" ? "standard input" : item.input)});
+    inputs.push_back(item.input);
+  }
   if (!s.stats.empty()) outputs.push_back({s.stats, "the statistics (--stats)"});
-  check_output_paths(outputs, s.inputs);
+  if (!s.report.empty()) outputs.push_back({s.report, "the batch report (--report)"});
+  if (!s.manifest.empty()) inputs.push_back(s.manifest);
+  check_output_paths(outputs, inputs);
 }
 
 // One line, and the triangles-by-distance table when `table`.
@@ -182,6 +189,150 @@ void print_summary(const std::string& file, const LodResult& r, bool table) {
     fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
 }
 
+std::size_t file_size_or_zero(const std::string& path) {
+  std::error_code ec;
+  const auto size = path == "-" ? 0 : std::filesystem::file_size(path, ec);
+  return ec ? 0 : static_cast<std::size_t>(size);
+}
+
+// Reads one scene, makes its LODs and writes them; a DataError is the
+// outcome's error. `progress` receives the library's progress, drawn on
+// `bar`, which is cleared before anything is printed; `stats` gets the
+// scene's statistics when it is written.
+BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions& options,
+                     const std::vector<LogCategory>& shown, Progress& bar,
+                     const ProgressCallback& progress, nlohmann::ordered_json& stats) {
+  namespace fs = std::filesystem;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string& input = item.input;
+  BatchOutcome out{.index = item.index, .input = input, .output = output_of(item, s)};
+  out.bytes_in = file_size_or_zero(input);
+  try {
+    SceneReadSettings read = s.read;
+    read.quiet = true;  // the reader's warnings are printed here, off the bar
+    vrml1::ReadResult r = read_scene(input, read);
+    if (!s.read.quiet && !r.log.entries().empty()) {
+      bar.clear();
+      print_diagnostics(r.log.entries());
+    }
+    LodOptions drawn = options;
+    drawn.progress = progress;
+    LodResult result = generate_lod(r.scene, drawn);
+    bar.clear();
+    if (!s.read.quiet) {
+      std::vector<Diagnostic> show;
+      for (const auto& d : result.log.entries())
+        if (d.level != LogLevel::kMessage ||
+            std::find(shown.begin(), shown.end(), d.category) != shown.end())
+          show.push_back(d);
+      print_diagnostics(show);
+    }
+    const std::string& target = out.output;
+    const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
+    std::error_code ec;
+    if (!to.empty() && (fs::create_directories(to, ec), ec))
+      throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
+    if (input != "-" && target != "-") {
+      const auto moved =
+          scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
+      if (moved.rewritten && !s.read.quiet)
+        fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n", input,
+                   moved.rewritten, moved.rewritten == 1 ? "" : "s",
+                   to.empty() ? "." : to.string());
+    }
+    vrml1::write_vrml1_file(result.scene, target, s.write);
+    if (!s.read.silent) print_summary(input, result, !s.read.quiet);
+    stats = stats_json(input, result);
+    out.written = true;
+    out.bytes_out = file_size_or_zero(target);
+    out.shapes = result.shapes.size();
+    for (const auto& shape : result.shapes) {
+      if (shape.ranges.empty()) continue;
+      ++out.shapes_with_lod;
+      out.levels += shape.levels.size() + 1;
+    }
+    out.triangles = stats["triangles"].get<std::size_t>();
+  } catch (const DataError& e) {
+    bar.clear();
+    fmt::print(stderr, "error: {}{}\n",
+               std::string(e.what()).starts_with(input) ? "" : input + ": ", e.what());
+    out.error = e.what();
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+// The scenes of this run: the manifest's, then the command line's, then
+// the shard's slice of them.
+std::vector<BatchItem> items_of(const Settings& s, std::size_t& batch_size) {
+  std::vector<BatchItem> items;
+  if (!s.manifest.empty()) items = read_manifest(s.manifest);
+  for (auto& item : command_line_items(s.inputs, items.size())) items.push_back(std::move(item));
+  batch_size = items.size();
+  return select_shard(items, s.shard);
+}
+
+int run_lod(const Settings& s) {
+  if (s.inputs.empty() && s.manifest.empty())
+    throw CLI::ValidationError("SCENE", "give the scenes (or --manifest FILE)");
+  const bool batch = s.inputs.size() > 1 || !s.manifest.empty() || s.shard.count > 1;
+  if (batch && s.out_dir.empty())
+    throw CLI::ValidationError("--out-dir", "several scenes, a manifest or a shard need --out-dir");
+  if (!batch && s.output.empty() && s.out_dir.empty())
+    throw CLI::ValidationError("-o", "give -o OUT (or --out-dir DIR)");
+  std::vector<LogCategory> shown;
+  for (const auto& v : s.verbose) {
+    LogCategory c;
+    if (!parse_category(v, c))
+      throw CLI::ValidationError("--verbose", "unknown category '" + v + "'");
+    shown.push_back(c);
+  }
+  const LodOptions options = lod_options(s);
+  std::size_t batch_size = 0;
+  const std::vector<BatchItem> items = items_of(s, batch_size);
+  check_outputs(s, items);
+  // One bar: a scene's own, or the batch's by input bytes (with the time left).
+  std::size_t total_bytes = 0, done_bytes = 0;
+  for (const auto& item : items) total_bytes += file_size_or_zero(item.input);
+  std::optional<Progress> batch_bar;
+  if (items.size() > 1)
+    batch_bar.emplace(fmt::format("lod of {} scenes", items.size()), total_bytes,
+                      stderr_progress(s.read.quiet));
+  std::vector<BatchOutcome> outcomes;
+  nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();
+  for (const auto& item : items) {
+    const std::size_t size = file_size_or_zero(item.input);
+    std::optional<Progress> scene_bar;
+    ProgressCallback progress;
+    if (batch_bar) {
+      progress = [&, size](std::string_view, std::uint64_t done, std::uint64_t total) {
+        batch_bar->update(done_bytes + (total ? size * done / total : 0));
+      };
+    } else {
+      scene_bar.emplace(item.input == "-" ? "stdin" : item.input, 0, stderr_progress(s.read.quiet));
+      progress = scene_bar->callback();
+    }
+    nlohmann::ordered_json stats;
+    outcomes.push_back(
+        lod_one(item, s, options, shown, batch_bar ? *batch_bar : *scene_bar, progress, stats));
+    if (outcomes.back().written) all_stats.push_back(std::move(stats));
+    done_bytes += size;
+    if (batch_bar) batch_bar->update(done_bytes);
+  }
+  if (batch_bar) batch_bar->finish();
+  // Statistics of the scenes that were written; none when none was.
+  if (!s.stats.empty() && !all_stats.empty()) {
+    std::string text = (all_stats.size() == 1 ? all_stats[0] : all_stats).dump(2) + "\n";
+    write_file_atomic(s.stats, text);
+  }
+  if (!s.report.empty())
+    write_file_atomic(s.report,
+                      batch_report(s.manifest, batch_size, s.shard, outcomes).dump(2) + "\n");
+  const bool failed =
+      std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return !o.written; });
+  return failed ? 1 : 0;
+}
+
 }  // namespace
 
 void add_lod_command(CLI::App& app, Runner& run) {
@@ -189,14 +340,30 @@ void add_lod_command(CLI::App& app, Runner& run) {
   CLI::App* cmd =
       app.add_subcommand("lod", "Replace every shape of VRML 1.0 or Inventor scenes by LOD nodes");
   cmd->add_option("SCENE", s->inputs,
-                  "VRML 1.0 or Inventor files (- = stdin); Inventor is written as Inventor 2.1")
-      ->required();
+                  "VRML 1.0 or Inventor files (- = stdin); Inventor is written as Inventor 2.1");
   auto* out = cmd->add_option("-o,--output", s->output,
                               "Output file (- = stdout; .gz: gzip-compressed), for one scene");
   auto* dir = cmd->add_option(
       "--out-dir", s->out_dir,
       "Output folder, for several scenes; each keeps its input's name (x.wrl.gz stays compressed)");
   out->excludes(dir);
+  cmd->add_option("--manifest", s->manifest,
+                  "Batch: a file listing scenes, one path per line (relative to its folder; "
+                  "# comments); outputs mirror the listed relative paths under --out-dir");
+  cmd->add_option("--shard", s->shard_text,
+                  "Batch: process only shard I of N (I/N, from 0): the scenes whose place in the "
+                  "list is I modulo N")
+      ->check([s](const std::string& text) {
+        try {
+          s->shard = parse_shard(text);
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      });
+  cmd->add_option("--report", s->report,
+                  "Write the batch report (JSON: every scene's outcome, sizes, triangles, time) "
+                  "to this file; `lodforge report` merges the reports of shards");
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));
@@ -260,72 +427,7 @@ void add_lod_command(CLI::App& app, Runner& run) {
       ->check(CLI::NonNegativeNumber);
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
-  cmd->callback([s, &run] {
-    run = [s] {
-      if (s->inputs.size() > 1 && s->out_dir.empty())
-        throw CLI::ValidationError("--out-dir", "several scenes need --out-dir DIR");
-      if (s->inputs.size() == 1 && s->output.empty() && s->out_dir.empty())
-        throw CLI::ValidationError("-o", "give -o OUT (or --out-dir DIR)");
-      std::vector<LogCategory> shown;
-      for (const auto& v : s->verbose) {
-        LogCategory c;
-        if (!parse_category(v, c))
-          throw CLI::ValidationError("--verbose", "unknown category '" + v + "'");
-        shown.push_back(c);
-      }
-      LodOptions options = lod_options(*s);
-      check_outputs(*s);
-      int failures = 0;
-      nlohmann::ordered_json all_stats = nlohmann::ordered_json::array();
-      for (const auto& input : s->inputs) {
-        try {
-          vrml1::ReadResult r = read_scene(input, s->read);
-          LodResult result = [&] {
-            Progress bar(input == "-" ? "stdin" : input, 0, stderr_progress(s->read.quiet));
-            LodOptions drawn = options;
-            drawn.progress = bar.callback();
-            return generate_lod(r.scene, drawn);
-          }();
-          if (!s->read.quiet) {
-            std::vector<Diagnostic> show;
-            for (const auto& d : result.log.entries())
-              if (d.level != LogLevel::kMessage ||
-                  std::find(shown.begin(), shown.end(), d.category) != shown.end())
-                show.push_back(d);
-            print_diagnostics(show);
-          }
-          const std::string target = output_of(input, *s);
-          namespace fs = std::filesystem;
-          const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
-          std::error_code ec;
-          if (!to.empty() && (fs::create_directories(to, ec), ec))
-            throw DataError(
-                fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
-          if (input != "-" && target != "-") {
-            const auto moved =
-                scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
-            if (moved.rewritten && !s->read.quiet)
-              fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n",
-                         input, moved.rewritten, moved.rewritten == 1 ? "" : "s",
-                         to.empty() ? "." : to.string());
-          }
-          vrml1::write_vrml1_file(result.scene, target, s->write);
-          if (!s->read.silent) print_summary(input, result, !s->read.quiet);
-          all_stats.push_back(stats_json(input, result));
-        } catch (const DataError& e) {
-          fmt::print(stderr, "error: {}{}\n",
-                     std::string(e.what()).starts_with(input) ? "" : input + ": ", e.what());
-          ++failures;
-        }
-      }
-      // Statistics of the scenes that were written; none when none was.
-      if (!s->stats.empty() && !all_stats.empty()) {
-        std::string text = (all_stats.size() == 1 ? all_stats[0] : all_stats).dump(2) + "\n";
-        write_file_atomic(s->stats, text);
-      }
-      return failures ? 1 : 0;
-    };
-  });
+  cmd->callback([s, &run] { run = [s] { return run_lod(*s); }; });
 }
 
 }  // namespace lodforge::apps

@@ -105,6 +105,16 @@ ProgressCallback Progress::callback() {
   };
 }
 
+void Progress::clear() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (finished_ || !drawn_) return;
+  std::fputs("\r\033[K", options_.out);
+  std::fflush(options_.out);
+  drawn_ = false;
+  held_ = true;
+  last_draw_ = Clock::now();
+}
+
 void Progress::finish() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -131,7 +141,7 @@ void Progress::draw_if_due(bool only_changes) {
   const auto now = Clock::now();
   const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   if (seconds(now - start_) < options_.delay) return;
-  if (drawn_ && seconds(now - last_draw_) < options_.interval) return;
+  if ((drawn_ || held_) && seconds(now - last_draw_) < options_.interval) return;
   if (only_changes && drawn_ && done_.load(std::memory_order_relaxed) == drawn_done_ &&
       total_.load(std::memory_order_relaxed) == drawn_total_)
     return;
@@ -170,6 +180,7 @@ void Progress::draw(Clock::time_point now) {
   std::fputs(line.c_str(), options_.out);
   std::fflush(options_.out);
   drawn_ = true;
+  held_ = false;
   last_draw_ = now;
 }
 

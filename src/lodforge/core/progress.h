@@ -87,6 +87,9 @@ class Progress {
   void update(std::string_view stage, std::uint64_t done, std::uint64_t total);
   /// A callback that updates this bar (for the library's options).
   ProgressCallback callback();
+  /// Clears the line if a bar is drawn, so that the caller can print a line
+  /// of its own; the bar is drawn again by an update after `interval`.
+  void clear();
   /// Clears the line if a bar was drawn; later updates draw nothing.
   void finish();
   /// Whether anything was drawn.
@@ -108,6 +111,7 @@ class Progress {
   Clock::time_point start_, stage_start_, last_draw_;
   std::atomic<bool> drawn_{false};
   bool finished_ = false;
+  bool held_ = false;  // cleared by clear(): no drawing for an interval
   int last_percent_ = -1;
   std::uint64_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawing showed
   std::condition_variable wake_;

@@ -7,7 +7,7 @@
 #   --build-dir DIR  the Release build to use (default: build/ of the
 #                    repository; configured if it has no CMakeCache.txt)
 #   --list           print the sections and their commands, run nothing
-#   SECTION...       the sections to run (default: all, in the order below)
+#   SECTION...       the sections to run (default: all; --list names them)
 #
 # Only the targets the chosen sections need are built (-j2). Each section
 # prints `## SECTION`, then before each command the date (UTC), the commit,

@@ -217,7 +217,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     }
     LodOptions drawn = options;
     drawn.progress = progress;
-    LodResult result = generate_lod(r.scene, drawn);
+    LodResult result = generate_lod(std::move(r.scene), drawn);
     bar.clear();
     if (!s.read.quiet) {
       std::vector<Diagnostic> show;

@@ -173,57 +173,133 @@ FileBytes::~FileBytes() {
   if (map_) ::munmap(map_, map_size_);
 }
 
-void write_file_atomic(const std::string& path, std::string_view content) {
-  std::string compressed;
-  if (path != "-" && is_gzip_path(path)) {
-    compressed = gzip(content);
-    content = compressed;
+struct AtomicFileWriter::Impl {
+  std::string path;  // as given, for messages
+  std::filesystem::path target;
+  std::string temporary;
+  int fd = -1;
+  bool compress = false;
+  z_stream zs{};
+  std::string buffer;  // compressed output waiting to be written
+
+  ~Impl() {
+    if (compress) deflateEnd(&zs);
+    if (fd >= 0) {
+      ::close(fd);
+      ::unlink(temporary.c_str());
+    }
   }
-  if (path == "-") {
+
+  [[noreturn]] void fail(const char* what, int err) {
+    throw DataError(fmt::format("{}: {}: {}", path, what, std::strerror(err)));
+  }
+
+  void put(std::string_view bytes) {
+    if (path == "-") {
+      errno = 0;
+      std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      if (!std::cout)
+        throw DataError(fmt::format("cannot write to standard output: {}",
+                                    errno ? std::strerror(errno) : "write error"));
+      return;
+    }
+    for (std::size_t done = 0; done < bytes.size();) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        fail("write failed", errno);
+      }
+      done += static_cast<std::size_t>(n);
+    }
+  }
+
+  // Feeds `bytes` to the compressor (flush: Z_FINISH at the end) and writes
+  // what it gives.
+  void deflate_piece(std::string_view bytes, int flush) {
+    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+    zs.avail_in = static_cast<uInt>(bytes.size());
+    constexpr std::size_t kOut = std::size_t{1} << 16;
+    int rc = Z_OK;
+    do {
+      buffer.resize(kOut);
+      zs.next_out = reinterpret_cast<Bytef*>(buffer.data());
+      zs.avail_out = static_cast<uInt>(kOut);
+      rc = deflate(&zs, flush);
+      if (rc == Z_STREAM_ERROR) throw DataError(fmt::format("{}: gzip compression failed", path));
+      put(std::string_view(buffer.data(), kOut - zs.avail_out));
+    } while (zs.avail_out == 0 || (flush == Z_FINISH && rc != Z_STREAM_END));
+  }
+};
+
+AtomicFileWriter::AtomicFileWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  Impl& w = *impl_;
+  w.path = path;
+  if (path == "-") return;  // standard output, uncompressed
+  if (is_gzip_path(path)) {
+    // 15 + 16: the largest window, with a gzip header and trailer (zlib's deflateInit2).
+    if (deflateInit2(&w.zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) !=
+        Z_OK)
+      throw DataError("cannot start zlib");
+    w.compress = true;
+  }
+  // A link's target is replaced, so the temporary file goes beside it.
+  w.target = resolve_output_path(path);
+  const std::filesystem::path dir = w.target.has_parent_path() ? w.target.parent_path() : ".";
+  w.temporary = (dir / ("." + w.target.filename().string() + ".tmpXXXXXX")).string();
+  w.fd = mkstemp(w.temporary.data());
+  if (w.fd < 0) w.fail("cannot create", errno);
+}
+
+AtomicFileWriter::~AtomicFileWriter() = default;
+
+void AtomicFileWriter::write(std::string_view bytes) {
+  // avail_in is 32-bit: pieces of at most 1 GiB.
+  constexpr std::size_t kPiece = std::size_t{1} << 30;
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    const std::string_view piece = bytes.substr(at, kPiece);
+    if (impl_->compress)
+      impl_->deflate_piece(piece, Z_NO_FLUSH);
+    else
+      impl_->put(piece);
+  }
+}
+
+void AtomicFileWriter::commit() {
+  Impl& w = *impl_;
+  if (w.compress) w.deflate_piece({}, Z_FINISH);
+  if (w.path == "-") {
     errno = 0;
-    std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));
     std::cout.flush();
     if (!std::cout)
       throw DataError(fmt::format("cannot write to standard output: {}",
                                   errno ? std::strerror(errno) : "write error"));
     return;
   }
-  // A link's target is replaced, so the temporary file goes beside it.
-  const std::filesystem::path target = resolve_output_path(path);
-  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
-  int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw DataError(fmt::format("{}: cannot create: {}", path, std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < content.size()) {
-    ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      int err = errno;
-      ::close(fd);
-      ::unlink(tmpl.c_str());
-      throw DataError(fmt::format("{}: write failed: {}", path, std::strerror(err)));
-    }
-    done += static_cast<std::size_t>(n);
-  }
   // mkstemp makes the file 0600: a replaced file keeps its own mode, a new
   // one gets the usual mode of a new file.
   struct stat old {};
   mode_t mode = 0;
-  if (::stat(target.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
+  if (::stat(w.target.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
     mode = old.st_mode & 07777;
   } else {
     const mode_t mask = umask(0);
     umask(mask);
     mode = 0666 & ~mask;
   }
-  int err = ::fchmod(fd, mode) == 0 ? 0 : errno;
-  if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && std::rename(tmpl.c_str(), target.c_str()) != 0) err = errno;
+  int err = ::fchmod(w.fd, mode) == 0 ? 0 : errno;
+  if (::close(w.fd) != 0 && err == 0) err = errno;
+  w.fd = -1;
+  if (err == 0 && std::rename(w.temporary.c_str(), w.target.c_str()) != 0) err = errno;
   if (err != 0) {
-    ::unlink(tmpl.c_str());
-    throw DataError(fmt::format("{}: cannot write: {}", path, std::strerror(err)));
+    ::unlink(w.temporary.c_str());
+    throw DataError(fmt::format("{}: cannot write: {}", w.path, std::strerror(err)));
   }
+}
+
+void write_file_atomic(const std::string& path, std::string_view content) {
+  AtomicFileWriter out(path);
+  out.write(content);
+  out.commit();
 }
 
 }  // namespace lodforge

@@ -6,6 +6,7 @@
 /// gzip-compressed, so every writer of the toolkit writes gzip for such names.
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -55,6 +56,27 @@ std::string gzip(std::string_view data);
 
 /// True if `path` ends in ".gz" (any case): the name of a gzip file.
 bool is_gzip_path(std::string_view path);
+
+/// A file written in pieces, atomically: the streaming form of
+/// write_file_atomic, with the same rules ("-" is standard output, a ".gz"
+/// name is written gzip-compressed, links and modes, refused nodes). The
+/// pieces go to a temporary file beside the target, which commit() renames
+/// into place; destroyed without commit() (an exception on the way), the
+/// temporary file is removed and the target stays as it was. Throws
+/// DataError as write_file_atomic.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(const std::string& path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  void write(std::string_view bytes);
+  void commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// Writes `content` to `path` atomically ("-" writes to standard output,
 /// uncompressed, and flushes it). When `path` ends in ".gz" the file holds

@@ -133,12 +133,20 @@ class Pipeline {
  public:
   Pipeline(const scene::Scene& input, const LodOptions& options) : opt_(options) {
     std::unordered_map<const Node*, NodePtr> done;
-    // The output is in the input's language: an Inventor scene keeps its
-    // Inventor nodes, so it is written as Inventor 2.1 (whose LOD node has
-    // the fields of VRML 1.0's).
-    result_.scene.header =
-        scene::is_inventor_header(input.header) ? "#Inventor V2.1 ascii" : "#VRML V1.0 ascii";
+    set_header(input.header);
     for (const auto& r : input.roots) result_.scene.roots.push_back(scene::copy_subtree(r, done));
+  }
+  Pipeline(scene::Scene&& input, const LodOptions& options) : opt_(options) {
+    set_header(input.header);
+    result_.scene.roots = std::move(input.roots);
+  }
+
+  // The output is in the input's language: an Inventor scene keeps its
+  // Inventor nodes, so it is written as Inventor 2.1 (whose LOD node has the
+  // fields of VRML 1.0's).
+  void set_header(const std::string& input_header) {
+    result_.scene.header =
+        scene::is_inventor_header(input_header) ? "#Inventor V2.1 ascii" : "#VRML V1.0 ascii";
   }
 
   LodResult run() {
@@ -666,6 +674,10 @@ class Pipeline {
 
 LodResult generate_lod(const scene::Scene& scene, const LodOptions& options) {
   return Pipeline(scene, options).run();
+}
+
+LodResult generate_lod(scene::Scene&& scene, const LodOptions& options) {
+  return Pipeline(std::move(scene), options).run();
 }
 
 }  // namespace lodforge

@@ -121,5 +121,8 @@ struct LodResult {
 /// Runs the pipeline. The input scene is not modified. Throws DataError for a
 /// shape that cannot be read (index out of range, NaN coordinates: "line N: ...").
 LodResult generate_lod(const scene::Scene& scene, const LodOptions& options = {});
+/// The same, taking the scene over instead of copying it: for a caller that
+/// has no use for it afterwards (a big scene is then never in memory twice).
+LodResult generate_lod(scene::Scene&& scene, const LodOptions& options = {});
 
 }  // namespace lodforge

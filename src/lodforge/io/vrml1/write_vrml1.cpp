@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <functional>
 #include <iterator>
 #include <unordered_map>
 #include <unordered_set>
@@ -23,7 +24,12 @@ using scene::NodePtr;
 
 class Writer {
  public:
-  Writer(const WriteOptions& options, std::string& out) : opt_(options), out_(out) {}
+  /// Appends to `out`; with a `drain`, hands it the text whenever it holds
+  /// more than kDrainBytes (a node's start), so a big scene is never whole
+  /// in memory as text.
+  Writer(const WriteOptions& options, std::string& out,
+         std::function<void(std::string&)> drain = {})
+      : opt_(options), out_(out), drain_(std::move(drain)) {}
 
   void write(const scene::Scene& s) {
     for (const auto& r : s.roots) count_refs(r);
@@ -63,6 +69,7 @@ class Writer {
   }
 
   void write_node(const NodePtr& n, int depth) {
+    if (drain_ && out_.size() > kDrainBytes) drain_(out_);
     auto written = names_.find(n.get());
     if (written != names_.end()) {
       out_ += "USE ";
@@ -284,6 +291,8 @@ class Writer {
 
   const WriteOptions& opt_;
   std::string& out_;
+  static constexpr std::size_t kDrainBytes = std::size_t{1} << 20;
+  std::function<void(std::string&)> drain_;
   std::unordered_map<const Node*, std::size_t> refs_;
   std::unordered_map<const Node*, std::string> names_;    // shared nodes already written
   std::unordered_map<const Node*, std::size_t> pending_;  // USEs still to write
@@ -301,7 +310,14 @@ std::string write_vrml1(const scene::Scene& scene, const WriteOptions& options) 
 
 void write_vrml1_file(const scene::Scene& scene, const std::string& path,
                       const WriteOptions& options) {
-  write_file_atomic(path, write_vrml1(scene, options));
+  AtomicFileWriter file(path);
+  std::string text;
+  Writer(options, text, [&](std::string& t) {
+    file.write(t);
+    t.clear();
+  }).write(scene);
+  file.write(text);
+  file.commit();
 }
 
 }  // namespace lodforge::vrml1

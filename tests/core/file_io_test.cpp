@@ -166,3 +166,52 @@ TEST_F(FileBytesTest, AFifoIsReadThroughOnceNotMapped) {
 
 }  // namespace
 }  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+class AtomicFileWriterTest : public testing::TempDirTest {};
+
+TEST_F(AtomicFileWriterTest, PiecesMakeOneFileOnlyAtCommit) {
+  const std::string p = write("out.wrl", "old content\n");
+  {
+    AtomicFileWriter out(p);
+    for (int i = 0; i < 1000; ++i) out.write("piece " + std::to_string(i) + "\n");
+    EXPECT_EQ(read_file(p), "old content\n") << "nothing replaced before commit";
+    out.commit();
+  }
+  const std::string text = read_file(p);
+  EXPECT_TRUE(text.starts_with("piece 0\npiece 1\n"));
+  EXPECT_TRUE(text.ends_with("piece 999\n"));
+  EXPECT_EQ(fs::directory_iterator(dir_)->path().filename(), "out.wrl") << "no temporary left";
+}
+
+TEST_F(AtomicFileWriterTest, WithoutCommitTheTargetStaysAndNoTemporaryIsLeft) {
+  const std::string p = write("out.wrl", "old content\n");
+  try {
+    AtomicFileWriter out(p);
+    out.write("half a scene");
+    throw std::runtime_error("the writer fails on the way");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(read_file(p), "old content\n");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
+  EXPECT_EQ(entries, 1u);
+}
+
+TEST_F(AtomicFileWriterTest, GzipInPiecesIsTheGzipOfTheWhole) {
+  std::string whole;
+  AtomicFileWriter out(path("big.wrl.gz"));
+  for (int i = 0; i < 200000; ++i) {
+    const std::string piece = std::to_string(i * 7919 % 10007) + (i % 9 ? " " : "\n");
+    whole += piece;
+    out.write(piece);
+  }
+  out.commit();
+  EXPECT_EQ(read_file(path("big.wrl.gz")), whole);  // read_file inflates
+  EXPECT_EQ(FileBytes(path("big.wrl.gz")).view(), whole);
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -72,7 +72,8 @@ class SignedDistance {
 /// whose sign disagrees with a neighbour's gets an exact one (repeated until
 /// no sign changes). Fills stats' band_points, flooded_points and
 /// sign_repairs; reports "signs" (slabs of the lattice) to `progress`. The
-/// result depends neither on the threads nor on how work is split.
+/// result depends neither on the threads nor on how work is split. Throws
+/// DataError when the mesh's vertices are all at one point.
 Lattice make_mesh_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats,
                           const ProgressCallback& progress);
 

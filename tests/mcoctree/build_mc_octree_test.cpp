@@ -125,6 +125,32 @@ TEST(BuildMcOctree, BadInput) {
                std::invalid_argument);
 }
 
+// Data the build cannot use is a DataError that says what is wrong.
+TEST(BuildMcOctree, BadIndicesAndAttributesNameTheProblem) {
+  auto expect_error = [](auto&& input, const std::string& text) {
+    try {
+      build_mc_octree(input);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const DataError& e) {
+      EXPECT_THAT(e.what(), testing::HasSubstr(text));
+    }
+  };
+  auto index = test::make_tetrahedron();
+  index.triangles[2][1] = 4;
+  expect_error(index, "triangle 2 has vertex index 4 out of range (4 vertices)");
+  auto colours = test::make_tetrahedron();
+  colours.colors.assign(3, Vec3{1, 0, 0});
+  expect_error(colours, "3 colours for 4 vertices");
+  // A range scan whose grid refers to a point it does not have, or whose
+  // colours do not match its points.
+  RangeScan scan{.name = "s.ply", .cols = 2, .rows = 1, .grid = {0, 5}};
+  scan.points = {{0, 0, 0}, {1, 0, 0}};
+  expect_error(std::vector<RangeScan>{scan}, "s.ply: grid index 5 out of range (2 points)");
+  scan.grid = {0, 1};
+  scan.colors = {Rgb8{1, 2, 3}};
+  expect_error(std::vector<RangeScan>{scan}, "s.ply: 1 colours for 2 points");
+}
+
 // Coordinates out of the supported range, and a lattice past the memory
 // budget, are refused before the work (with the estimate).
 TEST(BuildMcOctree, RangeAndBudgetAreCheckedFirst) {

@@ -39,9 +39,10 @@ TriangleMesh awkward_mesh() {
 
 TEST(TriangleBvh, EqualsBruteForceOnRandomQueries) {
   TriangleMesh m = awkward_mesh();
-  for (int leaf : {1, 4, 8}) {
-    TriangleBvh bvh(m, {.leaf_size = leaf});
-    std::mt19937 rng(leaf);
+  for (int leaf : {1, 4, 8, -1, -4, -8}) {  // negative: the Morton build
+    TriangleBvh bvh(
+        m, {.leaf_size = std::abs(leaf), .build = leaf < 0 ? BvhBuild::kMorton : BvhBuild::kSah});
+    std::mt19937 rng(std::abs(leaf));
     std::uniform_real_distribution<float> coord(-3, 8);
     for (int i = 0; i < 2000; ++i) {
       Vec3 p{coord(rng), coord(rng), coord(rng)};
@@ -101,14 +102,16 @@ TEST(TriangleBvh, SearchEndsAtATriangleWithinTheStopDistance) {
 
 TEST(TriangleBvh, QueriesNearTheSurface) {
   TriangleMesh m = test::make_icosphere(4);
-  TriangleBvh bvh(m);
-  EXPECT_GT(bvh.node_count(), 1u);
-  EXPECT_LE(bvh.depth(), 60);
-  std::mt19937 rng(9);
-  std::normal_distribution<float> g(0, 1);
-  for (int i = 0; i < 2000; ++i) {
-    Vec3 p = normalized(Vec3{g(rng), g(rng), g(rng)}) * (1 + 0.01f * g(rng));
-    EXPECT_EQ(bvh.closest_point(p).distance_squared, brute_force(m, p)) << i;
+  for (BvhBuild build : {BvhBuild::kSah, BvhBuild::kMorton}) {
+    TriangleBvh bvh(m, {.build = build});
+    EXPECT_GT(bvh.node_count(), 1u);
+    EXPECT_LE(bvh.depth(), 60);
+    std::mt19937 rng(9);
+    std::normal_distribution<float> g(0, 1);
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 p = normalized(Vec3{g(rng), g(rng), g(rng)}) * (1 + 0.01f * g(rng));
+      EXPECT_EQ(bvh.closest_point(p).distance_squared, brute_force(m, p)) << i;
+    }
   }
 }
 
@@ -127,6 +130,10 @@ TEST(TriangleBvh, AllCentroidsEqualStillSplits) {
   TriangleBvh bvh(m, {.leaf_size = 2});
   EXPECT_LE(bvh.depth(), 12);
   EXPECT_FLOAT_EQ(bvh.closest_point({0.2f, 0.2f, 2}).distance_squared, 4);
+  // All Morton codes equal: halved.
+  TriangleBvh morton(m, {.leaf_size = 2, .build = BvhBuild::kMorton});
+  EXPECT_LE(morton.depth(), 12);
+  EXPECT_FLOAT_EQ(morton.closest_point({0.2f, 0.2f, 2}).distance_squared, 4);
 }
 
 TEST(TriangleBvh, NormalTieRulePrefersTheCloserNormal) {
@@ -143,6 +150,41 @@ TEST(TriangleBvh, NormalTieRulePrefersTheCloserNormal) {
   ClosestPoint c = bvh.closest_point({-1, -1, -1}, {-1, 0, 0});
   EXPECT_FLOAT_EQ(c.distance_squared, 3);
   EXPECT_EQ(bvh.normal_at(c), (Vec3{-1, 0, 0}));
+}
+
+// closest_point_lowest_index: the exact minimum distance, and among the
+// triangles at exactly that distance the lowest index, whatever the hint.
+TEST(TriangleBvh, LowestIndexTieRuleIgnoresTheHint) {
+  // A point at or straight off the cube's corner vertex is equally close to
+  // every triangle that shares the vertex.
+  TriangleMesh m = test::make_cube();
+  TriangleBvh bvh(m, {.leaf_size = 1});
+  for (Vec3 p : {Vec3{0, 0, 0}, Vec3{-1, -1, -1}, Vec3{2, 2, 2}}) {
+    std::uint32_t lowest = ClosestPoint::kNone;
+    const float expected = brute_force(m, p);
+    for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& f = m.triangles[t];
+      if (closest_point_on_triangle(p, m.positions[f[0]], m.positions[f[1]], m.positions[f[2]])
+              .distance_squared == expected)
+        lowest = std::min(lowest, t);
+    }
+    for (std::uint32_t hint = 0; hint <= m.triangles.size(); ++hint) {
+      const ClosestPoint c =
+          bvh.closest_point_lowest_index(p, hint < m.triangles.size() ? hint : ClosestPoint::kNone);
+      EXPECT_EQ(c.distance_squared, expected);
+      EXPECT_EQ(c.triangle, lowest) << hint;
+    }
+  }
+  // On random queries it agrees with brute force too.
+  TriangleMesh awkward = awkward_mesh();
+  TriangleBvh tree(awkward, {.build = BvhBuild::kMorton});
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-3, 8);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 p{coord(rng), coord(rng), coord(rng)};
+    const auto hint = std::uint32_t(rng() % awkward.triangles.size());
+    EXPECT_EQ(tree.closest_point_lowest_index(p, hint).distance_squared, brute_force(awkward, p));
+  }
 }
 
 TEST(TriangleBvh, NormalAtInterpolatesVertexNormals) {

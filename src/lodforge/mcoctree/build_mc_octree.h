@@ -42,7 +42,10 @@ struct McBuildOptions {
   /// mesh. The sign lattice takes one byte per lattice point of the mesh's
   /// box grown by a cell (at most (resolution + 3)^3: about 127 MB at 500).
   int resolution = 0;
-  int threads = 0;  ///< worker threads (distances, edge points, holes, areas); 0 = all cores
+  /// Worker threads (distances, edge points, holes, areas); 0 = all cores.
+  /// The build runs in a task arena of this size (the process's TBB settings
+  /// are left alone); the result is the same for any count.
+  int threads = 0;
   /// Meshes only (range scans are always capped where no scan saw the
   /// object). kOpen by default: the model does not invent surface the input
   /// lacks (a cap over a scan's unseen bottom would be the largest error of
@@ -97,8 +100,8 @@ struct McBuildResult {
 /// Builds the octree of `mesh` (triangles; lines are ignored).
 ///
 /// Corner signs: the exact closest surface point (metrics/
-/// closest_point_on_triangle; a cheap Morton-order hierarchy for the few
-/// points the band's triangle scan does not reach) and the side of it by the
+/// closest_point_on_triangle; metrics/triangle_bvh.h for the few points the
+/// band's triangle scan does not reach) and the side of it by the
 /// angle-weighted pseudo-normal
 /// (Baerentzen & Aanaes 2005: face, edge or vertex normal by where the closest
 /// point lies), computed in a band one cell wide around the triangles; the
@@ -115,10 +118,13 @@ struct McBuildResult {
 /// input's rims to within about a cell, at every level; closed inputs invent
 /// nothing and stay closed.
 ///
-/// Throws DataError for a mesh without triangles, with coordinates outside
-/// the range of check_coordinate_range (non-finite, huge or a tiny model),
-/// with all vertices at one point, or whose surface crosses no
-/// lattice edge; std::invalid_argument for a resolution out of range.
+/// Throws DataError for a mesh without triangles (or with only degenerate
+/// ones), with a triangle index out of range, with colours not one per
+/// vertex, with coordinates outside the range of check_coordinate_range
+/// (non-finite, huge or a tiny model), with all vertices at one point, or
+/// whose surface crosses no lattice edge, and when the build would take more
+/// than options.max_memory; std::invalid_argument for a resolution out of
+/// range.
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options = {});
 
 /// Builds the octree of range scans, merged without zippering in the world
@@ -140,8 +146,10 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
-/// size, a world coordinate outside the range of check_coordinate_range;
-/// std::invalid_argument for a resolution out of range.
+/// size, a grid index out of range, colours not one per point, a world
+/// coordinate outside the range of check_coordinate_range, and when the
+/// build would take more than options.max_memory; std::invalid_argument for
+/// a resolution out of range.
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
                               const McBuildOptions& options = {});
 

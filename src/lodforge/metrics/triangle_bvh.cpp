@@ -16,7 +16,16 @@
 // farther than the best triangle found so far. The exact distance to a
 // triangle comes from closest_point_on_triangle (Ericson's region method).
 //
-// Decision table for a node with n triangles:
+// The Morton build (BvhBuild::kMorton) is the LBVH of Lauterbach, Garland,
+// Sengupta, Luebke, Manocha, "Fast BVH Construction on GPUs", Eurographics
+// 2009: triangles sorted by the Morton code of their centroid, each node
+// split where the highest bit in which its triangles' codes differ changes,
+// so that a node's triangles lie in one octree cell and its children in two
+// halves of it. (A complete binary tree over the Morton order, cut at fixed
+// counts rather than at cell boundaries, has boxes spanning distant parts of
+// the mesh.)
+//
+// Decision table for a node with n triangles (SAH build):
 //   n <= leaf_size                         -> leaf
 //   centroids all equal / depth > kMaxSah  -> split at the median index / coordinate
 //   otherwise                              -> best SAH plane over all axes and bins
@@ -26,6 +35,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "lodforge/core/morton.h"
+#include "lodforge/core/radix_sort.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge {
@@ -83,7 +94,10 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh, const BvhOptions& options)
   order_.resize(n);
   for (std::uint32_t f = 0; f < n; ++f) order_[f] = f;
   nodes_.reserve(2 * n / options_.leaf_size + 1);
-  build(0, std::uint32_t(n), 1, centroid, lo, hi);
+  if (options_.build == BvhBuild::kMorton)
+    build_morton(centroid, lo, hi);
+  else
+    build(0, std::uint32_t(n), 1, centroid, lo, hi);
   corners_.resize(n);
   slot_.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -184,9 +198,67 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
   return index;
 }
 
-template <bool kPreferNormal>
+void TriangleBvh::build_morton(const std::vector<Vec3>& centroid, const std::vector<Vec3>& lo,
+                               const std::vector<Vec3>& hi) {
+  // Keys: the centroid's code (10 bits per axis over the centroids' box)
+  // above the triangle index, sorted by the code; the stable sort keeps
+  // triangles of one code in index order.
+  Box3 box;
+  for (const Vec3& c : centroid) box.add(c);
+  const Vec3 size = box.size();
+  const auto n = std::uint32_t(centroid.size());
+  std::vector<std::uint64_t> keyed(n), scratch(n);
+  for (std::uint32_t f = 0; f < n; ++f) {
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a) {
+      const float u = size[a] > 0 ? (centroid[f][a] - box.lo[a]) / size[a] : 0.f;
+      q[a] = std::uint32_t(std::clamp(u * 1023.f, 0.f, 1023.f));
+    }
+    keyed[f] = morton_code(q[0], q[1], q[2]) << 32 | f;
+  }
+  radix_sort(keyed, scratch, 32, 62);
+  for (std::uint32_t i = 0; i < n; ++i) order_[i] = std::uint32_t(keyed[i]);
+  build_morton(0, n, 1, keyed, lo, hi);
+}
+
+// Node over keyed[begin, end): a leaf of at most leaf_size triangles, else
+// split at the first key whose code has the highest differing bit set (all
+// codes equal: halved). The depth is at most 30 code bits plus log2(#F)
+// halvings, within the query's stack.
+std::uint32_t TriangleBvh::build_morton(std::uint32_t begin, std::uint32_t end, int depth,
+                                        const std::vector<std::uint64_t>& keyed,
+                                        const std::vector<Vec3>& lo, const std::vector<Vec3>& hi) {
+  depth_ = std::max(depth_, depth);
+  const auto index = std::uint32_t(nodes_.size());
+  nodes_.push_back({});
+  if (end - begin <= std::uint32_t(options_.leaf_size)) {
+    Box3 box;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      box.add(lo[order_[i]]);
+      box.add(hi[order_[i]]);
+    }
+    nodes_[index] = {box.lo, box.hi, begin, end - begin};
+    return index;
+  }
+  const std::uint64_t first = keyed[begin] >> 32, last = keyed[end - 1] >> 32;
+  std::uint32_t split = begin + (end - begin) / 2;
+  if (first != last) {
+    const std::uint64_t bit = std::uint64_t{1} << (63 - __builtin_clzll(first ^ last));
+    const std::uint64_t prefix = (last & ~(bit - 1)) << 32;  // the first key of the upper half
+    split = std::uint32_t(std::lower_bound(keyed.begin() + begin, keyed.begin() + end, prefix) -
+                          keyed.begin());
+  }
+  build_morton(begin, split, depth + 1, keyed, lo, hi);
+  const std::uint32_t right = build_morton(split, end, depth + 1, keyed, lo, hi);
+  const Node &a = nodes_[index + 1], &b = nodes_[right];
+  nodes_[index] = {min(a.lo, b.lo), max(a.hi, b.hi), right, 0};
+  return index;
+}
+
+template <TriangleBvh::Tie kRule>
 ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t hint,
                                 float stop_squared) const {
+  constexpr bool kPreferNormal = kRule == Tie::kNormal;
   ClosestPoint best;
   if (nodes_.empty()) return best;
   float best_score = 0;
@@ -217,7 +289,9 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t
         }
       }
       nearest = std::min(nearest, tp.distance_squared);
-    } else if (tp.distance_squared < best.distance_squared) {
+    } else if (tp.distance_squared < best.distance_squared ||
+               (kRule == Tie::kLowestIndex && tp.distance_squared == best.distance_squared &&
+                order_[i] < best.triangle)) {
       best = {tp.point, order_[i], tp.barycentric, tp.distance_squared};
     }
   };
@@ -267,17 +341,21 @@ ClosestPoint TriangleBvh::query(const Vec3& p, const Vec3& normal, std::uint32_t
 }
 
 ClosestPoint TriangleBvh::closest_point(const Vec3& p, std::uint32_t hint) const {
-  return query<false>(p, {}, hint);
+  return query<Tie::kFirst>(p, {}, hint);
 }
 
 ClosestPoint TriangleBvh::closest_point_unless_within(const Vec3& p, float stop_squared,
                                                       std::uint32_t hint) const {
-  return query<false>(p, {}, hint, stop_squared);
+  return query<Tie::kFirst>(p, {}, hint, stop_squared);
 }
 
 ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal,
                                         std::uint32_t hint) const {
-  return query<true>(p, normal, hint);
+  return query<Tie::kNormal>(p, normal, hint);
+}
+
+ClosestPoint TriangleBvh::closest_point_lowest_index(const Vec3& p, std::uint32_t hint) const {
+  return query<Tie::kLowestIndex>(p, {}, hint);
 }
 
 Vec3 TriangleBvh::normal_at(const ClosestPoint& at) const {

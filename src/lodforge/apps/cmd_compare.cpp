@@ -1,6 +1,6 @@
 // `lodforge compare A B [--json] [--samples N] [--seed S] [--threads T]
 //                       [--smooth-normals] [--colored OUT.ply|OUT.png] [--color-max X]`:
-// Metro-style deviation between two surfaces (SPEC §4, seed 000 §5.2): A is
+// Metro-style deviation between two surfaces (the LODCreator thesis §5.2): A is
 // the reference (the original), B the approximation. JSON goes to stdout with
 // --json, human text to stderr otherwise.
 //
@@ -10,7 +10,7 @@
 // rms, variance, max/mean/rms_pct_diag, normal {samples, mean, max,
 // variance}, color {samples, mean, max, rms} when both have vertex colours:
 // Euclidean RGB distance with channels in [0,1]), normal (= a_to_b.normal: samples on the
-// reference, as in seed 000), normals_from ("faces" or "vertices"), colored {file, scale_max}.
+// reference, as in the LODCreator thesis), normals_from ("faces" or "vertices"), colored {file, scale_max}.
 // Distances are in the meshes' units, angles in radians.
 #include <fmt/core.h>
 

@@ -1,5 +1,5 @@
 // `lodforge lod SCENE... -o OUT | --out-dir DIR [options]`: the main job —
-// every shape of a VRML 1.0 scene becomes an LOD node (SPEC §2, §6).
+// every shape of a VRML 1.0 scene becomes an LOD node.
 #include <fmt/core.h>
 
 #include <chrono>

@@ -3,7 +3,7 @@
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco scan MESH --views K -o DIR [--resolution N]`
-// The marching-cube octree (SPEC §5): build once, extract any level later.
+// The marching-cube octree: build once, extract any level later.
 // Human text goes to stderr; `info --json` prints JSON on stdout.
 #include <fmt/core.h>
 

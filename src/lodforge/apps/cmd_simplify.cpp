@@ -1,6 +1,6 @@
 // `lodforge simplify MESH -o OUT (--ratio R | --triangles N) [--error E]
 //                    [--method cluster|decimate|qem] [--format F] [--ascii] [--json]`:
-// simplifies one surface (SPEC §3, §6; issue 4 item 6) with one of the three
+// simplifies one surface with one of the three
 // simplifiers of simplify/ and writes the result as a mesh file.
 //
 // Targets (decision table; usage errors exit 2, checked before any file is read):

@@ -1,4 +1,4 @@
-// The LODCreator pipeline (original thesis §4, Figure 4.1; SPEC §2):
+// The LODCreator pipeline (original thesis §4, Figure 4.1):
 //  1. copy the scene (sharing kept), find the camera height angle;
 //  2. copy each shared group for every further property context it is used
 //     in (unshare_contexts.h); traverse the scene and collect every shape

@@ -1,5 +1,5 @@
 #pragma once
-/// The scene LOD pipeline (SPEC §2, the original LODCreator): every
+/// The scene LOD pipeline (the original LODCreator): every
 /// IndexedFaceSet, IndexedLineSet, Cone, Cylinder, Sphere and Cube of a VRML
 /// 1.0 scene (and of an Open Inventor scene, with its FaceSets, strip sets,
 /// QuadMeshes and LineSets, output with an `#Inventor V2.1 ascii` header)

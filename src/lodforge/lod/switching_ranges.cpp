@@ -1,4 +1,4 @@
-// Switching ranges from screen-space error (the original thesis §4.2; SPEC §2).
+// Switching ranges from screen-space error (the original thesis §4.2).
 // A length eps at distance d covers eps / (2 d tan(alpha/2)) of the screen
 // height; setting that to p and adding the bounding radius gives d.
 #include "lodforge/lod/switching_ranges.h"

@@ -1,5 +1,5 @@
 #pragma once
-/// Switching distances of LOD levels from their geometric error (SPEC §2):
+/// Switching distances of LOD levels from their geometric error:
 /// level l may be shown beyond the distance at which its error, seen by the
 /// camera, covers at most a fraction p of the screen height:
 ///

@@ -20,7 +20,7 @@ enum class McHoles {
   kCapped  ///< closed across each hole (a cap about midway between inside and outside)
 };
 
-/// How the priority numbering orders the expansions (SPEC §5).
+/// How the priority numbering orders the expansions.
 enum class McPriorityMetric {
   /// The thesis's LOD metric: area of the children's triangulation minus the
   /// node's own (its magnitude).
@@ -51,7 +51,7 @@ struct McBuildOptions {
   /// lacks (a cap over a scan's unseen bottom would be the largest error of
   /// every level); kCapped gives a closed (watertight) model.
   McHoles holes = McHoles::kOpen;
-  /// The priority metric; kArea by default, as the thesis and SPEC §5 define it.
+  /// The priority metric; kArea by default, as the thesis defines it.
   McPriorityMetric metric = McPriorityMetric::kArea;
   /// true (default): a coarse level's edge point is a vertex of its own, the
   /// finest crossing its edge picks moved along its normal (by at most a

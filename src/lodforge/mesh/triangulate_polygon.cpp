@@ -12,7 +12,7 @@
 // any other by first-ear clipping with a grid of the corners that can block
 // an ear (GridEarClipper).
 //
-// Quads follow SPEC §2 (the original LODCreator rule):
+// Quads follow the original LODCreator rule:
 //
 //   quad is ...                         | result
 //   ------------------------------------+----------------------------------------

@@ -3,7 +3,7 @@
 ///
 /// The polygon may be concave and non-planar: it is projected onto the plane
 /// of its Newell normal and triangulated there by ear clipping. Quadrilaterals
-/// follow the quad rule of SPEC §2. The output triangles are corner numbers
+/// follow the quad rule of the original LODCreator. The output triangles are corner numbers
 /// (0..n-1, not vertex indices), so that a caller with per-corner attributes
 /// (OBJ v/vt/vn, VRML indexed bindings) can map them back itself.
 #include <cstdint>
@@ -17,7 +17,7 @@ namespace lodforge {
 
 struct TriangulateOptions {
   /// A convex quad bent by more than this angle (radians) between the two
-  /// triangles of either diagonal is split; default 10 degrees (SPEC §2).
+  /// triangles of either diagonal is split; default 10 degrees.
   float quad_split_angle = 0.174533f;
   /// false (`--no-quads`): never report a quad as kept.
   bool keep_quads = true;

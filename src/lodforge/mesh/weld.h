@@ -1,6 +1,6 @@
 #pragma once
 /// Merging of coincident vertices ("welding"), the cure for the doublets of
-/// real files (SPEC §2: coordinates are de-duplicated) and for STL's triangle
+/// real files (coordinates are de-duplicated, as in the LODCreator) and for STL's triangle
 /// soup.
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The deviation colour scale of seed 000 (§5.2, Figure 5.16, as in M. Roy's
+// The deviation colour scale of the LODCreator thesis (§5.2, Figure 5.16, as in M. Roy's
 // Mesh comparison tool): a two-segment linear ramp through the RGB primaries,
 //   t = value / max in [0, 1/2]: blue  -> green, (0, 2t, 1 - 2t)
 //   t             in [1/2, 1]: green -> red,   (2t - 1, 2 - 2t, 0)

@@ -1,6 +1,6 @@
 #pragma once
 /// Per-vertex colours showing where a deviation is large, on the colour scale
-/// of seed 000 (Figure 5.16): blue = 0, green = half the maximum, red = the
+/// of the LODCreator thesis (Figure 5.16): blue = 0, green = half the maximum, red = the
 /// maximum, linear in between.
 #include <array>
 #include <span>

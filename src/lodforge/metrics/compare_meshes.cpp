@@ -1,6 +1,6 @@
 // Mesh comparison after Metro: P. Cignoni, C. Rocchini, R. Scopigno, "Metro:
 // measuring error on simplified surfaces", Computer Graphics Forum 17(2),
-// 1998, with the measures of seed 000 §5.2 (after M. Roy's Mesh comparison
+// 1998, with the measures of the LODCreator thesis §5.2 (after M. Roy's Mesh comparison
 // tool): for samples p on S1, e(p, S2) = min over q in S2 of |p - q|; the
 // one-sided distance is the max of e, Hausdorff the larger of the two
 // one-sided distances, and mean / variance are taken over the samples. The

@@ -1,6 +1,6 @@
 #pragma once
 /// Metro-style measurement of how far two surfaces are apart: the geometric
-/// and normal deviation of seed 000 §5.2 (definitions 5.2.1-5.2.8).
+/// and normal deviation of the LODCreator thesis §5.2 (definitions 5.2.1-5.2.8).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -22,7 +22,7 @@ struct CompareOptions {
   std::size_t edge_samples = 0;  ///< samples along edges per direction (0: none)
   bool per_vertex = true;        ///< fill CompareResult::vertex_deviation
   /// Give a mesh without vertex normals the area-weighted average of its face
-  /// normals at each vertex (seed 000 §5.2.2: "vertex normals are estimated
+  /// normals at each vertex (the LODCreator thesis §5.2.2: "vertex normals are estimated
   /// averaging face normals in the vertex neighbourhood") instead of comparing
   /// face normals. Smooth normals measure the shape's orientation without the
   /// facet noise of scanned meshes.

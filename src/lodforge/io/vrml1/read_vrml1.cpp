@@ -584,6 +584,20 @@ class Parser {
                              Lexer::describe(t)));
   }
 
+  // A long array grows in one allocation instead of about log2(n) copies:
+  // after its first kSampleValues values, the values are reserved that the
+  // text up to the next ']' holds at the bytes per value seen so far (a
+  // guess; a wrong one costs only growth as usual).
+  static constexpr std::size_t kSampleValues = 4096;
+  template <class T>
+  void reserve_for_rest(std::vector<T>& values, const char* start) {
+    const std::string_view rest = lex_.rest();
+    const std::size_t close = rest.find(']');
+    if (close == std::string_view::npos) return;
+    const double per_value = double(lex_.cursor() - start) / double(values.size());
+    values.reserve(values.size() + std::size_t(double(close) / per_value * 1.02) + 16);
+  }
+
   FieldValue parse_value(FieldType type, const Token& field,
                          const std::vector<std::string>* enum_names) {
     FieldValue v;
@@ -601,9 +615,10 @@ class Parser {
       int n = scene::float_components(type.kind);
       float f;
       std::size_t count = 0;
+      const char* start = lex_.cursor();
       while (lex_.read_float(f, true)) {
         v.floats.push_back(f);
-        ++count;
+        if (++count == kSampleValues) reserve_for_rest(v.floats, start);
       }
       if (!lex_.accept_char(']', true)) bad_value(field, type, "a number or ']'");
       if (count % static_cast<std::size_t>(n) != 0)
@@ -613,7 +628,11 @@ class Parser {
     }
     if (type.kind == FieldKind::kLong || type.kind == FieldKind::kUInt32) {
       std::int32_t i;
-      while (lex_.read_int(i, true)) v.ints.push_back(i);
+      const char* start = lex_.cursor();
+      while (lex_.read_int(i, true)) {
+        v.ints.push_back(i);
+        if (v.ints.size() == kSampleValues) reserve_for_rest(v.ints, start);
+      }
       if (!lex_.accept_char(']', true)) bad_value(field, type, "an integer or ']'");
       return v;
     }

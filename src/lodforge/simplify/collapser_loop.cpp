@@ -686,9 +686,9 @@ std::vector<std::uint8_t> Collapser::partition(int parts) const {
 /// common cost limit that grows from round to round, until the triangles
 /// without a seam corner are down to their share of regions::goal(); a region
 /// never goes below its share of the target. (Counting the seams' triangles
-/// too would drive the interiors far below the target, since the seams stay:
-/// on the bunny that cost 10x in mean deviation.) run() then continues on the whole mesh (seams
-/// included) from a new queue. The regions and rounds depend on the mesh and target only, so the
+/// too would drive the interiors far below the target, since the seams
+/// stay.) run() then continues on the whole mesh (seams included) from a new
+/// queue. The regions and rounds depend on the mesh and target only, so the
 /// result does not depend on the thread count.
 void Collapser::run_regions(std::size_t target) {
   const std::size_t np = vx_.size();

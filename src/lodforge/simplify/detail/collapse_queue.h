@@ -50,7 +50,7 @@ using EdgeHeap = IndexedHeap<HeapEntry, HeapEntryTraits>;
 /// bits, so a bucket spans a few percent of cost); a push beyond the current
 /// bucket is an append, and only the current bucket is kept in heap order,
 /// so the heap holds a few hundred entries instead of all of them and stale
-/// entries (see run()) cost an append and a pop in that small heap. The order
+/// entries (see Collapser::drain) cost an append and a pop in that small heap. The order
 /// stays exact: a push into the current bucket or below goes into the heap.
 class CollapseQueue {
  public:

@@ -24,7 +24,7 @@
 namespace lodforge {
 namespace {
 
-/// Larger of the two one-sided mean deviations (issue 4's "mean deviation").
+/// Larger of the two one-sided mean deviations (the "mean deviation" the quality targets use).
 double mean_deviation(const CompareResult& c) {
   return std::max(c.a_to_b.mean, c.b_to_a.mean);
 }

@@ -1,6 +1,6 @@
 // Vertex decimation after W. J. Schroeder, J. A. Zarge, W. E. Lorensen,
 // "Decimation of Triangle Meshes", SIGGRAPH 1992, as the original tool used it
-// (seed 000 §3.1.2, §4.1.2), with the error accumulation of W. J. Schroeder,
+// (the LODCreator thesis §3.1.2, §4.1.2), with the error accumulation of W. J. Schroeder,
 // "A Topology Modifying Progressive Decimation Algorithm", IEEE Visualization
 // 1997 (each triangle carries the distances of the vertices removed beneath it).
 //

@@ -92,7 +92,7 @@ struct VertexDecimationOptions {
   SimplifyTarget target;
   /// Dihedral angle (radians, between the normals of two adjacent triangles)
   /// above which an edge is a feature edge. 1.2 rad (69 degrees) is the value
-  /// of the original tool's dialog (seed 000, Figure A.12; the scan reads
+  /// of the original tool's dialog (the LODCreator thesis, Figure A.12; the scan reads
   /// "IU-1 2 radians", which we take for 1.2).
   float feature_angle = 1.2f;
   /// true: interior-edge and corner vertices are never removed. false:

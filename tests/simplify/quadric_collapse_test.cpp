@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <string>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/adjacency.h"
@@ -23,7 +24,7 @@
 namespace lodforge {
 namespace {
 
-/// Larger of the two one-sided mean deviations (issue 4's "mean deviation").
+/// Larger of the two one-sided mean deviations (the "mean deviation" the quality targets use).
 double mean_deviation(const CompareResult& c) {
   return std::max(c.a_to_b.mean, c.b_to_a.mean);
 }
@@ -296,6 +297,25 @@ TEST(QuadricCollapse, BadDataThrows) {
   TriangleMesh n = test::make_tetrahedron();
   n.positions[0].x = std::nanf("");
   EXPECT_THROW(quadric_collapse(n, {.target = {.ratio = 0.5f}}), DataError);
+}
+
+// The message names what is wrong, as for the other simplifiers.
+TEST(QuadricCollapse, BadDataMessageNamesTheProblem) {
+  auto message = [](const TriangleMesh& m) -> std::string {
+    try {
+      quadric_collapse(m, {.target = {.ratio = 0.5f}});
+    } catch (const DataError& e) {
+      return e.what();
+    }
+    return "no exception";
+  };
+  TriangleMesh line = test::make_tetrahedron();
+  line.lines.push_back({0, 7});
+  EXPECT_NE(message(line).find("line index 7 out of range"), std::string::npos) << message(line);
+  TriangleMesh nan = test::make_tetrahedron();
+  nan.positions[2].y = std::nanf("");
+  EXPECT_NE(message(nan).find("vertex 2 has a coordinate that is not finite"), std::string::npos)
+      << message(nan);
 }
 
 // The result does not depend on the model's unit: scaled by 2^40 or 2^-40

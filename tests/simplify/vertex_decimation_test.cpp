@@ -480,7 +480,7 @@ TEST(VertexDecimation, TriangleSoupOfOneSphere) {
   EXPECT_EQ(mesh_topology_report(r.mesh).euler_characteristic(), 2);
 }
 
-// The bunny of the thesis (seed 000 §5.5, Table 5.7): the chain's levels
+// The bunny of the thesis (the LODCreator thesis §5.5, Table 5.7): the chain's levels
 // closest to 50 %, 90 % and 99 % reduction must have a smaller mean deviation
 // (max of the two one-sided means, compare_meshes defaults) than the original
 // tool's vertex decimation: 1.45e-5 m, 1.09e-4 m, 7.20e-4 m. No folded

@@ -97,8 +97,8 @@ struct QuadricCollapseOptions {
 /// index, `face_map` each triangle's original triangle index. Stops early, with
 /// the reason in `stop_reason`/`stop_detail`, when no allowed collapse is left
 /// or the error budget forbids all that remain.
-/// Throws DataError when a triangle index is out of range or a used
-/// coordinate is not finite.
+/// Throws DataError, naming the problem, when a triangle or line index is out
+/// of range or a coordinate a triangle or line uses is not finite.
 SimplifyResult quadric_collapse(const TriangleMesh& mesh,
                                 const QuadricCollapseOptions& options = {});
 

@@ -1,6 +1,6 @@
 // Vertex decimation after W. J. Schroeder, J. A. Zarge, W. E. Lorensen,
 // "Decimation of Triangle Meshes", SIGGRAPH 1992, as the original tool used it
-// (seed 000 §3.1.2, §4.1.2), with the error accumulation of W. J. Schroeder,
+// (the LODCreator thesis §3.1.2, §4.1.2), with the error accumulation of W. J. Schroeder,
 // "A Topology Modifying Progressive Decimation Algorithm", IEEE Visualization
 // 1997 (each triangle carries the distances of the vertices removed beneath it).
 //
@@ -31,21 +31,22 @@
 #include <limits>
 #include <memory>
 #include <string>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "lodforge/mesh/weld.h"
+#include "lodforge/simplify/detail/loop_split.h"
+#include "lodforge/simplify/indexed_heap.h"
 #include "lodforge/simplify/regions.h"
 
 namespace lodforge {
 namespace {
 
-/// Loop vertices of a fan: n for a ring, n + 1 for an open fan.
-constexpr int kMaxLoop = static_cast<int>(kMaxDecimationValence) + 1;
+using detail::decimation::kMaxLoop;
+using detail::decimation::Side;
+using detail::decimation::Tri8;
+using detail::decimation::Triangulation;
 /// A new triangle is degenerate if the sine of its angle at the first corner is
 /// below this; it folds if its unit normal has less than this along the
 /// average-plane normal.
@@ -127,8 +128,6 @@ struct Corner {
   Vec3 pa;      // position of a (positions never change: fans read no other vertex)
 };
 
-using Tri8 = std::array<std::uint8_t, 3>;
-
 /// The new triangles of a queued vertex's plan (small holes only), so that
 /// its removal need not re-triangulate: the fan has not changed since (else
 /// the vertex would be dirty and re-evaluated first: see Decimator::run),
@@ -183,112 +182,22 @@ struct alignas(32) TriangleState {
   bool alive() const { return v[0] != kNone; }
 };
 
-/// A queued vertex. Removal order: smallest priority first, ties by index.
-struct HeapEntry {
+/// A queued vertex. Removal order: smallest priority first, ties by index
+/// (a total order, so the queue pops the same order however it was built).
+struct QueuedVertex {
   float d;
   std::uint32_t v;
-  bool before(const HeapEntry& o) const { return d != o.d ? d < o.d : v < o.v; }
 };
-
-/// 4-ary min-heap of vertices with their position in it, so that a vertex's
-/// priority is updated in place (the heap holds each candidate once, no stale
-/// entries): it pops the same order as a lazy heap with versioned entries.
-/// (The positions are an array of their own: a sift moves several entries,
-/// and their vertices' records are further apart than their positions.)
-class VertexHeap {
- public:
-  static constexpr std::uint32_t kArity = 4;  // 8 was slower (more compares, no fewer misses)
-  void init(std::size_t vertices) {
-    heap_.clear();
-    pos_.assign(vertices, kNone);
+struct QueuedVertexTraits {
+  static constexpr bool kIndexed = true;
+  static bool before(const QueuedVertex& a, const QueuedVertex& b) {
+    return a.d != b.d ? a.d < b.d : a.v < b.v;
   }
-  /// The priority v is queued under (v must be queued).
-  float priority(std::uint32_t v) const { return heap_[pos_[v]].d; }
-  bool empty() const { return heap_.empty(); }
-  bool contains(std::uint32_t v) const { return pos_[v] != kNone; }
-  std::uint32_t top() const { return heap_[0].v; }
-  float top_priority() const { return heap_[0].d; }
-  /// Start fetching what set(v, ...) or erase(v) reads first: v's position.
-  void prefetch_position(std::uint32_t v) const { __builtin_prefetch(&pos_[v]); }
-  void set(std::uint32_t v, float d) {
-    std::uint32_t i = pos_[v];
-    if (i == kNone) {
-      i = static_cast<std::uint32_t>(heap_.size());
-      heap_.push_back({d, v});
-      up(i);
-    } else {
-      float old = heap_[i].d;
-      heap_[i].d = d;
-      if (d < old)
-        up(i);
-      else
-        down(i);
-    }
-  }
-  void erase(std::uint32_t v) {
-    std::uint32_t i = pos_[v];
-    if (i == kNone) return;
-    pos_[v] = kNone;
-    HeapEntry last = heap_.back();
-    heap_.pop_back();
-    if (i == heap_.size()) return;
-    heap_[i] = last;
-    pos_[last.v] = i;
-    if (i > 0 && last.before(heap_[(i - 1) / kArity]))
-      up(i);
-    else
-      down(i);
-  }
-
- private:
-  void up(std::uint32_t i) {
-    HeapEntry e = heap_[i];
-    while (i > 0) {
-      std::uint32_t p = (i - 1) / kArity;
-      if (!e.before(heap_[p])) break;
-      heap_[i] = heap_[p];
-      pos_[heap_[i].v] = i;
-      i = p;
-    }
-    heap_[i] = e;
-    pos_[e.v] = i;
-  }
-  void down(std::uint32_t i) {
-    HeapEntry e = heap_[i];
-    const auto size = static_cast<std::uint32_t>(heap_.size());
-    for (;;) {
-      std::uint32_t first = kArity * i + 1;
-      if (first >= size) break;
-      std::uint32_t c = first, end = std::min(first + kArity, size);
-      for (std::uint32_t k = first + 1; k < end; ++k)
-        if (heap_[k].before(heap_[c])) c = k;
-      if (!heap_[c].before(e)) break;
-      heap_[i] = heap_[c];
-      pos_[heap_[i].v] = i;
-      i = c;
-    }
-    heap_[i] = e;
-    pos_[e.v] = i;
-  }
-  std::vector<HeapEntry> heap_;
-  std::vector<std::uint32_t> pos_;  // index in heap_, kNone if not queued
+  static std::uint32_t id(const QueuedVertex& e) { return e.v; }
 };
-
-/// One polygon to re-triangulate: the whole loop, or one side of a feature line.
-struct Side {
-  int m = 0;                                   // polygon vertices
-  std::array<std::uint32_t, kMaxLoop> poly{};  // mesh vertices, loop order
-  std::array<Vec3, kMaxLoop> p{};              // their positions
-  // tris[j] had polygon edge (j, j+1): m of them for a ring, m - 1 otherwise.
-  std::array<std::uint32_t, kMaxLoop> tris{};
-  int ntris = 0;
-  Vec3 normal;  // sum of the side triangles' cross products, then its unit vector
-  // Polygon vertices in the average plane (orthonormal u, w with u x w =
-  // normal, origin poly[0]): the split-plane tests are 2D orientation tests.
-  // Three more entries: the split search reads them four at a time.
-  std::array<float, kMaxLoop + 3> x{}, y{};
-  std::array<float, kMaxLoop + 3> px{}, py{}, pz{};  // p, component-wise
-};
+/// Each candidate once, re-keyed in place when its plan changes (no stale
+/// entries).
+using VertexHeap = detail::IndexedHeap<QueuedVertex, QueuedVertexTraits>;
 
 /// A planned removal: the fan, its sides and their new triangles (polygon
 /// indices; side s owns tris[side_end[s-1] .. side_end[s])).
@@ -371,9 +280,13 @@ class Decimator {
   Keep plan(std::uint32_t v, Plan& plan, bool final, bool cached = false,
             const VertexHeap* queue = nullptr) const;
   bool edge_exists(std::uint32_t a, std::uint32_t b) const;
-  Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const;
-  bool split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
-                  bool final, bool check_edges = false, bool top = false) const;
+  Keep triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const {
+    const Triangulation t = detail::decimation::triangulate_side(
+        side, out, final, [this](std::uint32_t a, std::uint32_t b) { return edge_exists(a, b); });
+    return t == Triangulation::kDone   ? Keep::kCandidate
+           : t == Triangulation::kFlat ? Keep::kFold
+                                       : Keep::kNoSplit;
+  }
   std::uint32_t attribute_vertex(std::uint32_t t, std::uint32_t v) const {
     const TriangleState& f = triangles_[t];
     return f.a[f.v[0] == v ? 0 : f.v[1] == v ? 1 : 2];
@@ -454,7 +367,7 @@ void Decimator::evaluate_all() {
   // A plan reads the mesh only and writes its vertex's own state: in
   // parallel (at the start a third of all plans of a long run), queued in
   // vertex order afterwards, as one thread would.
-  seq_.heap.init(nv);
+  seq_.heap.reset(nv);
   std::vector<float> priority(nv, 0.0f);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(nv), 2048),
                     [&](const tbb::blocked_range<std::uint32_t>& r) {
@@ -473,7 +386,7 @@ void Decimator::evaluate_all() {
     if (vertices_[v].corners.empty()) continue;
     ++seq_.live_vertices;
     vertices_[v].dirty = 0;
-    if (vertices_[v].keep == Keep::kCandidate) seq_.heap.set(v, priority[v]);
+    if (vertices_[v].keep == Keep::kCandidate) seq_.heap.update({priority[v], v});
   }
 }
 
@@ -507,37 +420,6 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
   // (Branch-free inner loops: which neighbour matches is unpredictable.)
   std::uint64_t has_pred = 0;
   unsigned duplicate = 0;
-#if defined(__SSE2__)
-  // Four neighbours per comparison; the padding matches no vertex.
-  // Built in registers (a store then a wide load of the same bytes would
-  // stall on store forwarding).
-  const int n4 = (n + 3) & ~3;
-  __m128i vsrc[kMaxLoop / 4 + 1], vdst[kMaxLoop / 4 + 1];
-  for (int j = 0; j < n4; j += 4) {
-    auto at = [&](const std::array<std::uint32_t, kMaxLoop>& x, int k) {
-      return static_cast<int>(k < n ? x[k] : kNone);
-    };
-    vsrc[j / 4] = _mm_set_epi32(at(src, j + 3), at(src, j + 2), at(src, j + 1), at(src, j));
-    vdst[j / 4] = _mm_set_epi32(at(dst, j + 3), at(dst, j + 2), at(dst, j + 1), at(dst, j));
-  }
-  for (int i = 0; i < n; ++i) {
-    const __m128i di = _mm_set1_epi32(static_cast<int>(dst[i]));
-    const __m128i si = _mm_set1_epi32(static_cast<int>(src[i]));
-    std::uint64_t match = 0, same_src = 0, same_dst = 0;
-    for (int j = 0; j < n4; j += 4) {
-      __m128i a = vsrc[j / 4], b = vdst[j / 4];
-      auto mask = [](__m128i x) { return _mm_movemask_ps(_mm_castsi128_ps(x)); };
-      match |= std::uint64_t(mask(_mm_cmpeq_epi32(a, di))) << j;
-      same_src |= std::uint64_t(mask(_mm_cmpeq_epi32(a, si))) << j;
-      same_dst |= std::uint64_t(mask(_mm_cmpeq_epi32(b, di))) << j;
-    }
-    // Only itself: no other triangle with the same source or target.
-    duplicate |= unsigned((same_src | same_dst) != std::uint64_t{1} << i);
-    int next = match ? 63 - __builtin_clzll(match) : -1;  // the last match
-    succ[i] = static_cast<std::int8_t>(next);
-    if (next >= 0) has_pred |= std::uint64_t{1} << next;
-  }
-#else
   for (int i = 0; i < n; ++i) {
     const std::uint32_t si = src[i], di = dst[i];
     int next = -1;
@@ -546,7 +428,6 @@ bool Decimator::classify(std::uint32_t v, Fan& fan) const {
     succ[i] = static_cast<std::int8_t>(next);
     if (next >= 0) has_pred |= std::uint64_t{1} << next;
   }
-#endif
   if (duplicate) return false;
   int start = -1;
   for (int k = 0; k < n; ++k) {
@@ -672,7 +553,7 @@ void Decimator::evaluate(std::uint32_t v, Lane& lane) {
   Keep k = plan(v, scratch, false);
   vertices_[v].keep = k;
   if (k == Keep::kCandidate) {
-    lane.heap.set(v, scratch.priority);
+    lane.heap.update({scratch.priority, v});
     vertices_[v].cache.store(scratch.tris, scratch.side_end[0]);
   } else {
     lane.heap.erase(v);
@@ -683,191 +564,6 @@ bool Decimator::edge_exists(std::uint32_t a, std::uint32_t b) const {
   for (const Corner& c : vertices_[a].corners)
     if (c.a == b || c.b == b) return true;
   return false;
-}
-
-/// Four floats in one SSE register (GCC/Clang vector extension, plain code on
-/// other targets); comparisons give Int4 lanes of -1 (true) or 0.
-using Float4 = float __attribute__((vector_size(16)));
-using Int4 = std::int32_t __attribute__((vector_size(16)));
-
-Float4 load4(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-Float4 sqrt4(Float4 v) {
-#if defined(__SSE2__)
-  return _mm_sqrt_ps(v);
-#else
-  for (int l = 0; l < 4; ++l) v[l] = std::sqrt(v[l]);
-  return v;
-#endif
-}
-
-Float4 splat(float x) {
-  return Float4{x, x, x, x};
-}
-
-Float4 infinity4() {
-  return splat(std::numeric_limits<float>::infinity());
-}
-
-/// Lane-wise std::min(a, b) (b if a is NaN; a if b is NaN).
-Float4 min4(Float4 a, Float4 b) {
-  return b < a ? b : a;
-}
-
-/// Signed distance of point k to the split plane of line (a, a + l) (up to the
-/// scale below), in the average plane's basis: positive on the left of the line.
-Float4 split_distance(Float4 kx, Float4 ky, Float4 ax, Float4 ay, Float4 lx, Float4 ly) {
-  return (kx - ax) * ly - (ky - ay) * lx;
-}
-
-/// The split plane normal is line x normal = (ly, -lx) in the plane's basis;
-/// aspect ratio = smallest signed distance / this scale (the normal's length
-/// times the line's length in 3D, d).
-Float4 split_scale(Float4 lx, Float4 ly, Float4 dx, Float4 dy, Float4 dz) {
-  return sqrt4((lx * lx + ly * ly) * (dx * dx + dy * dy + dz * dz));
-}
-
-// Recursive loop splitting (Schroeder 1992 §"Triangulation"): a split line
-// joins two non-neighbouring loop vertices; the split plane contains it and is
-// orthogonal to the average plane. A split is valid if the loop vertices
-// between the ends (in loop order) lie strictly on the positive side of the
-// split plane and the others strictly on the negative side (for a loop
-// counter-clockwise around the normal: this also rules out splits through the
-// outside of a concave loop) and the line is not already a mesh edge. Among the
-// valid ones the largest aspect ratio (smallest distance of a loop vertex to
-// the split plane over the line's length) wins.
-bool Decimator::split_loop(const Side& side, const std::uint8_t* idx, int m, std::vector<Tri8>& out,
-                           bool final, bool check_edges, bool top) const {
-  if (m == 3) {
-    out.push_back({idx[0], idx[1], idx[2]});
-    return true;
-  }
-  float best = 0;
-  int bi = -1, bj = -1;
-  // Split line (i, j), of this scale, with this smallest signed distance of
-  // another vertex to its plane: the best so far if valid and better.
-  auto consider = [&](int i, int j, float scale, float worst) {
-    if (!(scale > 0) || !(worst > best * scale)) return;
-    if (check_edges && edge_exists(side.poly[idx[i]], side.poly[idx[j]])) return;
-    best = worst / scale;
-    bi = i;
-    bj = j;
-  };
-  if (m == 4) {
-    // The two split lines of a quad, (0, 2) and (1, 3), in lanes 0 and 1:
-    // the vertices in lane order from i (rotated by 0), the one between (1),
-    // j (2) and the other one (3).
-    const float q[5][4] = {{side.x[idx[0]], side.x[idx[1]], side.x[idx[2]], side.x[idx[3]]},
-                           {side.y[idx[0]], side.y[idx[1]], side.y[idx[2]], side.y[idx[3]]},
-                           {side.px[idx[0]], side.px[idx[1]], side.px[idx[2]], side.px[idx[3]]},
-                           {side.py[idx[0]], side.py[idx[1]], side.py[idx[2]], side.py[idx[3]]},
-                           {side.pz[idx[0]], side.pz[idx[1]], side.pz[idx[2]], side.pz[idx[3]]}};
-    auto rotated = [&](int c, int r) { return Float4{q[c][r], q[c][(r + 1) % 4], 0, 0}; };
-    const Float4 ax = rotated(0, 0), ay = rotated(1, 0);
-    const Float4 lx = rotated(0, 2) - ax, ly = rotated(1, 2) - ay;
-    const Float4 scale = split_scale(lx, ly, rotated(2, 2) - rotated(2, 0),
-                                     rotated(3, 2) - rotated(3, 0), rotated(4, 2) - rotated(4, 0));
-    const Float4 worst =
-        min4(min4(infinity4(), split_distance(rotated(0, 1), rotated(1, 1), ax, ay, lx, ly)),
-             -split_distance(rotated(0, 3), rotated(1, 3), ax, ay, lx, ly));
-    consider(0, 2, scale[0], worst[0]);
-    consider(1, 3, scale[1], worst[1]);
-  } else {
-    // This polygon's vertices, contiguous (uninitialised scratch: no Vec3;
-    // three more entries, read by the last group of four, set to 0). The whole
-    // side (top, idx is the identity) is read in place.
-    float gx[kMaxLoop + 3], gy[kMaxLoop + 3], gpx[kMaxLoop + 3], gpy[kMaxLoop + 3],
-        gpz[kMaxLoop + 3];
-    const float *X = side.x.data(), *Y = side.y.data();
-    const float *PX = side.px.data(), *PY = side.py.data(), *PZ = side.pz.data();
-    if (!top) {
-      for (int k = 0; k < m; ++k) {
-        gx[k] = side.x[idx[k]];
-        gy[k] = side.y[idx[k]];
-        gpx[k] = side.px[idx[k]];
-        gpy[k] = side.py[idx[k]];
-        gpz[k] = side.pz[idx[k]];
-      }
-      for (int k = m; k < m + 3; ++k) gx[k] = gy[k] = gpx[k] = gpy[k] = gpz[k] = 0;
-      X = gx;
-      Y = gy;
-      PX = gpx;
-      PY = gpy;
-      PZ = gpz;
-    }
-    // The split lines from i to four j at once (lanes past the last j are
-    // computed and ignored).
-    const Int4 lane = {0, 1, 2, 3};
-    for (int i = 0; i < m; ++i) {
-      const Float4 ax = splat(X[i]), ay = splat(Y[i]);
-      for (int jb = i + 2, jend = i == 0 ? m - 1 : m; jb < jend; jb += 4) {
-        const Int4 j = jb + lane;
-        const Float4 lx = load4(X + jb) - ax, ly = load4(Y + jb) - ay;
-        const Float4 scale = split_scale(lx, ly, load4(PX + jb) - PX[i], load4(PY + jb) - PY[i],
-                                         load4(PZ + jb) - PZ[i]);
-        // The first half (i, j) must be on the positive side, the rest
-        // negative: k < i and k > j negative, i < k < j positive.
-        auto distance = [&](int k) {
-          return split_distance(splat(X[k]), splat(Y[k]), ax, ay, lx, ly);
-        };
-        Float4 worst = infinity4();
-        for (int k = 0; k < i; ++k) worst = min4(worst, -distance(k));
-        for (int k = i + 1; k < jb; ++k) worst = min4(worst, distance(k));
-        for (int k = jb; k < m; ++k) {
-          Float4 d = distance(k);
-          d = k > j ? -d : d;
-          worst = min4(worst, k == j ? infinity4() : d);
-        }
-        for (int l = 0; l < 4 && jb + l < jend; ++l) consider(i, jb + l, scale[l], worst[l]);
-      }
-    }
-  }
-  if (bi < 0) return false;
-  // Looking up edges is the costly part: do it for the winner only, and search
-  // again among the lines that are not edges if the winner is one.
-  if (final && !check_edges && edge_exists(side.poly[idx[bi]], side.poly[idx[bj]]))
-    return split_loop(side, idx, m, out, true, true, top);
-  std::array<std::uint8_t, kMaxLoop> half;
-  int h = 0;
-  for (int k = bi; k <= bj; ++k) half[h++] = idx[k];
-  if (h == 3)
-    out.push_back({half[0], half[1], half[2]});
-  else if (!split_loop(side, half.data(), h, out, final))
-    return false;
-  h = 0;
-  for (int k = bj; k < m; ++k) half[h++] = idx[k];
-  for (int k = 0; k <= bi; ++k) half[h++] = idx[k];
-  if (h == 3) {
-    out.push_back({half[0], half[1], half[2]});
-    return true;
-  }
-  return split_loop(side, half.data(), h, out, final);
-}
-
-Keep Decimator::triangulate_side(Side& side, std::vector<Tri8>& out, bool final) const {
-  float l = length(side.normal);
-  if (!(l > 0)) return Keep::kFold;
-  Vec3 n = side.normal / l;
-  side.normal = n;
-  Vec3 u = normalized(cross(n, std::abs(n.x) < 0.6f ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-  Vec3 w = cross(n, u);
-  const Vec3 origin = side.p[0];
-  std::array<std::uint8_t, kMaxLoop> idx;
-  for (int j = 0; j < side.m; ++j) {
-    idx[j] = static_cast<std::uint8_t>(j);
-    Vec3 d = side.p[j] - origin;
-    side.x[j] = dot(d, u);
-    side.y[j] = dot(d, w);
-    side.px[j] = side.p[j].x;
-    side.py[j] = side.p[j].y;
-    side.pz[j] = side.p[j].z;
-  }
-  if (!split_loop(side, idx.data(), side.m, out, final, false, true)) return Keep::kNoSplit;
-  return Keep::kCandidate;
 }
 
 // Removal: the sides to re-triangulate, by class.
@@ -887,7 +583,7 @@ Keep Decimator::plan(std::uint32_t v, Plan& plan, bool final, bool cached,
     // at once instead of one miss after the other.
     for (int k = 0; k < fan.loop_size; ++k) {
       __builtin_prefetch(&vertices_[fan.loop[k]]);
-      if (queue) queue->prefetch_position(fan.loop[k]);
+      if (queue) queue->prefetch(fan.loop[k]);
     }
     for (int k = 0; k < fan.n; ++k) {
       __builtin_prefetch(&triangles_[fan.tris[k]]);
@@ -1091,8 +787,8 @@ bool Decimator::drain(Lane& lane, std::size_t triangles, std::size_t vertices,
          (kRegional || lane.live_vertices > vertices)) {
     if (heap.empty()) return false;
     // (+ 0.0f: a -0 priority is 0; non-negative floats order like their bits.)
-    if (std::bit_cast<std::uint32_t>(heap.top_priority() + 0.0f) > limit) return true;
-    std::uint32_t v = heap.top();
+    if (std::bit_cast<std::uint32_t>(heap.top().d + 0.0f) > limit) return true;
+    const std::uint32_t v = heap.top().v;
     if (vertices_[v].dirty) {
       // Lazy re-evaluation: v's fan changed since it was queued (a neighbour
       // went). Its fresh priority puts it back in order, or out of the queue;
@@ -1108,10 +804,10 @@ bool Decimator::drain(Lane& lane, std::size_t triangles, std::size_t vertices,
       evaluate<kRegional>(v, lane);
       continue;
     }
-    heap.erase(v);
+    heap.pop();
     // The next vertex out is likely the one below v now: start fetching its
     // corner list (header now, records after the plan), used by its plan.
-    std::uint32_t next = heap.empty() ? v : heap.top();
+    std::uint32_t next = heap.empty() ? v : heap.top().v;
     __builtin_prefetch(&vertices_[next]);
     Keep k = plan(v, scratch, true, true, &heap);
     const Corner* nc = vertices_[next].corners.data();
@@ -1174,7 +870,7 @@ void Decimator::run_regions(std::size_t target) {
   std::vector<std::unique_ptr<Lane>> lanes;
   for (int r = 0; r < parts; ++r) {
     lanes.push_back(std::make_unique<Lane>());
-    lanes.back()->heap.init(nv);
+    lanes.back()->heap.reset(nv);
   }
   // Inner triangles: no seam corner (only those can go in this phase).
   std::size_t inner = 0;
@@ -1196,8 +892,8 @@ void Decimator::run_regions(std::size_t target) {
   std::uint32_t limit = 0xffffffffu;
   for (std::uint32_t v = 0; v < nv; ++v)
     if (deep_[v] && seq_.heap.contains(v)) {
-      const float d = seq_.heap.priority(v) + 0.0f;
-      lanes[owner_[v]]->heap.set(v, d);
+      const float d = seq_.heap.entry(v).d + 0.0f;
+      lanes[owner_[v]]->heap.update({d, v});
       limit = std::min(limit, std::bit_cast<std::uint32_t>(d));
     }
 

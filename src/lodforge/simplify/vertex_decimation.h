@@ -1,5 +1,5 @@
 #pragma once
-/// Vertex decimation (Schroeder, Zarge, Lorensen 1992; seed 000 §3.1.2, §4.1.2):
+/// Vertex decimation (Schroeder, Zarge, Lorensen 1992):
 /// repeatedly remove the vertex whose removal changes the surface least and
 /// re-triangulate the hole it leaves. Vertices are removed, never moved, so a
 /// level is a subset of the input's vertices with their attributes untouched.
@@ -56,8 +56,9 @@
 /// and never make feature edges), duplicate vertices (welded internally: equal
 /// positions are one vertex for the topology; equal positions with different
 /// attributes stay distinct output vertices along a seam), non-manifold parts
-/// (left alone). Never throws except std::bad_alloc. Precondition: indices
-/// < #V (asserted).
+/// (left alone). Bad data (an index out of range, a used coordinate that is
+/// not finite) throws DataError naming it; options out of range are caller
+/// bugs (asserted, see VertexDecimationOptions).
 #include <cstddef>
 #include <vector>
 
@@ -91,7 +92,7 @@ struct VertexDecimationOptions {
   SimplifyTarget target;
   /// Dihedral angle (radians, between the normals of two adjacent triangles)
   /// above which an edge is a feature edge. 1.2 rad (69 degrees) is the value
-  /// of the original tool's dialog (seed 000, Figure A.12; the scan reads
+  /// of the original tool's dialog (the LODCreator thesis, Figure A.12; the scan reads
   /// "IU-1 2 radians", which we take for 1.2).
   float feature_angle = 1.2f;
   /// true: interior-edge and corner vertices are never removed. false:
@@ -106,7 +107,8 @@ struct VertexDecimationOptions {
   /// and its error accumulates by its criterion d.
   DecimationPriority priority = DecimationPriority::kErrorVolume;
   /// vertex_decimation_chain only: each level has at most (1 - step) x the
-  /// previous level's vertices (it removed at least `step` of them), in (0, 1).
+  /// previous level's vertices (it removed at least `step` of them). Must be
+  /// in (0, 1): another value is a caller bug (asserted).
   float step = 0.10f;
 };
 

@@ -345,7 +345,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
                               "Output file (- = stdout; .gz: gzip-compressed), for one scene");
   auto* dir = cmd->add_option(
       "--out-dir", s->out_dir,
-      "Output folder, for several scenes; each keeps its input's name (x.wrl.gz stays compressed)");
+      "Output folder, for several scenes or a manifest; each keeps its input's name, or the "
+      "manifest's relative path (x.wrl.gz stays compressed)");
   out->excludes(dir);
   cmd->add_option("--manifest", s->manifest,
                   "Batch: a file listing scenes, one path per line (relative to its folder; "

@@ -155,3 +155,24 @@ TEST(SlurmExample, IsValidShell) {
 
 }  // namespace
 }  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST_F(Batch, OutputsThatCollideAreRefusedByEveryShard) {
+  // Two absolute paths of one file name land on one output: every shard
+  // refuses the batch before writing, including the shard holding one.
+  write("lib/a/x.wrl", "#VRML V1.0 ascii\nSeparator {}\n");
+  write("lib/b/x.wrl", "#VRML V1.0 ascii\nSeparator {}\n");
+  write("clash.txt", path("lib/a/x.wrl") + "\n" + path("lib/b/x.wrl") + "\n");
+  for (const char* shard : {"0/2", "1/2"}) {
+    CommandResult r = run_lodforge("lod --manifest " + path("clash.txt") + " --out-dir " +
+                                   path("o") + " --shard " + shard);
+    EXPECT_EQ(r.exit_code, 1) << shard;
+    EXPECT_THAT(r.err, HasSubstr("would both be written to it")) << shard;
+    EXPECT_FALSE(fs::exists(path("o/x.wrl"))) << shard;
+  }
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -262,14 +262,12 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
   return out;
 }
 
-// The scenes of this run: the manifest's, then the command line's, then
-// the shard's slice of them.
-std::vector<BatchItem> items_of(const Settings& s, std::size_t& batch_size) {
+// The scenes of the whole batch: the manifest's, then the command line's.
+std::vector<BatchItem> batch_items(const Settings& s) {
   std::vector<BatchItem> items;
   if (!s.manifest.empty()) items = read_manifest(s.manifest);
   for (auto& item : command_line_items(s.inputs, items.size())) items.push_back(std::move(item));
-  batch_size = items.size();
-  return select_shard(items, s.shard);
+  return items;
 }
 
 int run_lod(const Settings& s) {
@@ -288,9 +286,12 @@ int run_lod(const Settings& s) {
     shown.push_back(c);
   }
   const LodOptions options = lod_options(s);
-  std::size_t batch_size = 0;
-  const std::vector<BatchItem> items = items_of(s, batch_size);
-  check_outputs(s, items);
+  // The outputs of the whole batch are checked, so that every shard refuses
+  // a batch whose outputs collide, not only the shards holding both.
+  const std::vector<BatchItem> all = batch_items(s);
+  check_outputs(s, all);
+  const std::vector<BatchItem> items = select_shard(all, s.shard);
+  const std::size_t batch_size = all.size();
   // One bar: a scene's own, or the batch's by input bytes (with the time left).
   std::size_t total_bytes = 0, done_bytes = 0;
   for (const auto& item : items) total_bytes += file_size_or_zero(item.input);

@@ -116,6 +116,13 @@ TEST_F(Batch, ShardsSplitRoundRobinAndMergeChecksThem) {
   CommandResult other = run_lodforge("report " + path("r1.json") + " " + path("other.json"));
   EXPECT_EQ(other.exit_code, 1);
   EXPECT_THAT(other.err, HasSubstr("is of another batch"));
+  // A report with a field of the wrong kind is named, not an internal error.
+  auto broken = nlohmann::json::parse(read_text(path("r1.json")));
+  broken["files"][0]["triangles"] = "many";
+  write("broken.json", broken.dump());
+  CommandResult incomplete = run_lodforge("report " + path("broken.json"));
+  EXPECT_EQ(incomplete.exit_code, 1);
+  EXPECT_THAT(incomplete.err, HasSubstr("broken.json: not a complete batch report"));
   CommandResult junk = run_lodforge("report " + path("lib/manifest.txt"));
   EXPECT_EQ(junk.exit_code, 1);
   EXPECT_THAT(junk.err, HasSubstr("not JSON"));

@@ -144,20 +144,40 @@ nlohmann::ordered_json merge_batch_reports(const std::vector<nlohmann::ordered_j
       throw DataError(fmt::format("{}: not a report of lodforge lod --report", names[r]));
     const Shard s = [&] {
       try {
+        if (!j["shard"].is_string()) throw std::invalid_argument("not text");
         return parse_shard(j["shard"].get<std::string>());
-      } catch (const std::exception& e) {
+      } catch (const std::invalid_argument& e) {
         throw DataError(fmt::format("{}: bad shard: {}", names[r], e.what()));
       }
     }();
     if (r == 0) count = s.count;
-    if (j["manifest"] != reports[0]["manifest"] || j["items"] != reports[0]["items"] ||
+    // Shards may name the manifest by other paths (other folders, other
+    // machines): its file name, the batch's size and the shard count must agree.
+    const auto manifest_name = [&](const nlohmann::ordered_json& report) {
+      if (!report.contains("manifest") || !report["manifest"].is_string() ||
+          !report.contains("items") || !report["items"].is_number_unsigned())
+        throw DataError(fmt::format("{}: not a complete batch report (manifest, items)", names[r]));
+      return fs::path(report["manifest"].get<std::string>()).filename().string();
+    };
+    if (manifest_name(j) != manifest_name(reports[0]) || j["items"] != reports[0]["items"] ||
         s.count != count)
       throw DataError(fmt::format("{}: is of another batch than {} (manifest, size or shards)",
                                   names[r], names[0]));
     if (auto [at, inserted] = shards.emplace(s.index, names[r]); !inserted)
       throw DataError(
           fmt::format("{} and {}: both are shard {}/{}", at->second, names[r], s.index, s.count));
-    for (const auto& f : j["files"]) files.push_back(f);
+    try {  // the fields the merge reads, with their types
+      for (const auto& f : j.at("files")) {
+        f.at("index").get<std::size_t>();
+        f.at("status").get<std::string>();
+        f.at("input").get<std::string>();
+        for (const char* key : {"bytes_in", "bytes_out", "triangles"}) f.at(key).get<std::size_t>();
+        f.at("seconds").get<double>();
+        files.push_back(f);
+      }
+    } catch (const nlohmann::json::exception& e) {
+      throw DataError(fmt::format("{}: not a complete batch report: {}", names[r], e.what()));
+    }
   }
   std::string missing;
   for (std::size_t i = 0; i < count; ++i)

@@ -42,7 +42,7 @@ void print_summary(const nlohmann::ordered_json& merged, std::size_t shards) {
   for (const auto& f : merged["files"])
     if (f["status"] != "written")
       fmt::print("  failed: {}: {}\n", f["input"].get<std::string>(),
-                 f["error"].get<std::string>());
+                 f.value("error", std::string()));
 }
 
 }  // namespace

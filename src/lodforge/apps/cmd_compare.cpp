@@ -10,8 +10,8 @@
 // rms, variance, max/mean/rms_pct_diag, normal {samples, mean, max,
 // variance}, color {samples, mean, max, rms} when both have vertex colours:
 // Euclidean RGB distance with channels in [0,1]), normal (= a_to_b.normal: samples on the
-// reference, as in the LODCreator thesis), normals_from ("faces" or "vertices"), colored {file, scale_max}.
-// Distances are in the meshes' units, angles in radians.
+// reference, as in the LODCreator thesis), normals_from ("faces" or "vertices"), colored {file,
+// scale_max}. Distances are in the meshes' units, angles in radians.
 #include <fmt/core.h>
 
 #include <algorithm>

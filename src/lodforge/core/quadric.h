@@ -20,8 +20,8 @@ struct Quadric {
 
   /// w (n.p + d)^2; n need not be unit (the form scales with |n|^2).
   static Quadric plane(double nx, double ny, double nz, double d, double w) {
-    return {w * nx * nx, w * nx * ny, w * nx * nz, w * ny * ny, w * ny * nz, w * nz * nz,
-            w * nx * d,  w * ny * d,  w * nz * d,  w * d * d};
+    return {w * nx * nx, w * nx * ny, w * nx * nz, w * ny * ny, w * ny * nz,
+            w * nz * nz, w * nx * d,  w * ny * d,  w * nz * d,  w * d * d};
   }
 
   Quadric& operator+=(const Quadric& o) {

@@ -59,5 +59,31 @@ TEST(DeviationMeter, FaceMapChangesNothingButTheTime) {
   EXPECT_EQ(meter.distance_to_reference(r.mesh, r.face_map), meter.distance_to_reference(r.mesh));
 }
 
+// The estimate: exact where one direction holds the answer and any sample
+// sees it (an offset sheet, a bump whose tip the refinement finds), and on a
+// simplified surface below the full measurement, yet of its size.
+TEST(DeviationMeter, EstimateIsTheOneSidedDistanceMeasuredThinly) {
+  const TriangleMesh flat = grid(16);
+  DeviationMeter meter(flat);
+  EXPECT_NEAR(meter.estimate(grid(3, 0.25f)), 0.25, 1e-6);
+  TriangleMesh bumped = grid(16);
+  bumped.positions[8 * 17 + 8].z = 0.3f;
+  EXPECT_NEAR(meter.estimate(bumped), 0.3, 1e-4);
+
+  TriangleMesh sphere = test::make_icosphere(4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> bump(0.97f, 1.03f);
+  for (auto& p : sphere.positions) p *= bump(rng);
+  SimplifyTarget target;
+  target.ratio = 0.1f;
+  const SimplifyResult r = quadric_collapse(sphere, {.target = target});
+  DeviationMeter on_sphere(sphere);
+  const double full = on_sphere.hausdorff(r.mesh, r.face_map);
+  const double estimate = on_sphere.estimate(r.mesh, r.face_map);
+  EXPECT_LE(estimate, full);
+  EXPECT_GE(estimate, 0.5 * full);
+  EXPECT_EQ(on_sphere.estimate(r.mesh), estimate);  // the face map only saves time
+}
+
 }  // namespace
 }  // namespace lodforge

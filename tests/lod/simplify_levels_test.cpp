@@ -32,14 +32,15 @@ TEST(SimplifyLevels, EveryLevelMeasuredInFullWithoutAKeepRule) {
 }
 
 // With a keep rule, the levels it keeps in the end are measured in full (the
-// same figure as without the rule), the others only screened, and the rule
-// is asked again after each round of full measurements.
+// same figure as without the rule), the others estimated (calibrated against
+// the nearest ones measured in full), and the rule is asked again after each
+// round of full measurements.
 TEST(SimplifyLevels, OnlyTheKeptLevelsAreMeasuredInFull) {
   const TriangleMesh mesh = bumpy_sphere();
   const auto all = simplify_levels(mesh, {});
   LevelChainOptions options;
   int asked = 0;
-  // Keeps the levels whose error (screened or full) is the largest of every
+  // Keeps the levels whose error (estimated or full) is the largest of every
   // third level: a choice that depends on the figures, as the spacing does.
   options.keep = [&](std::span<const MeasuredLevel> levels) {
     ++asked;
@@ -64,7 +65,10 @@ TEST(SimplifyLevels, OnlyTheKeptLevelsAreMeasuredInFull) {
       ++full;
       EXPECT_EQ(levels[i].error, all[i].error) << i;
     } else {
-      EXPECT_GT(levels[i].error, 0.0) << i;  // screened
+      EXPECT_GT(levels[i].error, 0.0) << i;  // estimated
+      // Calibrated: of the size of the full measurement.
+      EXPECT_LT(levels[i].error, 3 * all[i].error) << i;
+      EXPECT_GT(levels[i].error, 0.5 * all[i].error) << i;
     }
   }
   for (std::size_t i : kept) EXPECT_TRUE(levels[i].measured_in_full) << i;

@@ -17,26 +17,67 @@
 #include <numeric>
 #include <span>
 
+#include "lodforge/core/morton.h"
+#include "lodforge/core/radix_sort.h"
 #include "lodforge/metrics/sample_surface.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
 namespace lodforge {
 namespace {
 
+// estimate() samples and refines this many times less than distance_to_reference().
+constexpr std::size_t kEstimateThinning = 8;
+
+// A surface's samples in Morton order of their positions: consecutive
+// samples lie close together, so each search starts from the triangle the
+// one before it found, and neighbouring searches walk the same nodes.
+struct Samples {
+  std::vector<Vec3> positions;
+  std::vector<std::uint32_t> triangles;  // the triangle of the mesh each lies on
+  std::size_t size() const { return positions.size(); }
+};
+
+Samples morton_ordered(const SurfaceSamples& s) {
+  const auto n = std::uint32_t(s.size());
+  Box3 box;
+  for (const Vec3& p : s.positions) box.add(p);
+  const Vec3 size = box.size();
+  std::vector<std::uint64_t> keyed(n), scratch(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a) {
+      const float u = size[a] > 0 ? (s.positions[i][a] - box.lo[a]) / size[a] : 0.f;
+      q[a] = std::uint32_t(std::clamp(u * 1023.f, 0.f, 1023.f));
+    }
+    keyed[i] = morton_code(q[0], q[1], q[2]) << 32 | i;
+  }
+  radix_sort(keyed, scratch, 32, 62);
+  Samples out;
+  out.positions.resize(n);
+  out.triangles.resize(n);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const auto i = std::uint32_t(keyed[k]);
+    out.positions[k] = s.positions[i];
+    out.triangles[k] = s.triangles[i];
+  }
+  return out;
+}
+
 struct Side {
   const TriangleMesh* mesh = nullptr;
-  SurfaceSamples samples;
+  Samples samples;
   std::unique_ptr<TriangleBvh> bvh;
 };
 
-Side make_side(const TriangleMesh& m, const DeviationOptions& o, bool with_bvh = true) {
+Side make_side(const TriangleMesh& m, std::size_t samples, std::uint64_t seed,
+               bool with_bvh = true) {
   Side s;
   s.mesh = &m;
-  s.samples = sample_surface(m, {.count = o.samples,
-                                 .seed = o.seed,
-                                 .vertices = true,
-                                 .edge_count = o.samples / 4,
-                                 .vertex_normals = false});
+  s.samples = morton_ordered(sample_surface(m, {.count = samples,
+                                                .seed = seed,
+                                                .vertices = true,
+                                                .edge_count = samples / 4,
+                                                .vertex_normals = false}));
   if (with_bvh) s.bvh = std::make_unique<TriangleBvh>(m);
   return s;
 }
@@ -98,8 +139,10 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
 }
 
 // One direction: the farthest distance from `from`'s surface to `to`.
-// `near[f]`, when given, is a triangle of `to` near triangle f of `from` (from
-// the simplifier's face map), where the searches of f's samples start. Every
+// Each search starts at the triangle the previous sample's search found (the
+// samples are in Morton order), the first of a run at `near[f]` when given: a
+// triangle of `to` near triangle f of `from` (from the simplifier's face
+// map). Every
 // kStride-th sample is measured exactly first; their largest distance is a
 // floor under the answer, so each other sample only needs to know whether it
 // is nearer than that, which most learn at the first triangle they try. The
@@ -113,8 +156,8 @@ double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
   if (n == 0) return 0.0;
   const auto& at = from.samples.positions;
   auto start = [&](std::size_t i, std::uint32_t previous) {
-    const std::uint32_t h = near.empty() ? ClosestPoint::kNone : near[from.samples.triangles[i]];
-    return h != ClosestPoint::kNone ? h : previous;
+    if (previous != ClosestPoint::kNone) return previous;
+    return near.empty() ? ClosestPoint::kNone : near[from.samples.triangles[i]];
   };
   std::vector<double> d(n, -1.0);  // -1: nearer than the floor
   auto measure = [&](std::size_t stride, double floor) {
@@ -161,7 +204,7 @@ struct DeviationMeter::Impl {
 DeviationMeter::DeviationMeter(const TriangleMesh& reference, const DeviationOptions& options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
-  impl_->reference = make_side(reference, options);
+  impl_->reference = make_side(reference, options.samples, options.seed);
 }
 
 DeviationMeter::~DeviationMeter() = default;
@@ -185,7 +228,7 @@ double DeviationMeter::hausdorff(const TriangleMesh& level,
                                  std::span<const std::uint32_t> face_map) const {
   const TriangleMesh& reference = *impl_->reference.mesh;
   if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
-  Side other = make_side(level, impl_->options);
+  Side other = make_side(level, impl_->options.samples, impl_->options.seed);
   const auto to_reference = level_to_reference(face_map, level, reference);
   // The other way: a level triangle descended from each reference triangle.
   std::vector<std::uint32_t> to_level;
@@ -202,8 +245,20 @@ double DeviationMeter::distance_to_reference(const TriangleMesh& level,
                                              std::span<const std::uint32_t> face_map) const {
   const TriangleMesh& reference = *impl_->reference.mesh;
   if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
-  const Side other = make_side(level, impl_->options, false);
+  const Side other = make_side(level, impl_->options.samples, impl_->options.seed, false);
   return one_sided(other, *impl_->reference.bvh, impl_->options.refine,
+                   level_to_reference(face_map, level, reference));
+}
+
+double DeviationMeter::estimate(const TriangleMesh& level,
+                                std::span<const std::uint32_t> face_map) const {
+  const TriangleMesh& reference = *impl_->reference.mesh;
+  if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
+  const DeviationOptions& o = impl_->options;
+  const Side other =
+      make_side(level, std::max<std::size_t>(o.samples / kEstimateThinning, 1), o.seed, false);
+  return one_sided(other, *impl_->reference.bvh,
+                   std::max<std::size_t>(o.refine / kEstimateThinning, 1),
                    level_to_reference(face_map, level, reference));
 }
 

@@ -24,8 +24,8 @@ struct LevelChainOptions {
   std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
   int threads = 0;                  ///< for the measurements (0: all cores)
   /// When set, only the levels it keeps need a full measurement: it is given
-  /// every level with its error (measured in full, or a screening
-  /// measurement from an eighth of the samples) and returns the indices of
+  /// every level with its error (measured in full, or a calibrated estimate,
+  /// see MeasuredLevel::measured_in_full) and returns the indices of
   /// the levels it would keep; those are measured in full and it is asked
   /// again, until it keeps only levels measured in full. Unset: every level
   /// is measured in full.
@@ -44,24 +44,27 @@ constexpr double kErrorMargin = 1.1;
 struct MeasuredLevel {
   SimplifyResult level;
   /// kErrorMargin x the two-sided Hausdorff distance between level 0 and this
-  /// level measured by compare_meshes (model units); for line sets the
-  /// simplifier's own bound.
+  /// level measured by DeviationMeter::hausdorff (model units); for line sets
+  /// the simplifier's own bound.
   double error = 0;
-  /// false: `error` is the screening measurement (fewer samples) of a level
-  /// that LevelChainOptions::keep did not keep.
+  /// false: a level that LevelChainOptions::keep did not keep, whose `error`
+  /// is DeviationMeter::estimate scaled by how far the estimates of the
+  /// nearest levels measured in full fell short of their full measurement
+  /// (and by 1.1, so that levels measured in full are preferred).
   bool measured_in_full = true;
 };
 
 /// Area samples per direction for measuring a level of a mesh with
-/// `triangles` triangles: `requested` if non-zero, else 20 per triangle within
-/// [20 000, 200 000] (every vertex is sampled as well).
+/// `triangles` triangles: `requested` if non-zero, else one per triangle
+/// within [20 000, 200 000] (every vertex, and a quarter as many points along
+/// the edges, are sampled as well; the farthest samples are refined).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested);
 
 /// Levels 1..n of `mesh` (level 0 is `mesh` itself) by simplify_chain (the
 /// chain contract of simplify/level_chain.h): each at most (1 - min_diff) x
 /// the triangles of the level before it, or the explicit triangle targets,
 /// down to a few triangles; each with its error measured against level 0
-/// (with LevelChainOptions::keep: the kept ones in full, the others screened).
+/// (with LevelChainOptions::keep: the kept ones in full, the others estimated).
 /// Deterministic: the same levels and errors for any number of threads.
 std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
                                            const LevelChainOptions& options);

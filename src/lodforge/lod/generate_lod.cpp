@@ -167,6 +167,10 @@ class Pipeline {
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
         make_levels(jobs_[i]);
+        // The level nodes are made: the shape's working copy of its geometry
+        // is not needed any more, and memory stays bounded by the output.
+        jobs_[i].writer.reset();
+        jobs_[i].geometry = {};
         credit(i, 1.0);
       });
     });

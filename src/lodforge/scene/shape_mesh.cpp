@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
+#include <span>
 #include <tuple>
 
 #include "lodforge/core/error.h"
@@ -15,20 +17,26 @@
 namespace lodforge::scene {
 namespace {
 
-// The points of the current Coordinate3 (spec default: one point at the origin).
-std::vector<Vec3> coordinates(const TraversalState& state, const Node& shape) {
+// The points of the current Coordinate3 (spec default: one point at the
+// origin) as x, y, z floats, each checked to be finite.
+std::span<const float> coordinate_floats(const TraversalState& state, const Node& shape) {
   static const Node kDefault{.type = "Coordinate3"};
   const Node& c = state.coordinate3 ? *state.coordinate3 : kDefault;
-  const FieldValue* v = field_or_default(c, "point");
-  std::vector<Vec3> pts(v->floats.size() / 3);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    pts[i] = {v->floats[3 * i], v->floats[3 * i + 1], v->floats[3 * i + 2]};
-    if (!is_finite(pts[i]))
+  const std::vector<float>& f = field_or_default(c, "point")->floats;
+  const std::size_t n = f.size() / 3;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(f[3 * i]) || !std::isfinite(f[3 * i + 1]) || !std::isfinite(f[3 * i + 2]))
       throw DataError(
           fmt::format("line {}: Coordinate3 point {} is not finite (used by the {} "
                       "at line {})",
                       c.first_line, i, shape.type, shape.first_line));
-  }
+  return std::span(f).first(3 * n);
+}
+
+std::vector<Vec3> coordinates(const TraversalState& state, const Node& shape) {
+  const std::span<const float> f = coordinate_floats(state, shape);
+  std::vector<Vec3> pts(f.size() / 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
   return pts;
 }
 
@@ -348,18 +356,22 @@ ShapeCounts shape_counts(const ShapeVisit& visit, const ShapeMeshOptions& option
     for (const Vec3& p : m.positions) counts.bounds.add(p);
     return counts;
   }
-  const std::vector<Vec3> pts = coordinates(visit.state, shape);
+  const std::span<const float> f = coordinate_floats(visit.state, shape);
+  const std::size_t points = f.size() / 3;
   const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
   for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) check_index(ci[i], pts.size(), shape, i);
+    for (std::size_t i = b; i < e; ++i) check_index(ci[i], points, shape, i);
     if (line_set)
       counts.segments += e - b - 1;
     else if (e - b >= 3)
       counts.triangles += e - b - 2;
   });
-  counts.vertices = pts.size();
+  counts.vertices = points;
   const bool move = options.world_space && !(visit.state.transform == Mat4{});
-  for (const Vec3& p : pts) counts.bounds.add(move ? visit.state.transform.transform_point(p) : p);
+  for (std::size_t i = 0; i < points; ++i) {
+    const Vec3 p{f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+    counts.bounds.add(move ? visit.state.transform.transform_point(p) : p);
+  }
   return counts;
 }
 

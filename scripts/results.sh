@@ -168,6 +168,7 @@ section() {
         "${beside_data}$B_beside/bench/lod_bench"
         "n=0; failed=0; in=0; out=0; while IFS= read -r f; do n=\$((n + 1)); if $B/lodforge lod \"\$f\" -o $W/corpus_out.wrl -q; then in=\$((in + \$(stat -c %s \"\$f\"))); out=\$((out + \$(stat -c %s $W/corpus_out.wrl))); else failed=\$((failed + 1)); echo \"failed: \$f\"; fi; done < <(find $vrml1 -name '*.wrl' | sort); echo \"\$n files, \$failed failures, output \$in -> \$out bytes\""
         "$B/tests/test_lod --gtest_filter='*LodCorpus*:GenerateLod*'"
+        "python3 bench/lod_error_check.py $B/lodforge $(for m in bun_zipper.ply horse.ply igea.ply nefertiti.obj rocker-arm.obj cow.obj fandisk.obj teapot.obj; do printf '%s ' "$D/meshes/$m"; done)"
       ) ;;
     outcome)  # triangles drawn by distance beside a meshopt_simplify chain
       targets=(lod_outcome)

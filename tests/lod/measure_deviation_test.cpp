@@ -17,6 +17,16 @@ TriangleMesh grid(int n, float z = 0) {
   return m;
 }
 
+TriangleMesh bumpy_sphere() {
+  return test::make_bumpy_sphere(5);
+}
+
+SimplifyResult simplified(const TriangleMesh& mesh, float ratio) {
+  SimplifyTarget target;
+  target.ratio = ratio;
+  return quadric_collapse(mesh, {.target = target});
+}
+
 TEST(DeviationMeter, OffsetSheetIsItsOffset) {
   const TriangleMesh a = grid(8);
   const TriangleMesh b = grid(3, 0.25f);
@@ -41,13 +51,8 @@ TEST(DeviationMeter, FindsTheTipOfABump) {
 // The face map only says where searches start: the same distance with it,
 // without it, and with a map that does not fit (ignored).
 TEST(DeviationMeter, FaceMapChangesNothingButTheTime) {
-  TriangleMesh sphere = test::make_icosphere(4);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> bump(0.97f, 1.03f);
-  for (auto& p : sphere.positions) p *= bump(rng);
-  SimplifyTarget target;
-  target.ratio = 0.2f;
-  const SimplifyResult r = quadric_collapse(sphere, {.target = target});
+  const TriangleMesh sphere = bumpy_sphere();
+  const SimplifyResult r = simplified(sphere, 0.2f);
   ASSERT_EQ(r.face_map.size(), r.mesh.triangle_count());
   DeviationMeter meter(sphere);
   const double plain = meter.hausdorff(r.mesh);
@@ -70,13 +75,8 @@ TEST(DeviationMeter, EstimateIsTheOneSidedDistanceMeasuredThinly) {
   bumped.positions[8 * 17 + 8].z = 0.3f;
   EXPECT_NEAR(meter.estimate(bumped), 0.3, 1e-4);
 
-  TriangleMesh sphere = test::make_icosphere(4);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> bump(0.97f, 1.03f);
-  for (auto& p : sphere.positions) p *= bump(rng);
-  SimplifyTarget target;
-  target.ratio = 0.1f;
-  const SimplifyResult r = quadric_collapse(sphere, {.target = target});
+  const TriangleMesh sphere = bumpy_sphere();
+  const SimplifyResult r = simplified(sphere, 0.1f);
   DeviationMeter on_sphere(sphere);
   const double full = on_sphere.hausdorff(r.mesh, r.face_map);
   const double estimate = on_sphere.estimate(r.mesh, r.face_map);

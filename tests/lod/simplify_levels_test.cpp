@@ -11,11 +11,7 @@ namespace lodforge {
 namespace {
 
 TriangleMesh bumpy_sphere() {
-  TriangleMesh m = test::make_icosphere(4);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> bump(0.97f, 1.03f);
-  for (auto& p : m.positions) p *= bump(rng);
-  return m;
+  return test::make_bumpy_sphere(11);
 }
 
 TEST(SimplifyLevels, EveryLevelMeasuredInFullWithoutAKeepRule) {

@@ -256,17 +256,19 @@ struct TriangleStream::Impl {
 };
 
 void TriangleStream::Impl::open_stl(std::string_view head) {
-  if (file_size < kStlHeader)
+  std::string_view start = head.substr(0, std::min<std::size_t>(head.size(), 80));
+  const std::size_t word = start.find_first_not_of(" \t\r\n");
+  const bool solid = word != std::string_view::npos && start.substr(word).starts_with("solid");
+  if (file_size < kStlHeader) {
+    if (solid) refuse("an ASCII STL file");
     fail_binary(path, static_cast<std::size_t>(file_size),
                 fmt::format("expected a binary STL header of {} bytes, got {} bytes", kStlHeader,
                             file_size));
+  }
   std::uint32_t count;
   std::memcpy(&count, head.data() + 80, 4);
   if constexpr (std::endian::native == std::endian::big) count = __builtin_bswap32(count);
   const std::uint64_t expected = kStlHeader + kStlRecord * std::uint64_t{count};
-  std::string_view start = head.substr(0, std::min<std::size_t>(head.size(), 80));
-  const std::size_t word = start.find_first_not_of(" \t\r\n");
-  const bool solid = word != std::string_view::npos && start.substr(word).starts_with("solid");
   if (expected != file_size && solid) refuse("an ASCII STL file");
   if (expected > file_size)
     fail_binary(

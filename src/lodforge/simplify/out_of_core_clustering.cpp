@@ -415,7 +415,7 @@ SimplifyResult out_of_core_clustering(const TriangleStream& input,
   const SimplifyTarget& target = options.target;
   const bool by_count = target.triangles > 0 || target.ratio > 0;
   const double h_error = std::isfinite(target.max_error)
-                             ? std::max(double(target.max_error), 0.0) / std::sqrt(3.0)
+                             ? std::max(double(target.max_error), 0.0) / std::sqrt(3.0) * (1 - 1e-6)
                              : std::numeric_limits<double>::infinity();
   const Vec3 size = s.box.size();
   const double longest = std::max({double(size.x), double(size.y), double(size.z)});

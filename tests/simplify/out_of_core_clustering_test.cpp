@@ -245,7 +245,7 @@ TEST_F(OutOfCoreClusteringTest, SameResultForStlThreadsAndChunks) {
 TEST_F(OutOfCoreClusteringTest, EmptyAndBadInputs) {
   TriangleMesh points;
   points.positions = {{0, 0, 0}, {1, 1, 1}};
-  const SimplifyResult r = run(points, {.target = {.ratio = 0.5f}});
+  const OutOfCoreClusteringResult r = run(points, {.target = {.ratio = 0.5f}});
   EXPECT_EQ(r.stop_reason, StopReason::kCannotSimplify);
   EXPECT_EQ(r.stop_detail, "the input has no triangles");
   // A file cut in its faces fails in the first pass, naming the file.

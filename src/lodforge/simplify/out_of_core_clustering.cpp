@@ -338,7 +338,7 @@ std::string grid_text(const Grid& g) {
 
 /// The search for the coarsest... (see the header's table) for a count target.
 SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::size_t target,
-                            double h_error) {
+                            double h_error, int& passes) {
   const double h_fine = finest_side(s.box);
   const Vec3 size = s.box.size();
   const double h_coarse = std::max({double(size.x), double(size.y), double(size.z), h_fine});
@@ -351,7 +351,6 @@ SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::s
   double too_fine = 0, fine_enough = std::numeric_limits<double>::infinity();
   std::optional<SimplifyResult> best, smallest_over;
   std::optional<Grid> best_grid, over_grid;
-  int passes = 0;
   while (passes < kMaxPasses) {
     const Grid grid(s.box, h);
     Pass pass = cluster_pass(input, grid, cap);
@@ -385,13 +384,14 @@ SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::s
   if (best) {
     r = std::move(*best);
     r.stop_reason = StopReason::kTargetReached;
-    r.stop_detail = fmt::format("{}: {} triangles <= target {} ({} clustering passes)",
-                                grid_text(*best_grid), r.mesh.triangle_count(), target, passes);
+    r.stop_detail =
+        fmt::format("{}: {} triangles <= target {} ({} clustering pass{})", grid_text(*best_grid),
+                    r.mesh.triangle_count(), target, passes, passes == 1 ? "" : "es");
   } else if (smallest_over) {
     r = std::move(*smallest_over);
     const bool budget = over_grid->h >= h_error * (1 - 1e-9);
     r.stop_reason = budget ? StopReason::kErrorBudgetReached : StopReason::kCannotSimplify;
-    r.stop_detail = fmt::format("{}: {} triangles > target {} ({} clustering passes{})",
+    r.stop_detail = fmt::format("{}: {} triangles > target {} (after {} clustering passes{})",
                                 grid_text(*over_grid), r.mesh.triangle_count(), target, passes,
                                 budget ? "; coarser cells would exceed the error budget" : "");
   } else {
@@ -403,11 +403,13 @@ SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::s
 
 }  // namespace
 
-SimplifyResult out_of_core_clustering(const TriangleStream& input,
-                                      const OutOfCoreClusteringOptions& options) {
+OutOfCoreClusteringResult out_of_core_clustering(const TriangleStream& input,
+                                                 const OutOfCoreClusteringOptions& options) {
   const Survey s = survey(input);
+  OutOfCoreClusteringResult r;
+  r.input_triangles = s.triangles;
   if (s.triangles == 0) {
-    SimplifyResult r;
+    r.passes = 1;
     r.stop_reason = StopReason::kCannotSimplify;
     r.stop_detail = "the input has no triangles";
     return r;
@@ -419,9 +421,13 @@ SimplifyResult out_of_core_clustering(const TriangleStream& input,
                              : std::numeric_limits<double>::infinity();
   const Vec3 size = s.box.size();
   const double longest = std::max({double(size.x), double(size.y), double(size.z)});
-  if (options.grid == 0 && by_count)
-    return search_count(input, s, target.triangle_target(static_cast<std::size_t>(s.triangles)),
-                        h_error);
+  if (options.grid == 0 && by_count) {
+    int passes = 0;
+    static_cast<SimplifyResult&>(r) = search_count(
+        input, s, target.triangle_target(static_cast<std::size_t>(s.triangles)), h_error, passes);
+    r.passes = 1 + passes;
+    return r;
+  }
   // One pass: the grid given, the error budget's, or the finest.
   double h = finest_side(s.box);
   if (options.grid > 0 && longest > 0)
@@ -430,7 +436,8 @@ SimplifyResult out_of_core_clustering(const TriangleStream& input,
     h = std::max(h, h_error);
   const Grid grid(s.box, h);
   Pass pass = cluster_pass(input, grid, std::numeric_limits<std::size_t>::max());
-  SimplifyResult r = build_result(grid, pass);
+  static_cast<SimplifyResult&>(r) = build_result(grid, pass);
+  r.passes = 2;
   r.stop_reason = options.grid > 0         ? StopReason::kTargetReached
                   : std::isfinite(h_error) ? StopReason::kErrorBudgetReached
                                            : StopReason::kNoReduction;

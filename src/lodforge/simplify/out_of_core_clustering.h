@@ -78,8 +78,15 @@ struct OutOfCoreClusteringOptions {
   std::uint32_t grid = 0;
 };
 
+/// What out_of_core_clustering returns: the result every simplifier returns,
+/// and what the passes saw.
+struct OutOfCoreClusteringResult : SimplifyResult {
+  std::uint64_t input_triangles = 0;  ///< triangles of the input, after fan triangulation
+  int passes = 0;                     ///< passes over the input, the survey included
+};
+
 /// Clusters the triangles of `input` into a simplified mesh (see above).
-SimplifyResult out_of_core_clustering(const TriangleStream& input,
-                                      const OutOfCoreClusteringOptions& options = {});
+OutOfCoreClusteringResult out_of_core_clustering(const TriangleStream& input,
+                                                 const OutOfCoreClusteringOptions& options = {});
 
 }  // namespace lodforge

@@ -54,7 +54,8 @@
 // stop_reason, stop_detail, simplifier_runs (passes over the file when
 // streamed), measurements, out_of_core, time_ms (the
 // simplification and its measurements: no file reading or writing;
-// steady_clock). JSON has no infinity: a figure that is not finite prints as
+// steady_clock; streamed, the passes over the input are the simplification
+// and count). JSON has no infinity: a figure that is not finite prints as
 // null (vertex clustering's displacement overflows float beyond about 1e19).
 #include <fmt/core.h>
 
@@ -324,7 +325,8 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       "Its error cannot be measured without the input in memory: it is a bound on the\n"
       "displacement of an input vertex (<= the cell diagonal; --error bounds it), not\n"
       "the surface deviation; run `lodforge compare INPUT OUTPUT` for that.\n"
-      "time_ms (--json) covers the simplification and its measurements, not file I/O.\n"
+      "time_ms (--json) covers the simplification and its measurements, not file I/O\n"
+      "(streamed: the passes over the input are the simplification and count).\n"
       "Exit codes: 0 done, 1 bad input (unreadable, empty surface), 2 bad usage.\n");
   cmd->add_option("MESH", s->input,
                   "Input: PLY, OBJ, OFF, STL (optionally .gz) or VRML 1.0 (.wrl); - = stdin")

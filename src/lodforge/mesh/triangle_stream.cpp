@@ -357,6 +357,7 @@ std::uint64_t TriangleStream::Impl::ply_triangles(const TriangleVisitor& visit) 
       skip_items(in, e, swap);
   }
   const ply::Element& faces = elements[face_index];
+  if (faces.props.empty()) return 0;  // items of no bytes: nothing to read, however many
   const std::uint64_t vertex_count = vertex_element->count;
   std::vector<StreamedTriangle> chunk_tris;
   chunk_tris.reserve(chunk);

@@ -101,10 +101,17 @@ struct Grid {
   }
 };
 
+/// The longest side of `box`, in double (a float difference of extreme
+/// coordinates overflows).
+double longest_side(const Box3& box) {
+  double longest = 0;
+  for (int a = 0; a < 3; ++a) longest = std::max(longest, double(box.hi[a]) - box.lo[a]);
+  return longest;
+}
+
 /// The side h of the finest grid over `box` (2^21 cells along its longest side).
 double finest_side(const Box3& box) {
-  const Vec3 size = box.size();
-  const double longest = std::max({double(size.x), double(size.y), double(size.z)});
+  const double longest = longest_side(box);
   return longest > 0 ? longest / kMaxGrid : 1.0;
 }
 
@@ -336,12 +343,12 @@ std::string grid_text(const Grid& g) {
                      g.n[2], g.h, std::sqrt(3.0) * g.h);
 }
 
-/// The search for the coarsest... (see the header's table) for a count target.
+/// The grid search of the header's table for a triangle count `target`;
+/// `passes` counts the clustering passes.
 SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::size_t target,
                             double h_error, int& passes) {
   const double h_fine = finest_side(s.box);
-  const Vec3 size = s.box.size();
-  const double h_coarse = std::max({double(size.x), double(size.y), double(size.z), h_fine});
+  const double h_coarse = std::max(longest_side(s.box), h_fine);
   auto clamp_side = [&](double h) {
     return std::clamp(h, h_fine, std::max(h_fine, std::min(h_coarse, h_error)));
   };
@@ -419,8 +426,7 @@ OutOfCoreClusteringResult out_of_core_clustering(const TriangleStream& input,
   const double h_error = std::isfinite(target.max_error)
                              ? std::max(double(target.max_error), 0.0) / std::sqrt(3.0) * (1 - 1e-6)
                              : std::numeric_limits<double>::infinity();
-  const Vec3 size = s.box.size();
-  const double longest = std::max({double(size.x), double(size.y), double(size.z)});
+  const double longest = longest_side(s.box);
   if (options.grid == 0 && by_count) {
     int passes = 0;
     static_cast<SimplifyResult&>(r) = search_count(

@@ -27,8 +27,8 @@ using ::testing::HasSubstr;
 class OutOfCoreClusteringTest : public testing::TempDirTest {
  protected:
   /// Clusters `mesh` written as a binary file `name` (PLY or STL).
-  SimplifyResult run(const TriangleMesh& mesh, const OutOfCoreClusteringOptions& options,
-                     const std::string& name = "in.ply", std::size_t chunk = 1 << 16) {
+  OutOfCoreClusteringResult run(const TriangleMesh& mesh, const OutOfCoreClusteringOptions& options,
+                                const std::string& name = "in.ply", std::size_t chunk = 1 << 16) {
     const std::string p = path(name);
     write_mesh(mesh, p);
     return out_of_core_clustering(TriangleStream(p, {.chunk_triangles = chunk}), options);
@@ -219,6 +219,18 @@ TEST_F(OutOfCoreClusteringTest, ErrorBudgetBoundsTheError) {
   EXPECT_LE(both.error, 0.004f);
   EXPECT_GT(both.mesh.triangle_count(), 100u);
   EXPECT_EQ(both.stop_reason, StopReason::kErrorBudgetReached) << both.stop_detail;
+}
+
+// A budget finer than any vertex spacing keeps every triangle of an
+// icosphere (81 920, more than the passes' cap for a count of 10): the
+// pass the budget forces runs whole.
+TEST_F(OutOfCoreClusteringTest, ErrorBudgetBeyondTheCapRunsWhole) {
+  const TriangleMesh sphere = test::make_icosphere(6);
+  const OutOfCoreClusteringResult r =
+      run(sphere, {.target = {.triangles = 10, .max_error = 1e-5f}});
+  EXPECT_EQ(r.mesh.triangle_count(), sphere.triangle_count());
+  EXPECT_EQ(r.stop_reason, StopReason::kErrorBudgetReached) << r.stop_detail;
+  EXPECT_EQ(r.passes, 3);  // the survey, the capped pass, the whole one
 }
 
 // Binary STL (every triangle its own corners) gives the same mesh as PLY;

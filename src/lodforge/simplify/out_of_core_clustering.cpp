@@ -354,16 +354,21 @@ SimplifyResult search_count(const TriangleStream& input, const Survey& s, std::s
   };
   double h = clamp_side(target > 0 ? std::sqrt(3 * s.area / double(target)) : h_coarse);
   const std::size_t cap = 4 * target + 65536;
+  std::size_t pass_cap = cap;
   // Sides known to give more than `target` (below) and at most (above).
   double too_fine = 0, fine_enough = std::numeric_limits<double>::infinity();
   std::optional<SimplifyResult> best, smallest_over;
   std::optional<Grid> best_grid, over_grid;
   while (passes < kMaxPasses) {
     const Grid grid(s.box, h);
-    Pass pass = cluster_pass(input, grid, cap);
+    Pass pass = cluster_pass(input, grid, pass_cap);
     ++passes;
     const std::size_t out = pass.triples.size();
     double next = h;
+    if (!pass.complete && clamp_side(2 * h) == h) {
+      pass_cap = std::numeric_limits<std::size_t>::max();  // the error budget allows no coarser
+      continue;
+    }
     if (!pass.complete) {
       too_fine = std::max(too_fine, h);
       next = 2 * h;

@@ -34,8 +34,8 @@
 /// A clustering pass that reaches 4 T + 65 536 triangles stops early and the
 /// pass is run again with 2 h, so a bad first estimate (a surface much
 /// rougher than its area says) cannot take memory beyond a few times the
-/// output's. Before the passes, one survey pass over the triangles finds the
-/// bounding box, the area and the triangle count.
+/// output's (unless the error budget forbids 2 h: then the pass runs whole). Before the passes, one
+/// survey pass over the triangles finds the bounding box, the area and the triangle count.
 ///
 /// `error`, in model units, is an upper bound on the displacement of an
 /// input vertex: the largest distance from a cell's representative to the

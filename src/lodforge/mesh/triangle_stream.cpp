@@ -78,11 +78,12 @@ class SequentialFile {
       pos_ += static_cast<std::size_t>(n);
       return;
     }
-    const std::uint64_t target = offset() + n;
     struct stat st {};
-    if (::fstat(fd_, &st) != 0 || static_cast<std::uint64_t>(st.st_size) < target)
+    if (::fstat(fd_, &st) != 0 || static_cast<std::uint64_t>(st.st_size) < offset() ||
+        static_cast<std::uint64_t>(st.st_size) - offset() < n)
       fail_binary(path_, static_cast<std::size_t>(offset()),
                   fmt::format("expected {} more bytes for {}, got end of file", n, what));
+    const std::uint64_t target = offset() + n;
     if (::lseek(fd_, static_cast<off_t>(target), SEEK_SET) < 0)
       throw DataError(fmt::format("{}: cannot seek to byte {}", path_, target));
     file_offset_ = target;
@@ -166,6 +167,13 @@ Vec3 stl_vertex(const char* p) {
           std::bit_cast<float>(stl_float_bits(p + 8))};
 }
 
+/// size x count, or the largest value when that overflows (a hostile header:
+/// the read then fails at the end of the file).
+std::uint64_t bytes_of(std::uint64_t size, std::uint64_t count) {
+  std::uint64_t bytes;
+  return __builtin_mul_overflow(size, count, &bytes) ? ~std::uint64_t{0} : bytes;
+}
+
 /// The record size of an element without lists (nullopt if it has one).
 std::optional<std::uint64_t> fixed_record_size(const ply::Element& e) {
   std::uint64_t size = 0;
@@ -238,8 +246,8 @@ struct TriangleStream::Impl {
                     path, what));
   }
 
-  /// Position of vertex v of the mapped block; `at` is the offset in the
-  /// file for the message when v's coordinates are not finite.
+  /// Position of vertex v of the mapped block (v < its count); throws
+  /// DataError at v's record when a coordinate is not finite.
   Vec3 ply_vertex(std::uint64_t v) const {
     const char* rec = vertices->view().data() + v * vertex_stride;
     Vec3 p;
@@ -320,12 +328,13 @@ void TriangleStream::Impl::open_ply(std::string_view head) {
     if (&e == vertex_element) break;
     const std::optional<std::uint64_t> size = fixed_record_size(e);
     if (size && !through) {
-      vertex_start += *size * e.count;
+      const std::uint64_t bytes = bytes_of(*size, e.count);
+      vertex_start = bytes > ~vertex_start ? ~std::uint64_t{0} : vertex_start + bytes;
       continue;
     }
     if (!through) through.emplace(path, vertex_start);
     if (size)
-      through->skip(*size * e.count, "an element before the vertices");
+      through->skip(bytes_of(*size, e.count), "an element before the vertices");
     else
       skip_items(*through, e, swap);
     vertex_start = through->offset();
@@ -343,16 +352,15 @@ void TriangleStream::Impl::open_ply(std::string_view head) {
 std::uint64_t TriangleStream::Impl::ply_triangles(const TriangleVisitor& visit) const {
   if (face_index == header.elements.size()) return 0;
   const auto& elements = header.elements;
-  const ply::Element* vertex_pos = vertex_element;
   // Read from the vertex block's end when the faces follow it, else from the body.
-  const bool after = vertex_pos < &elements[face_index];
+  const bool after = vertex_element < &elements[face_index];
   SequentialFile in(path, after ? face_start : header.body);
   const std::size_t first_element =
-      after ? static_cast<std::size_t>(vertex_pos - &elements[0]) + 1 : 0;
+      after ? static_cast<std::size_t>(vertex_element - &elements[0]) + 1 : 0;
   for (std::size_t i = first_element; i < face_index; ++i) {
     const ply::Element& e = elements[i];
     if (const std::optional<std::uint64_t> size = fixed_record_size(e))
-      in.skip(*size * e.count, "an element before the faces");
+      in.skip(bytes_of(*size, e.count), "an element before the faces");
     else
       skip_items(in, e, swap);
   }

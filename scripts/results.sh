@@ -35,7 +35,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-all_sections=(compare clustering octree simplify reader inventor lod outcome scale qem batches)
+all_sections=(compare clustering octree simplify reader inventor lod outcome scale out_of_core qem batches)
 [ ${#chosen[@]} -gt 0 ] || chosen=("${all_sections[@]}")
 for s in "${chosen[@]}"; do
   case " ${all_sections[*]} " in
@@ -183,6 +183,16 @@ section() {
         "$B/lodforge info $W/bunnies.wrl"
         "/usr/bin/time $time_fmt $B/lodforge lod $W/bunnies.wrl -o $W/bunnies_lod.wrl -q && ls -l $W/bunnies_lod.wrl"
         "$B/bench/simplify_bench --no-quality --benchmark_filter='meshopt_simplify_bun_zipper.ply_50'"
+      ) ;;
+    out_of_core)  # simplify streaming a 20 M-triangle PLY under ulimit -v 1 GiB; the peer: the in-memory path
+      targets=(lodforge_cli make_big_ply test_simplify)
+      commands=(
+        "$B/tests/tools/make_big_ply $W/big.ply 20000000 && ls -l $W/big.ply"
+        "ulimit -v 1048576 && /usr/bin/time $time_fmt $B/lodforge simplify $W/big.ply -o $W/small.ply --method cluster --ratio 0.01 --json"
+        "/usr/bin/time $time_fmt $B/lodforge compare $W/big.ply $W/small.ply"
+        "/usr/bin/time $time_fmt $B/lodforge simplify $W/big.ply -o $W/small_in_memory.ply --method cluster --ratio 0.01 --max-memory 0 --json"
+        "$B/lodforge compare $W/big.ply $W/small_in_memory.ply"
+        "$B/tests/test_simplify --gtest_filter='OutOfCoreClustering*'"
       ) ;;
     qem)  # quadric collapse beside meshopt_simplify: speed and quality
       targets=(quadric_collapse_bench test_simplify)

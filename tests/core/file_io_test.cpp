@@ -213,5 +213,27 @@ TEST_F(AtomicFileWriterTest, GzipInPiecesIsTheGzipOfTheWhole) {
   EXPECT_EQ(FileBytes(path("big.wrl.gz")).view(), whole);
 }
 
+class MappedRegion : public testing::TempDirTest {};
+
+TEST_F(MappedRegion, GivesTheBytesOfTheRangeAtAnyOffset) {
+  // Offsets off a page boundary and across one.
+  std::string text(10000, '\0');
+  for (std::size_t i = 0; i < text.size(); ++i) text[i] = static_cast<char>('a' + i % 26);
+  const std::string p = write("r.bin", text);
+  EXPECT_EQ(MappedFileRegion(p, 0, 3).view(), "abc");
+  EXPECT_EQ(MappedFileRegion(p, 4095, 5).view(), text.substr(4095, 5));
+  EXPECT_EQ(MappedFileRegion(p, 9990, 10).view(), text.substr(9990));
+  EXPECT_EQ(MappedFileRegion(p, 10000, 0).view(), "");
+}
+
+TEST_F(MappedRegion, ShortFilesAndFoldersAreDataErrors) {
+  const std::string p = write("r.bin", "0123456789");
+  EXPECT_THAT([&] { MappedFileRegion(p, 4, 7); },
+              ::testing::ThrowsMessage<DataError>(
+                  HasSubstr("r.bin: expected 7 bytes from byte 4, the file has 10")));
+  EXPECT_THROW(MappedFileRegion(dir_.string(), 0, 1), DataError);
+  EXPECT_THROW(MappedFileRegion(path("missing"), 0, 1), DataError);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -39,5 +39,32 @@ TEST(Quadric, NeverNegative) {
   EXPECT_GE(q(0, 0.123456789 / 0.7, 0), 0.0);
 }
 
+TEST(QuadricMinimum, CornerOfThreePlanesIsExact) {
+  // x = 1, y = 2, z = 3: full rank, the minimum is their common point
+  // (regularisation pulls it towards x0 by lambda / (1 + lambda) = 0.3 %).
+  Quadric q = Quadric::plane(1, 0, 0, -1, 1) + Quadric::plane(0, 1, 0, -2, 1) +
+              Quadric::plane(0, 0, 1, -3, 1);
+  const auto m = quadric_minimum(q, {1, 2, 3});
+  EXPECT_DOUBLE_EQ(m[0], 1.0);
+  EXPECT_DOUBLE_EQ(m[1], 2.0);
+  EXPECT_DOUBLE_EQ(m[2], 3.0);
+  const auto n = quadric_minimum(q, {0, 0, 0});
+  EXPECT_NEAR(n[0], 1.0, 0.004);
+  EXPECT_NEAR(n[2], 3.0, 0.01);
+}
+
+TEST(QuadricMinimum, FlatDirectionsKeepTheStartingPoint) {
+  // One plane z = 5: the minimum moves x0 onto the plane and nowhere else.
+  const auto m = quadric_minimum(Quadric::plane(0, 0, 1, -5, 2), {7, -4, 0});
+  EXPECT_DOUBLE_EQ(m[0], 7.0);
+  EXPECT_DOUBLE_EQ(m[1], -4.0);
+  EXPECT_NEAR(m[2], 5.0, 5 * 1e-3);
+}
+
+TEST(QuadricMinimum, ZeroQuadricGivesTheStartingPoint) {
+  const auto m = quadric_minimum(Quadric{}, {1, 2, 3});
+  EXPECT_EQ(m, (std::array<double, 3>{1, 2, 3}));
+}
+
 }  // namespace
 }  // namespace lodforge

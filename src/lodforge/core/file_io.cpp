@@ -173,6 +173,41 @@ FileBytes::~FileBytes() {
   if (map_) ::munmap(map_, map_size_);
 }
 
+MappedFileRegion::MappedFileRegion(const std::string& path, std::uint64_t offset,
+                                   std::uint64_t size) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw DataError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+  struct stat st {};
+  const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+  if (!regular || static_cast<std::uint64_t>(st.st_size) < offset ||
+      static_cast<std::uint64_t>(st.st_size) - offset < size) {
+    ::close(fd);
+    throw DataError(regular ? fmt::format("{}: expected {} bytes from byte {}, the file has {}",
+                                          path, size, offset, st.st_size)
+                            : fmt::format("{}: not a regular file", path));
+  }
+  if (size == 0) {
+    ::close(fd);
+    return;
+  }
+  // mmap wants an offset on a page boundary: map from the page that holds it.
+  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  const std::uint64_t start = offset - offset % page;
+  map_size_ = static_cast<std::size_t>(size + (offset - start));
+  void* m = ::mmap(nullptr, map_size_, PROT_READ, MAP_PRIVATE, fd, static_cast<off_t>(start));
+  const int err = errno;
+  ::close(fd);
+  if (m == MAP_FAILED)
+    throw DataError(fmt::format("{}: cannot map {} bytes: {}", path, size, std::strerror(err)));
+  map_ = m;
+  view_ = std::string_view(static_cast<const char*>(map_) + (offset - start),
+                           static_cast<std::size_t>(size));
+}
+
+MappedFileRegion::~MappedFileRegion() {
+  if (map_) ::munmap(map_, map_size_);
+}
+
 struct AtomicFileWriter::Impl {
   std::string path;  // as given, for messages
   std::filesystem::path target;

@@ -5,6 +5,7 @@
 /// half-written file. A target whose name ends in ".gz" is written
 /// gzip-compressed, so every writer of the toolkit writes gzip for such names.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,6 +35,28 @@ class FileBytes {
   void* map_ = nullptr;
   std::size_t map_size_ = 0;
   std::string data_;
+  std::string_view view_;
+};
+
+/// Bytes [offset, offset + size) of a regular, uncompressed file, mapped
+/// read-only: the operating system pages them in and out, so a region larger
+/// than the memory a process may allocate can still be read (it counts
+/// against the address space only). Readers that stream a large file map
+/// the part they must read at random (a PLY file's vertices) this way.
+/// Throws DataError naming `path` if it is not a regular file, is shorter
+/// than offset + size, or cannot be mapped. The file must not shrink while
+/// the region is in use.
+class MappedFileRegion {
+ public:
+  MappedFileRegion(const std::string& path, std::uint64_t offset, std::uint64_t size);
+  ~MappedFileRegion();
+  MappedFileRegion(const MappedFileRegion&) = delete;
+  MappedFileRegion& operator=(const MappedFileRegion&) = delete;
+  std::string_view view() const { return view_; }
+
+ private:
+  void* map_ = nullptr;
+  std::size_t map_size_ = 0;
   std::string_view view_;
 };
 

@@ -3,6 +3,7 @@
 /// Quadric Error Metrics" (SIGGRAPH 1997): the sum of weighted squared
 /// distances to a set of planes, as one symmetric 4x4 form.
 #include <algorithm>
+#include <array>
 
 namespace lodforge {
 
@@ -61,5 +62,36 @@ struct Quadric {
     return std::max(0.0, x * ax + y * ay + z * az + 2 * (b0 * x + b1 * y + b2 * z) + c);
   }
 };
+
+/// Regularisation of quadric_minimum, as a fraction of the trace of A:
+/// Lindstrom ("Out-of-Core Simplification of Large Polygonal Models",
+/// SIGGRAPH 2000) drops the eigenvalues below 1e-3 of the largest.
+inline constexpr double kQuadricRankTolerance = 1e-3;
+
+/// The minimum of q regularised towards x0: the minimum of
+/// Q(x) + lambda |x - x0|^2 with lambda = kQuadricRankTolerance x trace(A),
+/// one 3x3 solve. Along directions where A is strong (eigenvalue >> lambda)
+/// this is the quadric's optimum; along weak ones (a flat or straight
+/// region, where Q has no unique minimum) it stays at x0, like Lindstrom's
+/// truncated pseudo-inverse, without its eigen-decomposition. x0 itself when
+/// A is zero or the system is not positive definite (non-finite input).
+inline std::array<double, 3> quadric_minimum(const Quadric& q, const std::array<double, 3>& x0) {
+  const double lambda = kQuadricRankTolerance * (q.a00 + q.a11 + q.a22);
+  if (!(lambda > 0)) return x0;
+  const double m00 = q.a00 + lambda, m11 = q.a11 + lambda, m22 = q.a22 + lambda;
+  const double m01 = q.a01, m02 = q.a02, m12 = q.a12;
+  // Solve M d = -(A x0 + b) for the step d from x0 (Cramer; M is positive definite).
+  const double r0 = -(q.b0 + q.a00 * x0[0] + q.a01 * x0[1] + q.a02 * x0[2]);
+  const double r1 = -(q.b1 + q.a01 * x0[0] + q.a11 * x0[1] + q.a12 * x0[2]);
+  const double r2 = -(q.b2 + q.a02 * x0[0] + q.a12 * x0[1] + q.a22 * x0[2]);
+  const double c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22;
+  const double c02 = m01 * m12 - m02 * m11, c11 = m00 * m22 - m02 * m02;
+  const double c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
+  const double det = m00 * c00 + m01 * c01 + m02 * c02;
+  if (!(det > 0)) return x0;
+  return {x0[0] + (c00 * r0 + c01 * r1 + c02 * r2) / det,
+          x0[1] + (c01 * r0 + c11 * r1 + c12 * r2) / det,
+          x0[2] + (c02 * r0 + c12 * r1 + c22 * r2) / det};
+}
 
 }  // namespace lodforge

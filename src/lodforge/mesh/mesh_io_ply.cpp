@@ -21,39 +21,12 @@
 #include <limits>
 
 #include "lodforge/mesh/mesh_io_detail.h"
+#include "lodforge/mesh/ply_header.h"
 
 namespace lodforge::detail {
+using namespace ply;  // NOLINT(google-build-using-namespace): the reader of that format
 namespace {
 
-enum class PlyType : std::uint8_t {
-  kInt8,
-  kUint8,
-  kInt16,
-  kUint16,
-  kInt32,
-  kUint32,
-  kFloat32,
-  kFloat64
-};
-
-struct TypeInfo {
-  std::string_view names[2];
-  PlyType type;
-  int size;
-};
-constexpr TypeInfo kTypes[] = {
-    {{"char", "int8"}, PlyType::kInt8, 1},        {{"uchar", "uint8"}, PlyType::kUint8, 1},
-    {{"short", "int16"}, PlyType::kInt16, 2},     {{"ushort", "uint16"}, PlyType::kUint16, 2},
-    {{"int", "int32"}, PlyType::kInt32, 4},       {{"uint", "uint32"}, PlyType::kUint32, 4},
-    {{"float", "float32"}, PlyType::kFloat32, 4}, {{"double", "float64"}, PlyType::kFloat64, 8},
-};
-
-int type_size(PlyType t) {
-  return kTypes[static_cast<int>(t)].size;
-}
-bool is_float(PlyType t) {
-  return t == PlyType::kFloat32 || t == PlyType::kFloat64;
-}
 /// Scale that maps an integer colour channel to [0,1].
 double colour_scale(PlyType t) {
   switch (t) {
@@ -73,55 +46,6 @@ double colour_scale(PlyType t) {
       return 1.0;
   }
 }
-
-// Roles; the first kSlots index a per-item value array.
-enum Role : std::uint8_t {
-  kX,
-  kY,
-  kZ,
-  kNx,
-  kNy,
-  kNz,
-  kRed,
-  kGreen,
-  kBlue,
-  kU,
-  kV,
-  kMaterial,
-  kVertex1,
-  kVertex2,
-  kSlots,
-  kSkip = kSlots,
-  kIndices,
-  kStrip,
-};
-
-enum class ElementKind { kVertex, kFace, kTristrips, kEdge, kOther };
-
-struct Property {
-  std::string name;
-  PlyType type = PlyType::kFloat32;
-  bool is_list = false;
-  PlyType count_type = PlyType::kUint8;
-  Role role = kSkip;
-};
-
-struct Element {
-  std::string name;
-  std::uint64_t count = 0;
-  ElementKind kind = ElementKind::kOther;
-  std::vector<Property> props;
-  int line = 0;
-  std::uint64_t roles_taken = 0;  ///< bit r: a property has role r already
-};
-
-enum class Encoding { kAscii, kLittle, kBig };
-
-struct Header {
-  Encoding encoding = Encoding::kAscii;
-  std::vector<Element> elements;
-  std::size_t body = 0;  // byte offset of the data
-};
 
 Role role_of(ElementKind kind, std::string_view name, bool is_list) {
   if (kind == ElementKind::kVertex && !is_list) {
@@ -162,7 +86,9 @@ Role role_of(ElementKind kind, std::string_view name, bool is_list) {
   return kSkip;
 }
 
-Header parse_header(std::string_view data, const std::string& file, Log* log) {
+}  // namespace
+
+Header ply::parse_header(std::string_view data, const std::string& file, Log* log) {
   Header h;
   TextCursor in(data, file, /*line_mode=*/true, '\0');
   if (in.token() != "ply") in.fail_at(data.data(), "expected 'ply' at the start of a PLY file");
@@ -280,6 +206,8 @@ Header parse_header(std::string_view data, const std::string& file, Log* log) {
   }
   return h;
 }
+
+namespace {
 
 // ---- The two value sources -------------------------------------------------
 

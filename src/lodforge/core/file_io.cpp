@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <optional>
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
@@ -77,34 +78,65 @@ std::string gunzip(std::string_view data, const std::string& what, std::size_t m
   return out;
 }
 
-std::string gzip(std::string_view data) {
-  z_stream zs{};
-  // 15 + 16: the largest window, with a gzip header and trailer (zlib's deflateInit2).
-  if (deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    throw DataError("cannot start zlib");
-  std::string out;
-  out.resize(deflateBound(&zs, static_cast<uLong>(data.size())));
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  std::size_t consumed = 0;
-  int rc = Z_OK;
-  // avail_in and avail_out are 32-bit: feed data of any size in pieces.
-  constexpr std::size_t kPiece = std::size_t{1} << 30;
-  while (rc != Z_STREAM_END) {
-    std::size_t in_piece = std::min(data.size() - consumed, kPiece);
-    zs.avail_in = static_cast<uInt>(in_piece);
-    if (zs.total_out + (std::size_t{1} << 16) > out.size()) out.resize(out.size() * 2 + (1 << 16));
-    zs.next_out = reinterpret_cast<Bytef*>(out.data() + zs.total_out);
-    zs.avail_out = static_cast<uInt>(std::min(out.size() - zs.total_out, kPiece));
-    bool last = consumed + in_piece == data.size();
-    rc = deflate(&zs, last ? Z_FINISH : Z_NO_FLUSH);
-    consumed += in_piece - zs.avail_in;
-    if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR) {
-      deflateEnd(&zs);
-      throw DataError("gzip compression failed");
-    }
+namespace {
+
+// One gzip stream being written: bytes in, compressed pieces out to a sink.
+// zlib's default level, the largest window, no name and no time stamp, so
+// the same bytes give the same stream however they are fed.
+class Deflater {
+ public:
+  Deflater() {
+    // 15 + 16: the largest window, with a gzip header and trailer (zlib's deflateInit2).
+    if (deflateInit2(&zs_, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) !=
+        Z_OK)
+      throw DataError("cannot start zlib");
   }
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
+  ~Deflater() { deflateEnd(&zs_); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+
+  // Compresses `bytes` (with `finish`, and ends the stream), handing each
+  // compressed piece to `sink`; `what` names the output in errors.
+  template <class Sink>
+  void feed(std::string_view bytes, bool finish, Sink&& sink, std::string_view what) {
+    // avail_in is 32-bit: pieces of at most 1 GiB.
+    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    std::size_t at = 0;
+    do {
+      const std::string_view piece = bytes.substr(at, kPiece);
+      at += piece.size();
+      deflate_piece(piece, finish && at == bytes.size() ? Z_FINISH : Z_NO_FLUSH, sink, what);
+    } while (at < bytes.size());
+  }
+
+ private:
+  template <class Sink>
+  void deflate_piece(std::string_view bytes, int flush, Sink& sink, std::string_view what) {
+    zs_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+    zs_.avail_in = static_cast<uInt>(bytes.size());
+    constexpr std::size_t kOut = std::size_t{1} << 16;
+    int rc = Z_OK;
+    do {
+      buffer_.resize(kOut);
+      zs_.next_out = reinterpret_cast<Bytef*>(buffer_.data());
+      zs_.avail_out = static_cast<uInt>(kOut);
+      rc = deflate(&zs_, flush);
+      if (rc == Z_STREAM_ERROR)
+        throw DataError(what.empty() ? std::string("gzip compression failed")
+                                     : fmt::format("{}: gzip compression failed", what));
+      sink(std::string_view(buffer_.data(), kOut - zs_.avail_out));
+    } while (zs_.avail_out == 0 || (flush == Z_FINISH && rc != Z_STREAM_END));
+  }
+
+  z_stream zs_{};
+  std::string buffer_;
+};
+
+}  // namespace
+
+std::string gzip(std::string_view data) {
+  std::string out;
+  Deflater().feed(data, true, [&](std::string_view piece) { out += piece; }, {});
   return out;
 }
 
@@ -213,12 +245,9 @@ struct AtomicFileWriter::Impl {
   std::filesystem::path target;
   std::string temporary;
   int fd = -1;
-  bool compress = false;
-  z_stream zs{};
-  std::string buffer;  // compressed output waiting to be written
+  std::optional<Deflater> gzip;  // for a .gz name
 
   ~Impl() {
-    if (compress) deflateEnd(&zs);
     if (fd >= 0) {
       ::close(fd);
       ::unlink(temporary.c_str());
@@ -247,36 +276,13 @@ struct AtomicFileWriter::Impl {
       done += static_cast<std::size_t>(n);
     }
   }
-
-  // Feeds `bytes` to the compressor (flush: Z_FINISH at the end) and writes
-  // what it gives.
-  void deflate_piece(std::string_view bytes, int flush) {
-    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
-    zs.avail_in = static_cast<uInt>(bytes.size());
-    constexpr std::size_t kOut = std::size_t{1} << 16;
-    int rc = Z_OK;
-    do {
-      buffer.resize(kOut);
-      zs.next_out = reinterpret_cast<Bytef*>(buffer.data());
-      zs.avail_out = static_cast<uInt>(kOut);
-      rc = deflate(&zs, flush);
-      if (rc == Z_STREAM_ERROR) throw DataError(fmt::format("{}: gzip compression failed", path));
-      put(std::string_view(buffer.data(), kOut - zs.avail_out));
-    } while (zs.avail_out == 0 || (flush == Z_FINISH && rc != Z_STREAM_END));
-  }
 };
 
 AtomicFileWriter::AtomicFileWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
   Impl& w = *impl_;
   w.path = path;
   if (path == "-") return;  // standard output, uncompressed
-  if (is_gzip_path(path)) {
-    // 15 + 16: the largest window, with a gzip header and trailer (zlib's deflateInit2).
-    if (deflateInit2(&w.zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) !=
-        Z_OK)
-      throw DataError("cannot start zlib");
-    w.compress = true;
-  }
+  if (is_gzip_path(path)) w.gzip.emplace();
   // A link's target is replaced, so the temporary file goes beside it.
   w.target = resolve_output_path(path);
   const std::filesystem::path dir = w.target.has_parent_path() ? w.target.parent_path() : ".";
@@ -288,20 +294,19 @@ AtomicFileWriter::AtomicFileWriter(const std::string& path) : impl_(std::make_un
 AtomicFileWriter::~AtomicFileWriter() = default;
 
 void AtomicFileWriter::write(std::string_view bytes) {
-  // avail_in is 32-bit: pieces of at most 1 GiB.
-  constexpr std::size_t kPiece = std::size_t{1} << 30;
-  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
-    const std::string_view piece = bytes.substr(at, kPiece);
-    if (impl_->compress)
-      impl_->deflate_piece(piece, Z_NO_FLUSH);
-    else
-      impl_->put(piece);
-  }
+  Impl& w = *impl_;
+  if (w.gzip)
+    w.gzip->feed(
+        bytes, false, [&](std::string_view piece) { w.put(piece); }, w.path);
+  else
+    w.put(bytes);
 }
 
 void AtomicFileWriter::commit() {
   Impl& w = *impl_;
-  if (w.compress) w.deflate_piece({}, Z_FINISH);
+  if (w.gzip)
+    w.gzip->feed(
+        {}, true, [&](std::string_view piece) { w.put(piece); }, w.path);
   if (w.path == "-") {
     errno = 0;
     std::cout.flush();

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace lodforge {
 namespace {
 
@@ -25,6 +27,18 @@ TEST(Morton, InterleavesTwentyOneBitsOfEachAxis) {
       for (std::uint32_t z : values)
         EXPECT_EQ(morton_code(x, y, z), slow_code(x & 0x1fffff, y & 0x1fffff, z & 0x1fffff));
   EXPECT_EQ(morton_code(0x1fffff, 0x1fffff, 0x1fffff), (std::uint64_t{1} << 63) - 1);
+}
+
+// Points sorted octant by octant over their box; equal points keep their
+// index order; the index is in the low 32 bits.
+TEST(Morton, SortedKeysOrderPointsCellByCell) {
+  const std::vector<Vec3> points = {{1, 1, 1}, {0, 0, 0}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}};
+  const std::vector<std::uint64_t> keys = morton_sorted_keys(points);
+  std::vector<std::uint32_t> order;
+  for (std::uint64_t k : keys) order.push_back(std::uint32_t(k));
+  EXPECT_EQ(order, (std::vector<std::uint32_t>{1, 3, 2, 4, 0}));
+  EXPECT_EQ(keys.back() >> 32, morton_code(1023, 1023, 1023));
+  EXPECT_TRUE(morton_sorted_keys({}).empty());
 }
 
 }  // namespace

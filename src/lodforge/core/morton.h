@@ -2,6 +2,10 @@
 /// Morton (Z-order) codes: the bits of three 21-bit integers interleaved, so
 /// that sorting by code groups points octree cell by octree cell.
 #include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lodforge/core/math.h"
 
 namespace lodforge {
 
@@ -20,5 +24,10 @@ constexpr std::uint64_t morton_spread(std::uint32_t v) {
 constexpr std::uint64_t morton_code(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
   return morton_spread(x) | morton_spread(y) << 1 | morton_spread(z) << 2;
 }
+
+/// Points in Morton order: per point, its code (10 bits per axis over the
+/// points' bounding box) above its index, sorted by the code; points of one
+/// code stay in index order. O(n), deterministic.
+std::vector<std::uint64_t> morton_sorted_keys(std::span<const Vec3> points);
 
 }  // namespace lodforge

@@ -18,7 +18,6 @@
 #include <span>
 
 #include "lodforge/core/morton.h"
-#include "lodforge/core/radix_sort.h"
 #include "lodforge/metrics/sample_surface.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
@@ -38,20 +37,8 @@ struct Samples {
 };
 
 Samples morton_ordered(const SurfaceSamples& s) {
-  const auto n = std::uint32_t(s.size());
-  Box3 box;
-  for (const Vec3& p : s.positions) box.add(p);
-  const Vec3 size = box.size();
-  std::vector<std::uint64_t> keyed(n), scratch(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    std::uint32_t q[3];
-    for (int a = 0; a < 3; ++a) {
-      const float u = size[a] > 0 ? (s.positions[i][a] - box.lo[a]) / size[a] : 0.f;
-      q[a] = std::uint32_t(std::clamp(u * 1023.f, 0.f, 1023.f));
-    }
-    keyed[i] = morton_code(q[0], q[1], q[2]) << 32 | i;
-  }
-  radix_sort(keyed, scratch, 32, 62);
+  const std::vector<std::uint64_t> keyed = morton_sorted_keys(s.positions);
+  const auto n = std::uint32_t(keyed.size());
   Samples out;
   out.positions.resize(n);
   out.triangles.resize(n);

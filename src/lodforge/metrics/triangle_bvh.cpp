@@ -36,7 +36,6 @@
 #include <cmath>
 
 #include "lodforge/core/morton.h"
-#include "lodforge/core/radix_sort.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge {
@@ -200,23 +199,9 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
 
 void TriangleBvh::build_morton(const std::vector<Vec3>& centroid, const std::vector<Vec3>& lo,
                                const std::vector<Vec3>& hi) {
-  // Keys: the centroid's code (10 bits per axis over the centroids' box)
-  // above the triangle index, sorted by the code; the stable sort keeps
-  // triangles of one code in index order.
-  Box3 box;
-  for (const Vec3& c : centroid) box.add(c);
-  const Vec3 size = box.size();
+  // Keys: the centroid's code above the triangle index, in Morton order.
+  const std::vector<std::uint64_t> keyed = morton_sorted_keys(centroid);
   const auto n = std::uint32_t(centroid.size());
-  std::vector<std::uint64_t> keyed(n), scratch(n);
-  for (std::uint32_t f = 0; f < n; ++f) {
-    std::uint32_t q[3];
-    for (int a = 0; a < 3; ++a) {
-      const float u = size[a] > 0 ? (centroid[f][a] - box.lo[a]) / size[a] : 0.f;
-      q[a] = std::uint32_t(std::clamp(u * 1023.f, 0.f, 1023.f));
-    }
-    keyed[f] = morton_code(q[0], q[1], q[2]) << 32 | f;
-  }
-  radix_sort(keyed, scratch, 32, 62);
   for (std::uint32_t i = 0; i < n; ++i) order_[i] = std::uint32_t(keyed[i]);
   build_morton(0, n, 1, keyed, lo, hi);
 }

@@ -22,6 +22,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/lod/choose_levels.h"
 #include "lodforge/lod/join_nodes.h"
 #include "lodforge/lod/measure_deviation.h"
 #include "lodforge/lod/shape_geometry.h"
@@ -366,50 +367,15 @@ class Pipeline {
   }
 
   void set_levels(Job& j, std::size_t simplified_max, int quality) {
-    LevelChainOptions c;
-    c.method = opt_.method;
-    c.min_diff = opt_.min_diff;
-    c.measure_samples = opt_.measure_samples;
-    c.threads = opt_.threads;
-    const bool manual = quality >= 2;
-    if (manual) {
-      // Manual mode: quality-2 levels, halving the triangles each time.
-      c.max_levels = simplified_max;
-      double tcount = double(j.geometry.mesh.triangle_count());
-      for (int k = 0; k < quality - 2; ++k) {
-        tcount = std::floor(tcount / 2);
-        if (tcount < 1) break;
-        c.triangle_targets.push_back(std::size_t(tcount));
-      }
-      if (c.triangle_targets.empty()) return;
-    }
-    j.stats.method = j.geometry.mesh.triangles.empty() ? "cluster" : to_string(opt_.method);
-    // Automatic mode: the candidates worth showing, spaced by what a viewer
-    // notices (switch_distance grows by the spacing factor from one kept level
-    // to the next), down to the level after which the object vanishes. Only
-    // the kept ones need their error measured in full.
-    RangeOptions ro = opt_.range;
-    ro.camera_angle = float(camera_angle_);
-    auto space = [&](std::span<const MeasuredLevel> candidates) {
-      std::vector<double> errors;
-      std::vector<std::size_t> triangles;
-      for (const auto& l : candidates) {
-        errors.push_back(l.error);
-        triangles.push_back(l.level.mesh.triangle_count() + l.level.mesh.lines.size());
-      }
-      return space_levels(
-          {.errors = errors,
-           .triangles = triangles,
-           .level0_triangles = j.geometry.mesh.triangle_count() + j.geometry.mesh.lines.size()},
-          j.radius, ro, {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio});
-    };
-    if (!manual)
-      c.keep = [&](std::span<const MeasuredLevel> candidates) {
-        std::vector<std::size_t> kept;
-        for (const SpacedLevel& s : space(candidates).levels)
-          if (!simplified_max || kept.size() < simplified_max) kept.push_back(s.candidate);
-        return kept;
-      };
+    ChooseLevelsOptions c{.method = opt_.method,
+                          .min_diff = opt_.min_diff,
+                          .spacing = {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio},
+                          .range = opt_.range,
+                          .max_simplified = simplified_max,
+                          .quality = quality,
+                          .measure_samples = opt_.measure_samples,
+                          .threads = opt_.threads};
+    c.range.camera_angle = float(camera_angle_);
     // A fifth of the job's work when its chain is made, the rest as its
     // levels are measured (where the pipeline's time goes).
     const std::size_t job = static_cast<std::size_t>(&j - jobs_.data());
@@ -417,41 +383,15 @@ class Pipeline {
       c.progress = [&, job](std::string_view, std::uint64_t done, std::uint64_t total) {
         credit(job, 0.2 + 0.8 * double(done) / double(std::max<std::uint64_t>(total, 1)));
       };
-    std::vector<MeasuredLevel> levels = simplify_levels(j.geometry.mesh, c);
-    if (levels.empty()) {
-      j.stats.stop_reason = "nothing could be removed";
-      return;
+    ChosenLevels chosen = choose_levels(j.geometry.mesh, j.radius, c);
+    j.stats.method = chosen.method;
+    j.stats.stop_reason = chosen.stop_reason;
+    for (const ChosenLevel& l : chosen.levels) {
+      const SimplifyResult& r = l.measured.level;
+      j.level_nodes.push_back(j.writer->level(r.mesh, r.vertex_map, r.face_map));
+      j.errors.push_back(l.switch_error);
+      j.stats.levels.push_back({r.mesh.triangle_count(), r.mesh.vertex_count(), l.measured.error});
     }
-    auto add = [&](MeasuredLevel& l, double switch_error) {
-      j.level_nodes.push_back(j.writer->level(l.level.mesh, l.level.vertex_map, l.level.face_map));
-      j.errors.push_back(switch_error);
-      j.stats.levels.push_back(
-          {l.level.mesh.triangle_count(), l.level.mesh.vertex_count(), l.error});
-    };
-    const std::string chain_end =
-        std::string(to_string(levels.back().level.stop_reason)) +
-        (levels.back().level.stop_detail.empty() ? "" : ": " + levels.back().level.stop_detail);
-    if (manual) {
-      for (auto& l : levels) add(l, l.error);
-      j.stats.stop_reason = chain_end;
-      return;
-    }
-    const SpacedLevels spaced = space(levels);
-    std::size_t kept = 0;
-    for (const SpacedLevel& s : spaced.levels) {
-      if (simplified_max && kept == simplified_max) break;
-      add(levels[s.candidate], s.switch_error);
-      ++kept;
-    }
-    if (kept < spaced.levels.size())
-      j.stats.stop_reason = fmt::format("level limit ({} levels)", opt_.max_levels);
-    else if (spaced.vanished)
-      j.stats.stop_reason = fmt::format(
-          "vanishing error: a coarser level would be seen over less than {}x the distance before "
-          "the object vanishes (error 2 r)",
-          opt_.level_spacing);
-    else
-      j.stats.stop_reason = chain_end;
   }
 
   // The measured deviation of a primitive's tessellation at `segments` from

@@ -181,6 +181,144 @@ struct Choice {
   std::uint32_t orig = kNone;
 };
 
+/// The weighted mean of a cell's vertices [begin, end) of `prev`: each
+/// weighted by the input coordinates it stands for.
+struct Mean {
+  double x = 0, y = 0, z = 0;
+
+  Mean(const Cut& prev, std::uint32_t begin, std::uint32_t end) {
+    double total = 0;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const double wi = prev.weight[i];
+      x += wi * prev.pos[i].x;
+      y += wi * prev.pos[i].y;
+      z += wi * prev.pos[i].z;
+      total += wi;
+    }
+    x /= total;
+    y /= total;
+    z /= total;
+  }
+  double distance(const Vec3& p) const {
+    const double dx = p.x - x, dy = p.y - y, dz = p.z - z;
+    return sqrt_nonnegative(dx * dx + dy * dy + dz * dz);
+  }
+};
+
+void add_candidate(Scratch& s, const Vec3& p, std::uint32_t orig) {
+  s.candidate[s.n] = p;
+  s.candidate_orig[s.n] = orig;
+  ++s.n;
+}
+
+/// The cell's vertices [begin, end) as candidates: all of them, or the
+/// kMaxCandidates nearest the mean (in vertex order).
+void add_vertex_candidates(const Cut& prev, std::uint32_t begin, std::uint32_t end,
+                           const Mean& mean, Scratch& s) {
+  s.n = 0;
+  if (end - begin <= kMaxCandidates) {
+    for (std::uint32_t i = begin; i < end; ++i) add_candidate(s, prev.pos[i], prev.orig[i]);
+    return;
+  }
+  s.order.resize(end - begin);
+  std::iota(s.order.begin(), s.order.end(), begin);
+  std::nth_element(s.order.begin(), s.order.begin() + kMaxCandidates, s.order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     const double da = mean.distance(prev.pos[a]);
+                     const double db = mean.distance(prev.pos[b]);
+                     return da < db || (da == db && a < b);
+                   });
+  s.order.resize(kMaxCandidates);
+  std::sort(s.order.begin(), s.order.end());
+  for (std::uint32_t i : s.order) add_candidate(s, prev.pos[i], prev.orig[i]);
+}
+
+/// Lindstrom's point as one more candidate: the minimum of the cell's
+/// quadric, clamped to the cell [cell_lo, cell_lo + cell_size], with the
+/// attributes of the nearest vertex of the cell; none where it is not finite.
+void add_quadric_point(const Cut& prev, std::uint32_t begin, std::uint32_t end, const Quadric& q,
+                       const Mean& mean, const Vec3& cell_lo, float cell_size, Scratch& s) {
+  const auto x = quadric_minimum(q, {mean.x, mean.y, mean.z});
+  Vec3 p{float(x[0]), float(x[1]), float(x[2])};
+  if (!is_finite(p)) return;
+  p = min(max(p, cell_lo), cell_lo + Vec3{cell_size, cell_size, cell_size});
+  std::uint32_t nearest = begin;
+  float best = std::numeric_limits<float>::infinity();
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const float d = length_squared(prev.pos[i] - p);
+    if (d < best) best = d, nearest = i;
+  }
+  add_candidate(s, p, prev.orig[nearest]);
+}
+
+/// The terms that need no triangle (mean and quadric) of every candidate,
+/// their largest values in `largest`, and the contenders: the candidates
+/// whose weighted quadric term is within the sum of the other weights of
+/// the best one (all of them without the quadric heuristic).
+void score_without_faces(const Weights& use, const Quadric& q, const Mean& mean, Scratch& s,
+                         std::array<double, 4>& largest) {
+  double least_quadric = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < s.n; ++k) {
+    const Vec3& x = s.candidate[k];
+    auto& h = s.score[k];
+    h = {0, 0, 0, 0};
+    if (use.mean > 0) h[2] = mean.distance(x);
+    if (use.quadric > 0) h[3] = q(x.x, x.y, x.z);
+    largest[2] = std::max(largest[2], h[2]);
+    largest[3] = std::max(largest[3], h[3]);
+    least_quadric = std::min(least_quadric, h[3]);
+  }
+  s.m = 0;
+  if (use.quadric > 0 && largest[3] > 0) {
+    const double slack = (use.area + use.volume + (largest[2] > 0 ? use.mean : 0)) * largest[3];
+    for (std::size_t k = 0; k < s.n; ++k) {  // branch-free: the outcome is data
+      s.contender[s.m] = static_cast<std::uint32_t>(k);
+      s.m += use.quadric * (s.score[k][3] - least_quadric) <= slack;
+    }
+  } else {
+    for (std::size_t k = 0; k < s.n; ++k) s.contender[s.m++] = static_cast<std::uint32_t>(k);
+  }
+}
+
+/// The area and volume terms of the contenders (score_faces, relative to
+/// `origin`), their largest values in `largest`.
+void score_with_faces(const LevelContext& ctx, std::uint32_t cell, const Vec3& origin,
+                      const Weights& use, Scratch& s, std::array<double, 4>& largest) {
+  const std::size_t m = s.m;
+  for (std::size_t k = 0; k < m; ++k) {
+    const Vec3 r = s.candidate[s.contender[k]] - origin;
+    s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
+  }
+  const double area_before = use.area > 0 ? use.volume > 0
+                                                ? score_faces<true, true>(ctx, cell, origin, s, m)
+                                                : score_faces<true, false>(ctx, cell, origin, s, m)
+                                          : score_faces<false, true>(ctx, cell, origin, s, m);
+  for (std::size_t c = 0; c < m; ++c) {
+    auto& h = s.score[s.contender[c]];
+    if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[c]) - area_before);
+    if (use.volume > 0) h[1] = double(s.volume[c]) / 6;
+    largest[0] = std::max(largest[0], h[0]);
+    largest[1] = std::max(largest[1], h[1]);
+  }
+}
+
+/// The contender with the smallest weighted sum of its terms, each divided
+/// by its largest value (ties: the first).
+std::size_t winner(const Weights& use, const std::array<double, 4>& largest, const Scratch& s) {
+  const double weight[4] = {use.area, use.volume, use.mean, use.quadric};
+  double factor[4];
+  for (int i = 0; i < 4; ++i)
+    factor[i] = weight[i] > 0 && largest[i] > 0 ? weight[i] / largest[i] : 0;
+  std::size_t best = s.contender[0];
+  double best_score = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < s.m; ++c) {
+    const auto& h = s.score[s.contender[c]];
+    const double score = factor[0] * h[0] + factor[1] * h[1] + factor[2] * h[2] + factor[3] * h[3];
+    if (score < best_score) best_score = score, best = s.contender[c];
+  }
+  return best;
+}
+
 /// The representative of cell `cell` holding vertices [begin, end) of the
 /// previous level. `has_faces`: a vertex of the cell is a corner of a
 /// triangle. `cell_lo` and `cell_size` bound the cell (for clamping
@@ -194,127 +332,27 @@ struct Choice {
 /// mean: only the remaining candidates (the contenders) are scored by area
 /// and volume, and those two terms are normalised over the contenders. When
 /// one contender is left it wins without looking at a triangle.
+///
+/// | cell has triangles | quadric weight | heuristics used                         |
+/// |--------------------|----------------|-----------------------------------------|
+/// | no (line set)      | any            | weighted mean alone                     |
+/// | yes                | 0              | area, volume, mean (the thesis)         |
+/// | yes                | > 0            | all four, Lindstrom's point a candidate |
 Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::uint32_t begin,
                              std::uint32_t end, bool has_faces, const Vec3& cell_lo,
                              float cell_size, const Quadric& q, Scratch& s) {
-  const Cut& prev = ctx.prev;
-  // Weighted mean: the weights are the coordinates each vertex stands for.
-  double mx = 0, my = 0, mz = 0, total = 0;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    double wi = prev.weight[i];
-    mx += wi * prev.pos[i].x;
-    my += wi * prev.pos[i].y;
-    mz += wi * prev.pos[i].z;
-    total += wi;
-  }
-  mx /= total;
-  my /= total;
-  mz /= total;
-  auto mean_distance = [&](const Vec3& p) {
-    double dx = p.x - mx, dy = p.y - my, dz = p.z - mz;
-    return sqrt_nonnegative(dx * dx + dy * dy + dz * dz);
-  };
-  const Vec3 origin{float(mx), float(my), float(mz)};
-
-  // Candidates: the cell's vertices (at most kMaxCandidates, nearest the mean).
-  s.n = 0;
-  auto add_candidate = [&](const Vec3& p, std::uint32_t orig) {
-    s.candidate[s.n] = p;
-    s.candidate_orig[s.n] = orig;
-    ++s.n;
-  };
-  if (end - begin > kMaxCandidates) {
-    s.order.resize(end - begin);
-    std::iota(s.order.begin(), s.order.end(), begin);
-    std::nth_element(s.order.begin(), s.order.begin() + kMaxCandidates, s.order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       double da = mean_distance(prev.pos[a]), db = mean_distance(prev.pos[b]);
-                       return da < db || (da == db && a < b);
-                     });
-    s.order.resize(kMaxCandidates);
-    std::sort(s.order.begin(), s.order.end());
-    for (std::uint32_t i : s.order) add_candidate(prev.pos[i], prev.orig[i]);
-  } else {
-    for (std::uint32_t i = begin; i < end; ++i) add_candidate(prev.pos[i], prev.orig[i]);
-  }
-
-  // | cell has triangles | quadric weight | heuristics used                         |
-  // |--------------------|----------------|-----------------------------------------|
-  // | no (line set)      | any            | weighted mean alone                     |
-  // | yes                | 0              | area, volume, mean (the thesis)         |
-  // | yes                | > 0            | all four, Lindstrom's point a candidate |
+  const Mean mean(ctx.prev, begin, end);
+  add_vertex_candidates(ctx.prev, begin, end, mean, s);
   const Weights use = has_faces ? ctx.weights : Weights{0, 0, 1, 0};
-  if (use.quadric > 0) {
-    auto x = quadric_minimum(q, {mx, my, mz});
-    Vec3 p{float(x[0]), float(x[1]), float(x[2])};
-    if (is_finite(p)) {
-      p = min(max(p, cell_lo), cell_lo + Vec3{cell_size, cell_size, cell_size});
-      // Its attributes: those of the nearest vertex of the cell.
-      std::uint32_t nearest = begin;
-      float best = std::numeric_limits<float>::infinity();
-      for (std::uint32_t i = begin; i < end; ++i) {
-        float d = length_squared(prev.pos[i] - p);
-        if (d < best) best = d, nearest = i;
-      }
-      add_candidate(p, prev.orig[nearest]);
-    }
-  }
-
-  // The terms that need no triangle, and the contenders.
-  const std::size_t n = s.n;
+  if (use.quadric > 0) add_quadric_point(ctx.prev, begin, end, q, mean, cell_lo, cell_size, s);
   std::array<double, 4> largest{0, 0, 0, 0};
-  double least_quadric = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& x = s.candidate[k];
-    auto& h = s.score[k];
-    h = {0, 0, 0, 0};
-    if (use.mean > 0) h[2] = mean_distance(x);
-    if (use.quadric > 0) h[3] = q(x.x, x.y, x.z);
-    largest[2] = std::max(largest[2], h[2]);
-    largest[3] = std::max(largest[3], h[3]);
-    least_quadric = std::min(least_quadric, h[3]);
-  }
-  s.m = 0;
-  if (use.quadric > 0 && largest[3] > 0) {
-    const double slack = (use.area + use.volume + (largest[2] > 0 ? use.mean : 0)) * largest[3];
-    for (std::size_t k = 0; k < n; ++k) {  // branch-free: the outcome is data
-      s.contender[s.m] = static_cast<std::uint32_t>(k);
-      s.m += use.quadric * (s.score[k][3] - least_quadric) <= slack;
-    }
-  } else {
-    for (std::size_t k = 0; k < n; ++k) s.contender[s.m++] = static_cast<std::uint32_t>(k);
-  }
-  const std::size_t m = s.m;
+  score_without_faces(use, q, mean, s, largest);
   const bool measure = ctx.faces != nullptr && (use.area > 0 || use.volume > 0);
-  if (measure && m > 1) {
-    for (std::size_t k = 0; k < m; ++k) {
-      const Vec3 r = s.candidate[s.contender[k]] - origin;
-      s.cx[k] = r.x, s.cy[k] = r.y, s.cz[k] = r.z;
-    }
-    const double area_before =
-        use.area > 0 ? use.volume > 0 ? score_faces<true, true>(ctx, cell, origin, s, m)
-                                      : score_faces<true, false>(ctx, cell, origin, s, m)
-                     : score_faces<false, true>(ctx, cell, origin, s, m);
-    for (std::size_t c = 0; c < m; ++c) {
-      auto& h = s.score[s.contender[c]];
-      if (use.area > 0) h[0] = std::abs(0.5 * double(s.area[c]) - area_before);
-      if (use.volume > 0) h[1] = double(s.volume[c]) / 6;
-      largest[0] = std::max(largest[0], h[0]);
-      largest[1] = std::max(largest[1], h[1]);
-    }
+  if (measure && s.m > 1) {
+    const Vec3 origin{float(mean.x), float(mean.y), float(mean.z)};
+    score_with_faces(ctx, cell, origin, use, s, largest);
   }
-  if (m == 1) return {s.candidate[s.contender[0]], s.candidate_orig[s.contender[0]]};
-  const double weight[4] = {use.area, use.volume, use.mean, use.quadric};
-  double factor[4];
-  for (int i = 0; i < 4; ++i)
-    factor[i] = weight[i] > 0 && largest[i] > 0 ? weight[i] / largest[i] : 0;
-  std::size_t best = s.contender[0];
-  double best_score = std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < m; ++c) {
-    const auto& h = s.score[s.contender[c]];
-    const double score = factor[0] * h[0] + factor[1] * h[1] + factor[2] * h[2] + factor[3] * h[3];
-    if (score < best_score) best_score = score, best = s.contender[c];
-  }
+  const std::size_t best = s.m == 1 ? s.contender[0] : winner(use, largest, s);
   return {s.candidate[best], s.candidate_orig[best]};
 }
 

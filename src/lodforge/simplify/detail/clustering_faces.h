@@ -118,15 +118,16 @@ inline std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t
 }
 
 /// Builds the faces of `to` (which holds the new vertices, new_count of them)
-/// from the previous level's faces: `mapped(i)` for i < count is the i-th
-/// triangle with its corners already mapped to new vertices, and the triangles
-/// with three distinct corners must come sorted by their smallest corner (they
-/// do: the previous level's triangles are sorted by smallest vertex and the
-/// map to cells is monotone); `origin(i)` is its input triangle. Applies the
-/// face rules; reads nothing of `to` but its faces, so that it can run beside
-/// the choice of the new vertices (number_used_vertices and compact_vertices then drop those
-/// nothing uses). `line_candidates` holds the lines found before (they come
-/// first); the remapped `lines` follow.
+/// from the previous level's faces: `mapped[i]` is its i-th triangle with
+/// its corners already mapped to new vertices, and the triangles with three
+/// distinct corners must come sorted by their smallest corner (they do: the
+/// previous level's triangles are sorted by smallest vertex and the map to
+/// cells is monotone); `origin[i]` is its input triangle. Applies the face
+/// rules; reads nothing of `to` but its faces, so that it can run beside the
+/// choice of the new vertices (number_used_vertices and compact_vertices
+/// then drop those nothing uses). `line_candidates` holds the lines found
+/// before (they come first); the previous level's `lines`, mapped by
+/// `vertex_map`, follow.
 ///
 /// | remapped triangle          | becomes                                    |
 /// |----------------------------|--------------------------------------------|

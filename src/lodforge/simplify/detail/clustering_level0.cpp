@@ -224,137 +224,175 @@ bool distinct(const Triangle& t) {
 /// corner into `cut.tris` (and their input triangles into
 /// `cut.tri_origin`), doublets dropped; those that collapse (two or three
 /// equal corners) are left out, and those that collapse to a line are
-/// appended to `line_candidates` in input order unless `no_lines`. Returns
-/// how many collapsed.
+/// appended to `line_candidates` in input order unless `no_lines`.
 ///
 /// A counting sort by smallest corner, by groups of vertices so that it runs
-/// in parallel, each task writing memory of its own: blocks of triangles map
-/// their corners and count their triangles per group; each block then lists
-/// its triangles (smallest corner and index) in its slots of every group's
-/// list; each group, a range of kGrain vertices or more, counts its list
-/// per vertex, scatters the triangles to their places (the list's order is
-/// the final one) and squeezes the doublets out of its runs; the groups are
-/// then moved together if some lost doublets.
-std::size_t sort_triangles(const TriangleMesh& mesh, const Buffer<std::uint32_t>& node_of,
-                           bool no_lines, Cut& cut, Buffer<Segment>& line_candidates) {
-  const std::size_t count = cut.size();
-  const std::size_t nf = mesh.triangles.size();
-  constexpr int shift = std::bit_width(kGrain - 1);  // a group: 2^shift >= kGrain vertices
-  const std::size_t groups =
-      std::max<std::size_t>(1, (count + (std::size_t(1) << shift) - 1) >> shift);
-  const std::size_t blocks = std::max<std::size_t>(1, (nf + kGrain - 1) / kGrain);
-  auto block_range = [&](std::size_t b) {
-    return std::pair{b * kGrain, std::min(nf, (b + 1) * kGrain)};
-  };
-  Buffer<Triangle> mapped(nf);
-  // [block][group]: the count, then the next slot in the group's list.
-  Buffer<std::uint32_t> at(blocks * groups);
-  Buffer<Buffer<Segment>> block_lines(blocks);
-  Buffer<std::size_t> collapsed(blocks);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const auto& r) {
-    for (std::size_t b = r.begin(); b < r.end(); ++b) {
-      std::uint32_t* counter = &at[b * groups];
-      std::fill_n(counter, groups, 0);
-      std::size_t lost = 0;
-      const auto [f0, f1] = block_range(b);
-      for (std::size_t f = f0; f < f1; ++f) {
-        const Triangle& input = mesh.triangles[f];
-        const Triangle t{node_of[input[0]], node_of[input[1]], node_of[input[2]]};
-        mapped[f] = t;
-        if (distinct(t)) {
-          ++counter[std::min({t[0], t[1], t[2]}) >> shift];
-          continue;
-        }
-        ++lost;
-        if (!no_lines && (t[0] != t[1] || t[1] != t[2])) {
-          const std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
-          block_lines[b].push_back({std::min(t[0], other), std::max(t[0], other)});
-        }
-      }
-      collapsed[b] = lost;
-    }
-  });
-  for (const Buffer<Segment>& l : block_lines)
-    line_candidates.insert(line_candidates.end(), l.begin(), l.end());
-  // Each group's list starts where the groups before it end; in it, the
-  // blocks in order (stable).
-  Buffer<std::uint32_t> group_start(groups + 1);
-  std::uint32_t total = 0;
-  for (std::size_t g = 0; g < groups; ++g) {
-    group_start[g] = total;
-    for (std::size_t b = 0; b < blocks; ++b) total += std::exchange(at[b * groups + g], total);
+/// in parallel, each task writing memory of its own (map_and_count,
+/// list_by_group, sort_group, join_groups below).
+class TriangleSort {
+ public:
+  TriangleSort(const TriangleMesh& mesh, const Buffer<std::uint32_t>& node_of, Cut& cut)
+      : mesh_(mesh),
+        node_of_(node_of),
+        cut_(cut),
+        nf_(mesh.triangles.size()),
+        groups_(std::max<std::size_t>(1, (cut.size() + (std::size_t(1) << kShift) - 1) >> kShift)),
+        blocks_(std::max<std::size_t>(1, (nf_ + kGrain - 1) / kGrain)) {}
+
+  /// Sorts; returns how many triangles collapsed.
+  std::size_t run(bool no_lines, Buffer<Segment>& line_candidates) {
+    const std::size_t collapsed = map_and_count(no_lines, line_candidates);
+    list_by_group();
+    cut_.tris.resize(list_.size());
+    cut_.tri_origin.resize(list_.size());
+    kept_.resize(groups_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups_, 1), [&](const auto& r) {
+      RemapScratch scratch;
+      Buffer<std::uint32_t> slot;
+      for (std::size_t g = r.begin(); g < r.end(); ++g) sort_group(g, scratch, slot);
+    });
+    join_groups();
+    return collapsed;
   }
-  group_start[groups] = total;
-  Buffer<std::uint64_t> list(total);  // smallest corner << 32 | triangle
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const auto& r) {
-    for (std::size_t b = r.begin(); b < r.end(); ++b) {
-      std::uint32_t* next = &at[b * groups];
-      const auto [f0, f1] = block_range(b);
-      for (std::size_t f = f0; f < f1; ++f) {
-        const Triangle& t = mapped[f];
-        if (!distinct(t)) continue;
-        const std::uint32_t lo = std::min({t[0], t[1], t[2]});
-        list[next[lo >> shift]++] = std::uint64_t(lo) << 32 | f;
-      }
-    }
-  });
-  cut.tris.resize(total);
-  cut.tri_origin.resize(total);
-  Buffer<std::uint32_t> kept(groups);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 1), [&](const auto& r) {
-    RemapScratch scratch;
-    Buffer<std::uint32_t> slot;
-    for (std::size_t g = r.begin(); g < r.end(); ++g) {
-      const std::size_t v0 = g << shift, v1 = std::min(count, (g + 1) << shift);
-      const std::uint32_t begin = group_start[g], end = group_start[g + 1];
-      // Counts into slot[v - v0 + 1], then each vertex's first slot.
-      slot.assign(v1 - v0 + 1, 0);
-      for (std::uint32_t k = begin; k < end; ++k) ++slot[(list[k] >> 32) - v0 + 1];
-      slot[0] = begin;
-      for (std::size_t v = v0; v < v1; ++v) slot[v - v0 + 1] += slot[v - v0];
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const auto f = static_cast<std::uint32_t>(list[k]);
-        const std::uint32_t s = slot[(list[k] >> 32) - v0]++;
-        cut.tris[s] = mapped[f];
-        cut.tri_origin[s] = f;
-      }
-      // slot[v - v0] now ends v's run; squeeze the doublets out, run by run.
-      std::size_t run = begin, out = begin;
-      for (std::size_t v = v0; v < v1; ++v) {
-        const std::size_t run_end = slot[v - v0];
-        const std::size_t n = run_end - run;
-        // Until the first doublet, every run is already in place.
-        if (out != run) {
-          for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
-            cut.tris[out + i] = cut.tris[run + i];
-            cut.tri_origin[out + i] = cut.tri_origin[run + i];
+
+ private:
+  /// A group: the 2^kShift (>= kGrain) vertices from g << kShift on.
+  static constexpr int kShift = std::bit_width(kGrain - 1);
+
+  std::pair<std::size_t, std::size_t> block_range(std::size_t b) const {
+    return {b * kGrain, std::min(nf_, (b + 1) * kGrain)};
+  }
+
+  /// Blocks of kGrain triangles map their corners to level-0 vertices and
+  /// count their distinct triangles per group (into at_); the collapsed
+  /// ones give the line candidates. Returns how many collapsed.
+  std::size_t map_and_count(bool no_lines, Buffer<Segment>& line_candidates) {
+    mapped_.resize(nf_);
+    at_.resize(blocks_ * groups_);
+    Buffer<Buffer<Segment>> block_lines(blocks_);
+    Buffer<std::size_t> collapsed(blocks_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks_, 1), [&](const auto& r) {
+      for (std::size_t b = r.begin(); b < r.end(); ++b) {
+        std::uint32_t* counter = &at_[b * groups_];
+        std::fill_n(counter, groups_, 0);
+        std::size_t lost = 0;
+        const auto [f0, f1] = block_range(b);
+        for (std::size_t f = f0; f < f1; ++f) {
+          const Triangle& input = mesh_.triangles[f];
+          const Triangle t{node_of_[input[0]], node_of_[input[1]], node_of_[input[2]]};
+          mapped_[f] = t;
+          if (distinct(t)) {
+            ++counter[std::min({t[0], t[1], t[2]}) >> kShift];
+            continue;
+          }
+          ++lost;
+          if (!no_lines && (t[0] != t[1] || t[1] != t[2])) {
+            const std::uint32_t other = t[0] != t[1] ? t[1] : t[2];
+            block_lines[b].push_back({std::min(t[0], other), std::max(t[0], other)});
           }
         }
-        if (n == 1) {
-          ++out;
-        } else if (n > 1) {
-          out += dedupe_run(&cut.tris[out], &cut.tri_origin[out], n, static_cast<std::uint32_t>(v),
-                            scratch);
-        }
-        run = run_end;
+        collapsed[b] = lost;
       }
-      kept[g] = static_cast<std::uint32_t>(out - begin);
-    }
-  });
-  std::size_t size = kept[0];
-  for (std::size_t g = 1; g < groups; ++g) {
-    if (size != group_start[g]) {  // a group before lost doublets
-      std::copy_n(cut.tris.begin() + group_start[g], kept[g], cut.tris.begin() + size);
-      std::copy_n(cut.tri_origin.begin() + group_start[g], kept[g], cut.tri_origin.begin() + size);
-    }
-    size += kept[g];
+    });
+    for (const Buffer<Segment>& l : block_lines)
+      line_candidates.insert(line_candidates.end(), l.begin(), l.end());
+    std::size_t lost = 0;
+    for (std::size_t c : collapsed) lost += c;
+    return lost;
   }
-  cut.tris.resize(size);
-  cut.tri_origin.resize(size);
-  std::size_t lost = 0;
-  for (std::size_t c : collapsed) lost += c;
-  return lost;
-}
+
+  /// Each block lists its distinct triangles (smallest corner << 32 |
+  /// index) in its slots of its groups' parts of list_: a group's part
+  /// starts where the groups before it end, and in it the blocks come in
+  /// order (stable), so the list's order is the final one.
+  void list_by_group() {
+    group_start_.resize(groups_ + 1);
+    std::uint32_t total = 0;
+    for (std::size_t g = 0; g < groups_; ++g) {
+      group_start_[g] = total;
+      for (std::size_t b = 0; b < blocks_; ++b) total += std::exchange(at_[b * groups_ + g], total);
+    }
+    group_start_[groups_] = total;
+    list_.resize(total);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks_, 1), [&](const auto& r) {
+      for (std::size_t b = r.begin(); b < r.end(); ++b) {
+        std::uint32_t* next = &at_[b * groups_];
+        const auto [f0, f1] = block_range(b);
+        for (std::size_t f = f0; f < f1; ++f) {
+          const Triangle& t = mapped_[f];
+          if (!distinct(t)) continue;
+          const std::uint32_t lo = std::min({t[0], t[1], t[2]});
+          list_[next[lo >> kShift]++] = std::uint64_t(lo) << 32 | f;
+        }
+      }
+    });
+  }
+
+  /// Group g counts its list per vertex, scatters its triangles to their
+  /// places and squeezes the doublets out of each vertex's run; its
+  /// triangles left are at the front of its part (kept_[g] of them).
+  void sort_group(std::size_t g, RemapScratch& scratch, Buffer<std::uint32_t>& slot) {
+    const std::size_t v0 = g << kShift, v1 = std::min(cut_.size(), (g + 1) << kShift);
+    const std::uint32_t begin = group_start_[g], end = group_start_[g + 1];
+    // Counts into slot[v - v0 + 1], then each vertex's first slot.
+    slot.assign(v1 - v0 + 1, 0);
+    for (std::uint32_t k = begin; k < end; ++k) ++slot[(list_[k] >> 32) - v0 + 1];
+    slot[0] = begin;
+    for (std::size_t v = v0; v < v1; ++v) slot[v - v0 + 1] += slot[v - v0];
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const auto f = static_cast<std::uint32_t>(list_[k]);
+      const std::uint32_t s = slot[(list_[k] >> 32) - v0]++;
+      cut_.tris[s] = mapped_[f];
+      cut_.tri_origin[s] = f;
+    }
+    // slot[v - v0] now ends v's run.
+    std::size_t run = begin, out = begin;
+    for (std::size_t v = v0; v < v1; ++v) {
+      const std::size_t run_end = slot[v - v0];
+      const std::size_t n = run_end - run;
+      // Until the first doublet, every run is already in place.
+      if (out != run) {
+        for (std::size_t i = 0; i < n; ++i) {  // a few: no memmove call
+          cut_.tris[out + i] = cut_.tris[run + i];
+          cut_.tri_origin[out + i] = cut_.tri_origin[run + i];
+        }
+      }
+      if (n == 1) {
+        ++out;
+      } else if (n > 1) {
+        out += dedupe_run(&cut_.tris[out], &cut_.tri_origin[out], n, static_cast<std::uint32_t>(v),
+                          scratch);
+      }
+      run = run_end;
+    }
+    kept_[g] = static_cast<std::uint32_t>(out - begin);
+  }
+
+  /// Moves the groups' triangles together where groups before lost doublets.
+  void join_groups() {
+    std::size_t size = kept_[0];
+    for (std::size_t g = 1; g < groups_; ++g) {
+      if (size != group_start_[g]) {
+        std::copy_n(cut_.tris.begin() + group_start_[g], kept_[g], cut_.tris.begin() + size);
+        std::copy_n(cut_.tri_origin.begin() + group_start_[g], kept_[g],
+                    cut_.tri_origin.begin() + size);
+      }
+      size += kept_[g];
+    }
+    cut_.tris.resize(size);
+    cut_.tri_origin.resize(size);
+  }
+
+  const TriangleMesh& mesh_;
+  const Buffer<std::uint32_t>& node_of_;
+  Cut& cut_;
+  std::size_t nf_, groups_, blocks_;
+  Buffer<Triangle> mapped_;
+  Buffer<std::uint32_t> at_;  ///< [block][group]: the count, then the next slot in the list
+  Buffer<std::uint32_t> group_start_;
+  Buffer<std::uint64_t> list_;
+  Buffer<std::uint32_t> kept_;
+};
 
 }  // namespace
 
@@ -371,7 +409,7 @@ Octree build_level0(const TriangleMesh& mesh, bool no_lines, Cut& cut, RemapScra
   merge_equal_positions(mesh, order, code, cut, node_of);
   Buffer<Segment> line_candidates;
   const std::size_t count = cut.size();
-  const std::size_t collapsed = sort_triangles(mesh, node_of, no_lines, cut, line_candidates);
+  const std::size_t collapsed = TriangleSort(mesh, node_of, cut).run(no_lines, line_candidates);
   finish_faces(mesh.lines, node_of, count, line_candidates, cut, scratch);
   // Every vertex is a corner of an input triangle or an end of an input
   // line (validate); when no triangle collapsed and there are no lines,

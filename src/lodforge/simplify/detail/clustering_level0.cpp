@@ -159,8 +159,7 @@ void morton_codes(const TriangleMesh& mesh, const Buffer<std::uint8_t>& used, co
 /// vertices (`order`, used ones only); `node_of[v]` is input vertex v's.
 /// Equal positions have equal codes: positions are compared only then. A
 /// parallel scan (TBB): each range counts, then writes, its new vertices
-/// from its place on; each vertex's code and position are gathered once (in
-/// octree order they are scattered over memory).
+/// from its place on; each vertex's code and position are gathered once.
 void merge_equal_positions(const TriangleMesh& mesh, const Buffer<std::uint64_t>& order,
                            const Buffer<std::uint64_t>& code, Cut& cut,
                            Buffer<std::uint32_t>& node_of) {
@@ -178,15 +177,7 @@ void merge_equal_positions(const TriangleMesh& mesh, const Buffer<std::uint64_t>
       last_code = code[vertex(begin - 1)];
       last_pos = mesh.positions[vertex(begin - 1)];
     }
-    // The gathers' addresses are known ahead: fetched kAhead vertices early.
-    constexpr std::size_t kAhead = 16;
     for (std::size_t i = begin; i < end; ++i) {
-      if (i + kAhead < end) {
-        const std::uint32_t ahead = vertex(i + kAhead);
-        __builtin_prefetch(&code[ahead]);
-        __builtin_prefetch(&mesh.positions[ahead]);
-        if (write) __builtin_prefetch(&node_of[ahead], 1);
-      }
       const std::uint32_t v = vertex(i);
       const std::uint64_t c = code[v];
       const Vec3& p = mesh.positions[v];

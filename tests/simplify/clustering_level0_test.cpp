@@ -47,6 +47,16 @@ Level0 level0(const TriangleMesh& mesh, bool no_lines = false) {
   return l;
 }
 
+/// The same vertices (positions, codes, and input vertices when `same_input`)
+/// and triangles.
+void expect_same_level(const Cut& a, const Cut& b, bool same_input) {
+  EXPECT_EQ(a.pos, b.pos);
+  EXPECT_EQ(a.code, b.code);
+  if (same_input) EXPECT_EQ(a.orig, b.orig);
+  EXPECT_EQ(a.tris, b.tris);
+  EXPECT_EQ(a.tri_origin, b.tri_origin);
+}
+
 TEST(ClusteringLevel0, BunnyIsInOctreeOrderWithItsTrianglesSortedBySmallestCorner) {
   const TriangleMesh mesh = bunny();
   const Level0 l = level0(mesh);
@@ -78,10 +88,7 @@ TEST(ClusteringLevel0, BunnyIsInOctreeOrderWithItsTrianglesSortedBySmallestCorne
 TEST(ClusteringLevel0, SoupMergesIntoTheWeldedBunny) {
   const TriangleMesh mesh = bunny();
   const Level0 welded = level0(mesh), merged = level0(soup(mesh));
-  EXPECT_EQ(merged.cut.pos, welded.cut.pos);
-  EXPECT_EQ(merged.cut.code, welded.cut.code);
-  EXPECT_EQ(merged.cut.tris, welded.cut.tris);
-  EXPECT_EQ(merged.cut.tri_origin, welded.cut.tri_origin);
+  expect_same_level(merged.cut, welded.cut, false);
 }
 
 TEST(ClusteringLevel0, DoubletsAndCollapsedTrianglesFollowTheFaceRules) {
@@ -101,10 +108,7 @@ TEST(ClusteringLevel0, DoesNotDependOnTheThreadCount) {
   const Level0 parallel = level0(mesh);
   tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
   const Level0 serial = level0(mesh);
-  EXPECT_EQ(serial.cut.pos, parallel.cut.pos);
-  EXPECT_EQ(serial.cut.orig, parallel.cut.orig);
-  EXPECT_EQ(serial.cut.tris, parallel.cut.tris);
-  EXPECT_EQ(serial.cut.tri_origin, parallel.cut.tri_origin);
+  expect_same_level(serial.cut, parallel.cut, true);
 }
 
 TEST(ClusteringLevel0, BadInputNamesTheFirstOffender) {

@@ -5,8 +5,8 @@
 
 namespace lodforge::detail::clustering {
 
-std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n, std::uint32_t vertex,
-                       RemapScratch& scratch) {
+std::size_t dedupe_any_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
+                           std::uint32_t vertex, RemapScratch& scratch) {
   if (n < 2) return n;
   // Each triangle as its key, origin, position and rotation (which corner
   // is `vertex`): the kept ones are rebuilt from these, so the run is

@@ -364,7 +364,7 @@ Choice choose_representative(const LevelContext& ctx, std::uint32_t cell, std::u
 /// triangle order). With n = (q - p) x (r - p) unnormalised, area = |n| / 2
 /// and the unit normal n / |n|, every coefficient is a product of n and n.p
 /// over 2 |n|: one square root and one division. In blocks, one pass each
-/// for the normals, the square roots and divisions, and the
+/// for the normals, the square roots and divisions (two at a time) and the
 /// quadrics: one triangle's chain of latencies (gathers, cross product,
 /// square root, division, the sums into its cells) no longer holds the next
 /// triangle back.
@@ -383,9 +383,13 @@ void add_plane_quadrics(std::span<const Vec3> pos, std::span<const Triangle> tri
       len2[i] = nx[i] * nx[i] + ny[i] * ny[i] + nz[i] * nz[i];
       d[i] = -(nx[i] * p.x + ny[i] * p.y + nz[i] * p.z);  // |n| x the plane's offset
     }
-    // A degenerate triangle's (inf or NaN) is not used below.
-    for (std::size_t i = 0; i < n; ++i) s[i] = 0.5 / sqrt_nonnegative(len2[i]);
-    for (std::size_t i = 0; i < n; ++i) {
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    for (; i + 1 < n; i += 2)  // a degenerate triangle's (inf or NaN) is not used below
+      _mm_store_pd(&s[i], _mm_div_pd(_mm_set1_pd(0.5), _mm_sqrt_pd(_mm_load_pd(&len2[i]))));
+#endif
+    for (; i < n; ++i) s[i] = 0.5 / sqrt_nonnegative(len2[i]);
+    for (i = 0; i < n; ++i) {
       Quadric k{};
       if (len2[i] > 0) {
         const double sx = s[i] * nx[i], sy = s[i] * ny[i], sz = s[i] * nz[i];

@@ -5,38 +5,91 @@
 
 namespace lodforge::detail::clustering {
 
-std::size_t dedupe_any_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
-                           std::uint32_t vertex, RemapScratch& scratch) {
-  if (n < 2) return n;
-  // Each triangle as its key, origin, position and rotation (which corner
-  // is `vertex`): the kept ones are rebuilt from these, so the run is
-  // neither copied aside nor gathered.
+/// dedupe_run (below) for any n: out of line, for the runs of more than
+/// three triangles and those with doublets.
+std::size_t dedupe_long_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
+                            std::uint32_t vertex, RemapScratch& scratch) {
   using Entry = RemapScratch::Entry;
+  auto key = [&](const Triangle& t) { return rotation_key(t, vertex); };
+  if (n < 2) return n;
+  // Up to 8 without doublets (nearly every run): each triangle goes to its
+  // rank among the keys, counted without branches (an insertion sort's
+  // swaps are data the branch predictor cannot learn).
+  constexpr std::size_t kRanked = 8;
+  if (n <= kRanked) {
+    std::uint64_t k[kRanked];
+    for (std::size_t i = 0; i < n; ++i) k[i] = key(tris[i]);
+    bool doublet = false;
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = 0; j < i; ++j) doublet |= k[j] == k[i];
+    if (!doublet) {
+      Triangle t[kRanked];
+      std::uint32_t o[kRanked];
+      std::copy_n(tris, n, t);
+      std::copy_n(origin, n, o);
+      for (std::size_t i = 0; i < n; ++i) {
+        std::size_t rank = 0;
+        for (std::size_t j = 0; j < n; ++j) rank += k[j] < k[i];
+        tris[rank] = t[i];
+        origin[rank] = o[i];
+      }
+      return n;
+    }
+  }
+  constexpr std::size_t kSmall = 16;
+  if (n <= kSmall) {
+    // On the stack, each triangle as its key, origin and rotation (which
+    // corner is `vertex`): the kept ones are rebuilt from these. (Copying
+    // the triangles aside instead compiles to a block copy whose start-up
+    // cost exceeds the copy: the largest single cost of the first level.)
+    struct Item {
+      std::uint64_t key;
+      std::uint32_t origin;
+      std::uint32_t rotation;
+    };
+    Item e[kSmall];
+    for (std::size_t i = 0; i < n; ++i) {
+      const Triangle& t = tris[i];
+      const std::uint32_t rotation = t[0] == vertex ? 0 : t[1] == vertex ? 1 : 2;
+      e[i] = {key(t), origin[i], rotation};
+    }
+    for (std::size_t i = 1; i < n; ++i)  // insertion sort, stable
+      for (std::size_t j = i; j > 0 && e[j].key < e[j - 1].key; --j) std::swap(e[j], e[j - 1]);
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i > 0 && e[i].key == e[i - 1].key) continue;
+      const auto k1 = static_cast<std::uint32_t>(e[i].key >> 32);
+      const auto k2 = static_cast<std::uint32_t>(e[i].key);
+      tris[out] = e[i].rotation == 0   ? Triangle{vertex, k1, k2}
+                  : e[i].rotation == 1 ? Triangle{k2, vertex, k1}
+                                       : Triangle{k1, k2, vertex};
+      origin[out] = e[i].origin;
+      ++out;
+    }
+    return out;
+  }
   auto& run = scratch.run;
   run.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Triangle& t = tris[i];
-    const std::uint32_t rotation = t[0] == vertex ? 0 : t[1] == vertex ? 1 : 2;
-    run[i] = {rotation_key(t, vertex), origin[i], static_cast<std::uint32_t>(4 * i) + rotation};
+    const std::uint64_t k = key(tris[i]);
+    run[i] = {std::uint32_t(k >> 32), std::uint32_t(k), static_cast<std::uint32_t>(i)};
   }
   std::sort(run.begin(), run.end(), [](const Entry& a, const Entry& b) {
-    return a.key != b.key ? a.key < b.key : a.order < b.order;
+    if (a.k1 != b.k1) return a.k1 < b.k1;
+    if (a.k2 != b.k2) return a.k2 < b.k2;
+    return a.index < b.index;
   });
+  scratch.run_tris.assign(tris, tris + n);
+  scratch.run_origin.assign(origin, origin + n);
   std::size_t out = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (i > 0 && run[i].key == run[i - 1].key) continue;
-    const auto k1 = static_cast<std::uint32_t>(run[i].key >> 32);
-    const auto k2 = static_cast<std::uint32_t>(run[i].key);
-    const std::uint32_t rotation = run[i].order & 3;
-    tris[out] = rotation == 0   ? Triangle{vertex, k1, k2}
-                : rotation == 1 ? Triangle{k2, vertex, k1}
-                                : Triangle{k1, k2, vertex};
-    origin[out] = run[i].origin;
+    if (i > 0 && run[i].k1 == run[i - 1].k1 && run[i].k2 == run[i - 1].k2) continue;
+    tris[out] = scratch.run_tris[run[i].index];
+    origin[out] = scratch.run_origin[run[i].index];
     ++out;
   }
   return out;
 }
-
 void remap_faces(std::span<const Triangle> mapped, std::span<const std::uint32_t> origin,
                  std::span<const Segment> lines, std::span<const std::uint32_t> vertex_map,
                  std::size_t new_count, bool no_lines, Buffer<Segment>& line_candidates, Cut& to,

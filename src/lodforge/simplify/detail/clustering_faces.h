@@ -48,13 +48,12 @@ class SegmentSet {
 /// them afresh per level costs page faults (freed large blocks go back to
 /// the system) more than the work in them.
 struct RemapScratch {
-  /// A triangle of a run: its rotation key, origin, and position in the
-  /// run x 4 + which corner is the run's vertex.
   struct Entry {
-    std::uint64_t key;
-    std::uint32_t origin, order;
+    std::uint32_t k1, k2, index;  // the canonical rotation's last corners; position in the run
   };
   Buffer<Entry> run;
+  Buffer<Triangle> run_tris;
+  Buffer<std::uint32_t> run_origin;
   Buffer<std::uint32_t> run_start;   // vertex -> its run of kept triangles (when there are lines)
   Buffer<std::uint32_t> off, upper;  // vertex -> the larger ends of the third edges at it
   Buffer<Segment> not_edges;
@@ -73,22 +72,22 @@ inline std::uint64_t rotation_key(const Triangle& t, std::uint32_t vertex) {
   return std::uint64_t(k1) << 32 | k2;
 }
 
-/// dedupe_run (below) for any n, out of line.
-std::size_t dedupe_any_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
-                           std::uint32_t vertex, RemapScratch& scratch);
+/// dedupe_run (below) for any n: out of line, for the runs of more than
+/// three triangles and those with doublets.
+[[gnu::noinline]] std::size_t dedupe_long_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
+                                              std::uint32_t vertex, RemapScratch& scratch);
 
 /// Sorts the run [tris, tris + n) of triangles whose smallest corner is
 /// `vertex` (and their origins) by canonical rotation (`vertex` first,
 /// orientation kept; ties in run order) and squeezes out the doublets (equal
 /// rotations: the first stays); returns how many are left, at the front.
-///
-/// A run of two (the commonest run of more than one) takes a special path
-/// inline: its order by stores to computed slots, not a branch, and no call.
-/// Invariant: it gives what dedupe_any_run gives.
+/// Runs of two and three (nine in ten) are inlined into the callers.
 inline std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t n,
                               std::uint32_t vertex, RemapScratch& scratch) {
-  if (n == 2) {
-    const std::uint64_t k0 = rotation_key(tris[0], vertex), k1 = rotation_key(tris[1], vertex);
+  auto key = [&](const Triangle& t) { return rotation_key(t, vertex); };
+  if (n < 2) return n;
+  if (n == 2) {  // the commonest run: its order by stores to computed slots, not a branch
+    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]);
     if (k0 == k1) return 1;
     const std::size_t second = k1 < k0;  // where the first goes
     const Triangle t0 = tris[0], t1 = tris[1];
@@ -99,7 +98,23 @@ inline std::size_t dedupe_run(Triangle* tris, std::uint32_t* origin, std::size_t
     origin[1 - second] = o1;
     return 2;
   }
-  return dedupe_any_run(tris, origin, n, vertex, scratch);
+  if (n == 3) {  // each to its rank among the keys
+    const std::uint64_t k0 = key(tris[0]), k1 = key(tris[1]), k2 = key(tris[2]);
+    if (k0 != k1 && k0 != k2 && k1 != k2) {
+      const std::size_t r0 = (k1 < k0) + (k2 < k0), r1 = (k0 < k1) + (k2 < k1),
+                        r2 = (k0 < k2) + (k1 < k2);
+      const Triangle t0 = tris[0], t1 = tris[1], t2 = tris[2];
+      const std::uint32_t o0 = origin[0], o1 = origin[1], o2 = origin[2];
+      tris[r0] = t0;
+      tris[r1] = t1;
+      tris[r2] = t2;
+      origin[r0] = o0;
+      origin[r1] = o1;
+      origin[r2] = o2;
+      return 3;
+    }
+  }
+  return dedupe_long_run(tris, origin, n, vertex, scratch);
 }
 
 /// Builds the faces of `to` (which holds the new vertices, new_count of them)

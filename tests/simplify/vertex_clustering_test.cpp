@@ -467,7 +467,7 @@ TEST(VertexClustering, OnlyTheRatiosOfTheWeightsMatter) {
   }
 }
 
-// The bunny of the thesis (seed 000 §5.5, Table 5.5): the level closest to
+// The bunny of the LODCreator thesis (its Table 5.5): the level closest to
 // each reduction must beat the LODCreator's published clustering figures.
 TEST(VertexClustering, BunnyBeatsTheThesis) {
   const std::filesystem::path path =

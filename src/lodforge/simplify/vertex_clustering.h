@@ -1,5 +1,5 @@
 #pragma once
-/// Vertex clustering by octree quantisation (seed 000 §4.1.1, SPEC §3): the
+/// Vertex clustering by octree quantisation (the LODCreator thesis): the
 /// whole chain of levels of detail of a triangle mesh or line set in one pass.
 ///
 /// The used vertices are inserted into an octree over the cube that bounds
@@ -116,8 +116,8 @@ struct VertexClusteringOptions {
 /// (TBB): the cells of a level in tasks of 128 cells, a level's faces
 /// remapped beside the choice of its vertices, a finished level copied into
 /// its result beside the next level's work, and level 0's passes over the
-/// input (checks, codes, the counting sort of the triangles) and each
-/// level's passes over its vertices in two parts from 16 384 items on; the
+/// input (bounds, codes, sort, merge, the counting sort of the triangles)
+/// and each level's passes over its vertices in tasks of 16 384 items; the
 /// result does not depend on the thread count. The area and volume
 /// heuristics are summed in single precision relative to the cell's mean,
 /// four triangles at a time, and only in cells with more than one contender

@@ -120,9 +120,9 @@ TEST(BuildMcOctree, BadInput) {
   auto point = test::make_tetrahedron();
   for (auto& p : point.positions) p = {1, 2, 3};
   EXPECT_THROW(build_mc_octree(point), DataError);
-  EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1}), std::invalid_argument);
+  EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1}), DataError);
   EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1001}),
-               std::invalid_argument);
+               DataError);
 }
 
 // Data the build cannot use is a DataError that says what is wrong.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "lodforge/core/error.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/compare_meshes.h"
@@ -87,14 +88,14 @@ TEST(ExtractMcMesh, TargetsAndClamping) {
   auto over_p = extract_mc_mesh(t, {.priority = 1 << 30});
   EXPECT_TRUE(over_p.clamped);
   EXPECT_EQ(over_p.priority, t.lod.size());
-  EXPECT_THROW(extract_mc_mesh(t, {.priority = 3, .percent = 5}), std::invalid_argument);
+  EXPECT_THROW(extract_mc_mesh(t, {.priority = 3, .percent = 5}), DataError);
   // Normals unit, indices valid.
   for (const auto& n : full.mesh.normals) EXPECT_NEAR(length(n), 1.0f, 1e-3f);
   McLodModel m = compile_mc_lod(t);
   auto from_model = extract_mc_mesh(m);
   EXPECT_EQ(from_model.mesh.triangles, full.mesh.triangles);
   EXPECT_EQ(from_model.mesh.positions, full.mesh.positions);
-  EXPECT_THROW(extract_mc_mesh(m, {.triangles = 3, .percent = 5}), std::invalid_argument);
+  EXPECT_THROW(extract_mc_mesh(m, {.triangles = 3, .percent = 5}), DataError);
   // A 2 312-triangle sphere expands 18 triangles at a time, 0.8-1.8 % of the
   // requests from 1 000 up: some get only the nearest reachable count.
   check_budgets(m, 100, true, 10);

@@ -80,7 +80,7 @@ TEST(ScanMesh, ColoursAreCarried) {
 
 TEST(ScanMesh, BadInput) {
   EXPECT_THROW(scan_mesh(TriangleMesh{}), DataError);
-  EXPECT_THROW(scan_mesh(test::make_tetrahedron(), {.views = 0}), std::invalid_argument);
+  EXPECT_THROW(scan_mesh(test::make_tetrahedron(), {.views = 0}), DataError);
   EXPECT_THROW(build_mc_octree(std::vector<RangeScan>{}), DataError);
   RangeScan empty;
   empty.cols = empty.rows = 2;

@@ -43,10 +43,10 @@ double since(Clock::time_point t) {
 // A surface point more than kRimGap cells beyond an open rim is invented.
 constexpr float kRimGap = 0.25f;
 
-// Throws std::invalid_argument for a resolution out of range.
+// Throws DataError for a resolution out of range.
 void check_options(const McBuildOptions& options) {
   if (options.resolution != 0 && (options.resolution < 2 || options.resolution > 1000))
-    throw std::invalid_argument("mcoctree: resolution must be 0 or in 2..1000");
+    throw DataError("mcoctree: resolution must be 0 or in 2..1000");
 }
 
 // Runs fn in a task arena of `threads` worker threads (0: all cores), so

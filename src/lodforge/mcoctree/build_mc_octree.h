@@ -123,7 +123,7 @@ struct McBuildResult {
 /// vertex, with coordinates outside the range of check_coordinate_range
 /// (non-finite, huge or a tiny model), with all vertices at one point, or
 /// whose surface crosses no lattice edge, and when the build would take more
-/// than options.max_memory; std::invalid_argument for a resolution out of
+/// than options.max_memory; DataError for a resolution out of
 /// range.
 McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& options = {});
 
@@ -148,7 +148,7 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// Throws DataError for no scans, no measured point, a grid of the wrong
 /// size, a grid index out of range, colours not one per point, a world
 /// coordinate outside the range of check_coordinate_range, and when the
-/// build would take more than options.max_memory; std::invalid_argument for
+/// build would take more than options.max_memory; DataError for
 /// a resolution out of range.
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
                               const McBuildOptions& options = {});

@@ -26,6 +26,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "lodforge/core/error.h"
+
 namespace lodforge {
 namespace {
 
@@ -37,9 +39,9 @@ std::uint32_t clamp_priority(const McLodModel& m, std::uint32_t priority) {
 McExtractResult resolve(const std::vector<std::uint64_t>& accumulated,
                         const McExtractOptions& options) {
   int set = (options.priority >= 0) + (options.triangles >= 0) + (options.percent >= 0);
-  if (set > 1) throw std::invalid_argument("mcoctree: set one of priority, triangles, percent");
+  if (set > 1) throw DataError("mcoctree: set one of priority, triangles, percent");
   if (options.percent >= 0 && !std::isfinite(options.percent))
-    throw std::invalid_argument("mcoctree: percent must be finite");
+    throw DataError("mcoctree: percent must be finite");
   McExtractResult result;
   const auto max_priority =
       accumulated.empty() ? std::int64_t{0} : static_cast<std::int64_t>(accumulated.size() - 1);

@@ -59,7 +59,7 @@ std::size_t extract_mc_indices(const McLodModel& model, std::uint32_t priority,
 
 /// Extracts one level as a standalone mesh (the used vertices, in order of
 /// first use, with decoded normals and colours in [0,1]); the triangle count
-/// is accumulated[priority]. Throws std::invalid_argument when more than one
+/// is accumulated[priority]. Throws DataError when more than one
 /// target is set or a percent is not finite. Budgets beyond the range are
 /// clamped (result.clamped).
 McExtractResult extract_mc_mesh(const McLodModel& model, const McExtractOptions& options = {});

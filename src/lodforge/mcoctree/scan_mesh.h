@@ -25,7 +25,7 @@ struct ScanOptions {
 /// interpolated colour when it has colours.
 ///
 /// Throws DataError for a mesh without triangles or with non-finite
-/// coordinates; std::invalid_argument for options out of range.
+/// coordinates; DataError for options out of range.
 std::vector<RangeScan> scan_mesh(const TriangleMesh& mesh, const ScanOptions& options = {});
 
 }  // namespace lodforge

@@ -31,6 +31,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "lodforge/core/math.h"
 #include "lodforge/core/morton.h"
 #include "lodforge/core/quadric.h"
 
@@ -40,7 +41,6 @@ namespace {
 constexpr std::uint32_t kMaxGrid = std::uint32_t{1} << 21;  // Morton codes: 21 bits an axis
 constexpr int kMaxPasses = 6;
 constexpr double kLowEnough = 0.7;  // a result of at least 0.7 T ends the search
-constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
 /// What the survey pass finds: the box of the corners, the area, the count.
 struct Survey {

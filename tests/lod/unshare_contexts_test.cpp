@@ -53,7 +53,7 @@ Separator {
   Translation { translation 3 0 0 }
   USE G
 })")
-                        .scene;
+                       .scene;
   EXPECT_EQ(unshare_property_contexts(s, is_face_set), 0u);
   auto after = uses(s);
   ASSERT_EQ(after.size(), 2u);

@@ -153,6 +153,7 @@ section() {
       commands=(
         "$B/bench/vrml1_parse_bench"
         "/usr/bin/time $time_fmt $B/lodforge info $parse_file"
+        "bench/info_vs_coin.sh -r 5 $B"
         "$B/tests/test_vrml1 --gtest_filter='*CoinConformance*:*CoinTriangulation*:*RoundTrip*'"
       ) ;;
     inventor)  # the Inventor corpus through info and lod, checked with Coin3D

@@ -10,7 +10,8 @@ packages=(
   libtbb-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcoin-dev libmeshoptimizer-dev
-  libosmesa6-dev libstb-dev
+  libosmesa6-dev libstb-dev libtinygltf-dev
+  nodejs
   parallel
 )
 
@@ -20,6 +21,9 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# The glTF tests run the Khronos validator with node; npm installs it
+# (scripts/install-gltf-validator.sh). Some node packages bring their own npm.
+command -v npm >/dev/null || missing+=(npm)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${missing[*]}" >&2

@@ -6,6 +6,8 @@
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/info_gltf.h"
+#include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/scene/statistics.h"
 
 namespace lodforge::apps {
@@ -18,13 +20,15 @@ void add_info_command(CLI::App& app, Runner& run) {
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand("info", "Show what a VRML 1.0 or Open Inventor scene holds");
-  cmd->add_option("SCENE", s->input,
-                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
+  cmd->add_option(
+         "SCENE", s->input,
+         "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), or glTF (.gltf, .glb)")
       ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   add_scene_read_options(*cmd, s->read);
   cmd->callback([s, &run] {
     run = [s] {
+      if (gltf::is_gltf_path(s->input)) return print_gltf_info(s->input, s->json, s->read.quiet);
       SceneReadSettings read = s->read;
       read.quiet = read.quiet || s->json;
       vrml1::ReadResult r = read_scene(s->input, read);

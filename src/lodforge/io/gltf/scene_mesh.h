@@ -8,8 +8,10 @@
 
 namespace lodforge::gltf {
 
-/// Positions, triangles and lines only (no attributes). Throws DataError as
-/// primitive_mesh.
-TriangleMesh scene_mesh(const tinygltf::Model& model);
+/// Positions, triangles and lines only (no attributes). `lod_level` K > 0
+/// draws, for a node with `MSFT_lod`, the mesh of its level K (its coarsest
+/// level when it has fewer) in the node's place. Throws DataError as
+/// primitive_mesh, or for an MSFT_lod id that is not a node with a mesh.
+TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level = 0);
 
 }  // namespace lodforge::gltf

@@ -208,6 +208,13 @@ TEST(ReadGltf, MissingExternalBufferIsADataError) {
   }
 }
 
+TEST(ReadGltf, WithoutAFolderNoExternalFileIsRead) {
+  // A model read from memory without base_dir may not reach into the file system.
+  const std::string text =
+      "{" + kAsset + R"(, "buffers": [{"byteLength": 4, "uri": "/etc/hostname"}]})";
+  EXPECT_THROW(read_gltf(text, {.source_name = "x.gltf"}), DataError);
+}
+
 TEST(IsGltfPath, ByExtension) {
   EXPECT_TRUE(is_gltf_path("a/b.GLB"));
   EXPECT_TRUE(is_gltf_path("a.gltf.gz"));

@@ -182,6 +182,20 @@ std::vector<std::string> split_lines(const std::string& text) {
   return lines;
 }
 
+// File callbacks for a model without a folder: no external file exists.
+tinygltf::FsCallbacks no_files() {
+  return {.FileExists = [](const std::string&, void*) { return false; },
+          .ExpandFilePath = [](const std::string& path, void*) { return path; },
+          .ReadWholeFile = [](std::vector<unsigned char>*, std::string* err,
+                              const std::string& path, void*) {
+            if (err) *err += "external file " + path + " refused: no folder to read it from\n";
+            return false;
+          },
+          .WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&,
+                               void*) { return false; },
+          .user_data = nullptr};
+}
+
 }  // namespace
 
 GltfReadResult read_gltf(std::string_view bytes, const GltfReadOptions& options) {
@@ -192,6 +206,7 @@ GltfReadResult read_gltf(std::string_view bytes, const GltfReadOptions& options)
   GltfReadResult result;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_image_bytes, nullptr);
+  if (options.base_dir.empty()) loader.SetFsCallbacks(no_files());
   std::string err, warn;
   bool ok = false;
   const bool binary = bytes.starts_with("glTF");

@@ -148,5 +148,21 @@ TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttribute
   }
 }
 
+TEST(GltfLod, CompressedVertexDataStaysWholeWithAWarning) {
+  // Draco keeps the real vertices in its own stream: the accessors' data is not the mesh.
+  gltf::GltfScene s = shared_and_morphed();
+  s.model.meshes[0].primitives[0].extensions["KHR_draco_mesh_compression"] =
+      tinygltf::Value(tinygltf::Value::Object{});
+  const LodResult r = gltf_lod(s, {.threads = 1});
+  EXPECT_TRUE(s.model.nodes[0].extensions.empty());
+  EXPECT_TRUE(s.model.extensionsUsed.empty());
+  ASSERT_FALSE(r.log.entries().empty());
+  EXPECT_NE(r.log.entries()[0].text.find(
+                "mesh 0 'grid': kept at full detail because a primitive has the extension "
+                "KHR_draco_mesh_compression"),
+            std::string::npos)
+      << r.log.entries()[0].text;
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -124,12 +124,28 @@ double camera_angle_of(const Model& m, const LodOptions& o) {
   return o.range.camera_angle;
 }
 
-// Why a mesh stays at full detail ("" if it need not).
+// Why a mesh stays at full detail ("" if it need not): the weights of
+// skins and morph targets, and vertex data held by a compression extension
+// (KHR_draco_mesh_compression, EXT_meshopt_compression), are not simplified.
 std::string full_detail_reason(const Model& m, const MeshJob& job) {
-  for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives)
-    if (!p.targets.empty()) return "it has morph targets";
+  for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives) {
+    if (!p.targets.empty()) return "it has morph targets (simplifying it needs the weights)";
+    if (!p.extensions.empty())
+      return fmt::format("a primitive has the extension {}", p.extensions.begin()->first);
+    auto attributes = p.attributes;
+    if (p.indices >= 0) attributes["indices"] = p.indices;
+    for (const auto& [name, index] : attributes) {
+      const auto& a = m.accessors[std::size_t(index)];
+      if (a.bufferView < 0 && !a.sparse.isSparse)
+        return fmt::format("its {} accessor has no data (compressed?)", name);
+      if (a.bufferView >= 0 && !m.bufferViews[std::size_t(a.bufferView)].extensions.empty())
+        return fmt::format("its {} data is in a buffer view with the extension {}", name,
+                           m.bufferViews[std::size_t(a.bufferView)].extensions.begin()->first);
+    }
+  }
   for (int n : job.nodes)
-    if (m.nodes[std::size_t(n)].skin >= 0) return fmt::format("node {} skins it", n);
+    if (m.nodes[std::size_t(n)].skin >= 0)
+      return fmt::format("node {} skins it (simplifying it needs the weights)", n);
   return "";
 }
 
@@ -568,10 +584,8 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
     level0_statistics(m, job);
     const std::string why = full_detail_reason(m, job);
     if (!why.empty()) {
-      result.log.warn(LogCategory::kGeneral,
-                      fmt::format("{}: kept at full detail because {} (simplifying it needs the "
-                                  "weights)",
-                                  mesh_label(m, job.mesh), why));
+      result.log.warn(LogCategory::kGeneral, fmt::format("{}: kept at full detail because {}",
+                                                         mesh_label(m, job.mesh), why));
     } else if (choose.quality == 0 || choose.quality == 1) {
       // Manual mode without simplified levels: the mesh stays as it is.
     } else {

@@ -130,8 +130,8 @@ double camera_angle_of(const Model& m, const LodOptions& o) {
 std::string full_detail_reason(const Model& m, const MeshJob& job) {
   for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives) {
     if (!p.targets.empty()) return "it has morph targets (simplifying it needs the weights)";
-    if (!p.extensions.empty())
-      return fmt::format("a primitive has the extension {}", p.extensions.begin()->first);
+    if (p.extensions.count("KHR_draco_mesh_compression"))
+      return "a primitive has the extension KHR_draco_mesh_compression";
     auto attributes = p.attributes;
     if (p.indices >= 0) attributes["indices"] = p.indices;
     for (const auto& [name, index] : attributes) {
@@ -353,7 +353,7 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
     const auto& p = primitives[i];
     TriangleMesh input = gltf::primitive_mesh(m, p, job.mesh);
     all.insert(all.end(), input.positions.begin(), input.positions.end());
-    if (!is_triangles(p.mode)) continue;
+    if (!is_triangles(p.mode) || !p.attributes.count("POSITION")) continue;
     PrimitiveLevels pl;
     pl.primitive = int(i);
     pl.radius = bounding_radius(input.positions);

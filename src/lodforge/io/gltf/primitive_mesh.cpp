@@ -11,8 +11,7 @@ TriangleMesh primitive_mesh(const tinygltf::Model& model, const tinygltf::Primit
                             int mesh_index) {
   TriangleMesh mesh;
   const auto position = primitive.attributes.find("POSITION");
-  if (position == primitive.attributes.end())
-    throw DataError(fmt::format("mesh {}: a primitive without POSITION", mesh_index));
+  if (position == primitive.attributes.end()) return mesh;  // draws nothing
   const AccessorValues p = read_accessor(model, position->second);
   if (p.components != 3)
     throw DataError(

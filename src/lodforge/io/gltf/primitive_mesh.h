@@ -11,11 +11,11 @@
 
 namespace lodforge::gltf {
 
-/// Positions, triangles and lines of `primitive` (no other attributes).
+/// Positions, triangles and lines of `primitive` (no other attributes;
+/// empty for a primitive without POSITION, which glTF viewers skip).
 /// Triangles with two equal indices are dropped. Preconditions: the model
 /// passed read_gltf's checks. Throws DataError naming the mesh for a
-/// primitive without POSITION, a POSITION that is not VEC3, or an index
-/// past the vertex count.
+/// POSITION that is not VEC3, or an index past the vertex count.
 TriangleMesh primitive_mesh(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                             int mesh_index = -1);
 

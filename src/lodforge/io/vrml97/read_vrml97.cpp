@@ -33,6 +33,7 @@ using scene::Node;
 using scene::NodePtr;
 using vrml1::detail::Lexer;
 using vrml1::detail::Token;
+namespace detail = vrml1::detail;
 using vrml1::detail::TokenKind;
 
 // The typed fields of the node types the LOD pipeline interprets, as
@@ -169,10 +170,7 @@ class Parser {
 
  private:
   void parse_header() {
-    std::string_view all = lex_.rest();
-    std::string_view first = all.substr(0, all.find('\n'));
-    if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
-    Token at{TokenKind::kWord, first.substr(0, 40), 1, 1};
+    const auto [first, at] = detail::header_line(lex_);
     if (!is_vrml97_header(first))
       lex_.fail(at, fmt::format("expected header '#VRML V2.0 utf8' or '#X3D V3.x utf8', got '{}'",
                                 first.substr(0, 40)));
@@ -249,30 +247,17 @@ class Parser {
   }
 
   // A node (or NULL, returned as nullptr) whose first token has been read.
-  NodePtr parse_node_from(Token t, int depth, std::string_view what) {
+  NodePtr parse_node_from(const Token& t, int depth, std::string_view what) {
     if (depth >= options_.max_depth)
       lex_.fail(t, fmt::format("nodes nested deeper than {} levels", options_.max_depth));
     if (t.kind != TokenKind::kWord || is_number_start(t.text)) lex_.expected(t, what);
     if (t.text == "NULL") return nullptr;
-    if (t.text == "USE") {
-      Token name = lex_.next();
-      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after USE");
-      auto it = defs_.find(std::string(name.text));
-      if (it == defs_.end())
-        lex_.fail(name, fmt::format("USE of undefined node name '{}'", name.text));
-      return it->second;
-    }
-    std::string def_name;
-    if (t.text == "DEF") {
-      Token name = lex_.next();
-      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after DEF");
-      def_name = std::string(name.text);
-      t = lex_.next();
-      if (t.kind != TokenKind::kWord || t.text == "USE" || t.text == "DEF" || t.text == "NULL" ||
-          is_number_start(t.text))
-        lex_.expected(t, "a node type after DEF " + def_name);
-    }
-    NodePtr node = parse_body(t, depth);
+    detail::NodeStart start = detail::read_node_start(lex_, defs_, t);
+    if (start.used) return start.used;
+    const std::string& def_name = start.def_name;
+    if (is_number_start(start.type.text))
+      lex_.expected(start.type, "a node type after DEF " + def_name);
+    NodePtr node = parse_body(start.type, depth);
     if (!def_name.empty()) {
       node->name = def_name;
       defs_[def_name] = node;
@@ -281,12 +266,8 @@ class Parser {
   }
 
   NodePtr parse_body(const Token& type, int depth) {
-    auto node = std::make_shared<Node>();
-    node->type = std::string(type.text);
-    node->first_line = type.line;
-    Token open = lex_.next();
-    if (open.kind != TokenKind::kLBrace)
-      lex_.expected(open, fmt::format("'{{' after node type {}", type.text));
+    Token open;
+    NodePtr node = detail::open_node(lex_, type, open);
     while (true) {
       Token word = lex_.next();
       if (word.kind == TokenKind::kComma) continue;  // commas are white space in VRML97
@@ -414,8 +395,7 @@ class Parser {
   }
 
   [[noreturn]] void bad_value(const Token& field, FieldType type, std::string_view what) {
-    lex_.fail_here(fmt::format("expected {} for {} field '{}', got {}", what,
-                               scene::type_name(type), field.text, Lexer::describe(lex_.peek())));
+    detail::bad_value(lex_, field, type, what);
   }
 
   void parse_one(FieldValue& out, const Token& field) {

@@ -185,7 +185,7 @@ void print_summary(const std::string& file, const LodResult& r, bool table) {
   }
   fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
              file, r.shapes.size(), lods, levels, r.camera_angle);
-  if (!table) return;
+  if (!table || r.triangles_by_distance.empty()) return;
   fmt::print(stderr, "  distance      triangles drawn\n");
   for (const auto& [d, t] : r.triangles_by_distance)
     fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);

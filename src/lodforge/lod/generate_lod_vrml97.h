@@ -27,8 +27,10 @@ namespace lodforge {
 /// Runs the pipeline on a scene whose header is VRML97 or X3D classic; the
 /// output keeps the header. Uses of LodOptions: method, range,
 /// camera_angle_given, min_diff, level_spacing, level_ratio, max_levels,
-/// triangulation, measure_samples, threads. Throws DataError naming the file
-/// line of a shape whose indices are out of range or coordinates not finite.
+/// triangulation, measure_samples, threads. A shape whose coordinate index is
+/// out of range is left as it is, with a warning in the log naming its line;
+/// an attribute index out of range drops that attribute from its levels.
+/// Throws DataError (from the simplifiers) for coordinates that are not finite.
 LodResult generate_lod_vrml97(scene::Scene scene, const LodOptions& options = {});
 
 }  // namespace lodforge

@@ -155,3 +155,47 @@ TEST(GenerateLodVrml97, TheTeapotGetsAChainOfLevels) {
 
 }  // namespace
 }  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoordinates) {
+  std::string heights;
+  for (int z = 0; z < 20; ++z)
+    for (int x = 0; x < 20; ++x) heights += fmt::format("{} ", 0.3 * std::sin(x * 0.4 + z * 0.3));
+  auto read = vrml97::read_vrml97(
+      "#VRML V2.0 utf8\nShape { geometry ElevationGrid { xDimension 20 "
+      "zDimension 20 xSpacing 0.5 zSpacing 0.5 height [" +
+      heights + "] } }\n");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  ASSERT_EQ(r.shapes.size(), 1u);
+  EXPECT_EQ(r.shapes[0].type, "ElevationGrid");
+  EXPECT_EQ(r.shapes[0].levels[0].triangles, 19u * 19u * 2u);
+  const auto& levels = r.scene.roots.at(0)->value("level")->nodes;
+  ASSERT_GE(levels.size(), 3u);
+  EXPECT_EQ(levels[0]->value("geometry")->nodes.at(0)->type, "ElevationGrid");
+  const auto& ifs = *levels[1]->value("geometry")->nodes.at(0);
+  EXPECT_EQ(ifs.type, "IndexedFaceSet");
+  // The grid's default texture coordinates, s along x and t along z.
+  const auto& tex = ifs.value("texCoord")->nodes.at(0)->value("point")->floats;
+  ASSERT_EQ(tex.size(), 2u * 400u);
+  EXPECT_FLOAT_EQ(tex[2 * 19], 1.f);
+  EXPECT_FLOAT_EQ(tex[2 * 19 + 1], 0.f);
+  // Faces keep the grid's orientation: normals towards +y.
+  const auto& p = ifs.value("coord")->nodes.at(0)->value("point")->floats;
+  const auto& ci = ifs.value("coordIndex")->ints;
+  int up = 0, down = 0;
+  for (std::size_t f = 0; f + 3 < ci.size(); f += 4) {
+    auto at = [&](int k, int c) {
+      return p[3 * std::size_t(ci[f + std::size_t(k)]) + std::size_t(c)];
+    };
+    const float ux = at(1, 0) - at(0, 0), uz = at(1, 2) - at(0, 2);
+    const float vx = at(2, 0) - at(0, 0), vz = at(2, 2) - at(0, 2);
+    (uz * vx - ux * vz > 0 ? up : down)++;
+  }
+  EXPECT_GT(up, 0);
+  EXPECT_EQ(down, 0);
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -43,7 +43,7 @@ struct CornerHash {
 
 bool is_supported_geometry(const std::string& type) {
   return type == "IndexedFaceSet" || type == "IndexedTriangleSet" || type == "TriangleSet" ||
-         type == "IndexedQuadSet";
+         type == "IndexedQuadSet" || type == "ElevationGrid";
 }
 
 NodePtr node_of(const Node& n, std::string_view field) {
@@ -97,13 +97,16 @@ class GeometryReader {
     tex_.count = attribute_count(tex_.node, "point");
     color_ = {node_of(g, "color"), 0, bool_of(g, "colorPerVertex", true), ints_of(g, "colorIndex")};
     color_.count = attribute_count(color_.node, "color");
+    if (g.type == "ElevationGrid") elevation_grid_nodes();
   }
 
   /// False (with a warning) if the shape cannot be read as it is.
   bool read(Polygons& out) {
-    if (!coord_ || !coord_->value("point")) return false;
+    if (!coord_ || !coord_->value("point")) return false;  // (an ElevationGrid's is made)
     if (g_.type == "IndexedFaceSet")
       read_indexed_face_set(out);
+    else if (g_.type == "ElevationGrid")
+      read_elevation_grid(out);
     else
       read_triangle_sets(out);
     for (const Corner& c : out.corners)
@@ -169,6 +172,56 @@ class GeometryReader {
       out.face_normal.push_back(normal_.node && !normal_.per_vertex ? face : kNone);
       out.face_color.push_back(color_.node && !color_.per_vertex ? face : kNone);
     }
+  }
+
+  int int_of(std::string_view field) const {
+    const FieldValue* v = g_.value(field);
+    return v && !v->ints.empty() ? v->ints[0] : 0;
+  }
+  float float_of(std::string_view field) const {
+    const FieldValue* v = g_.value(field);
+    return v && !v->floats.empty() ? v->floats[0] : 1.f;
+  }
+
+  // An ElevationGrid's points and its default texture coordinates (s along
+  // x, t along z: X3D 13.3.4) as nodes, so its levels are IndexedFaceSets.
+  void elevation_grid_nodes() {
+    const int nx = int_of("xDimension"), nz = int_of("zDimension");
+    const FieldValue* h = g_.value("height");
+    if (nx < 2 || nz < 2 || !h || h->floats.size() < std::size_t(nx) * std::size_t(nz)) return;
+    const float dx = float_of("xSpacing"), dz = float_of("zSpacing");
+    std::vector<float> points, tex;
+    for (int z = 0; z < nz; ++z)
+      for (int x = 0; x < nx; ++x) {
+        points.insert(points.end(), {x * dx, h->floats[std::size_t(z * nx + x)], z * dz});
+        tex.insert(tex.end(), {float(x) / float(nx - 1), float(z) / float(nz - 1)});
+      }
+    coord_ = scene::make_node("Coordinate");
+    coord_->set("point", scene::make_floats(FieldKind::kVec3f, true, std::move(points)));
+    coords_ = std::size_t(nx) * std::size_t(nz);
+    if (!tex_.node) {
+      tex_.node = scene::make_node("TextureCoordinate");
+      tex_.node->set("point", scene::make_floats(FieldKind::kVec2f, true, std::move(tex)));
+      tex_.count = coords_;
+    }
+  }
+
+  // Quads (x, z), (x, z+1), (x+1, z+1), (x+1, z): counter-clockwise seen
+  // from +y; attributes per vertex by the vertex number, per face by the quad's.
+  void read_elevation_grid(Polygons& out) {
+    if (!coord_) return;
+    const std::uint32_t nx = std::uint32_t(int_of("xDimension"));
+    const std::uint32_t nz = std::uint32_t(int_of("zDimension"));
+    for (std::uint32_t z = 0; z + 1 < nz; ++z)
+      for (std::uint32_t x = 0; x + 1 < nx; ++x) {
+        for (std::uint32_t v : {z * nx + x, (z + 1) * nx + x, (z + 1) * nx + x + 1, z * nx + x + 1})
+          out.corners.push_back({v, normal_.node && normal_.per_vertex ? v : kNone, v,
+                                 color_.node && color_.per_vertex ? v : kNone});
+        out.start.push_back(std::uint32_t(out.corners.size()));
+        const std::uint32_t face = z * (nx - 1) + x;
+        out.face_normal.push_back(normal_.node && !normal_.per_vertex ? face : kNone);
+        out.face_color.push_back(color_.node && !color_.per_vertex ? face : kNone);
+      }
   }
 
   static std::uint32_t corner_index(const Attribute& a, std::size_t i, std::int32_t coord) {

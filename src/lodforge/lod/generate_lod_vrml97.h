@@ -1,7 +1,7 @@
 #pragma once
 /// The scene LOD pipeline for VRML97 and X3D (classic encoding) scenes as read
 /// by io/vrml97: every Shape whose geometry is an IndexedFaceSet,
-/// IndexedTriangleSet, TriangleSet or IndexedQuadSet becomes
+/// IndexedTriangleSet, TriangleSet, IndexedQuadSet or ElevationGrid becomes
 ///
 ///     LOD { range [...] center C
 ///           level [ <the input Shape, unchanged>,
@@ -16,7 +16,8 @@
 /// of the shape's occurrences and the first Viewpoint's fieldOfView (π/4 by
 /// default) unless LodOptions::camera_angle_given. Normals, texture
 /// coordinates and colours follow the simplifier's vertex_map (per-vertex)
-/// and face_map (per-face) into the input's own attribute nodes. A Shape
+/// and face_map (per-face) into the input's own attribute nodes (an
+/// ElevationGrid's points and default texture coordinates become new nodes). A Shape
 /// DEF/USEd several times is simplified once and its LOD shared. Shapes inside
 /// PROTO bodies (kept verbatim) and other geometry are left as they are.
 #include "lodforge/lod/generate_lod.h"

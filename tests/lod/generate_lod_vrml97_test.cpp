@@ -199,3 +199,21 @@ TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoo
 
 }  // namespace
 }  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST(GenerateLodVrml97, ASkinnedShapeIsLeftAtFullDetailWithAMessage) {
+  auto read = vrml97::read_vrml97(R"(#X3D V4.0 utf8
+Skin { shapes Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] }
+                                                coordIndex [0 1 2 -1] } } }
+)");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  EXPECT_TRUE(r.shapes.empty());
+  ASSERT_EQ(r.log.entries().size(), 1u);
+  EXPECT_NE(r.log.entries()[0].text.find("line 2: a skinned Shape"), std::string::npos);
+  EXPECT_EQ(r.scene.roots[0]->value("shapes")->nodes.at(0)->type, "Shape");
+}
+
+}  // namespace
+}  // namespace lodforge

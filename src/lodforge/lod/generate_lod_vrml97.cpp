@@ -46,6 +46,11 @@ bool is_supported_geometry(const std::string& type) {
          type == "IndexedQuadSet" || type == "ElevationGrid";
 }
 
+// The fields whose nodes are children, where a LOD can stand for a Shape.
+bool is_child_list(std::string_view field) {
+  return field == "children" || field == "level" || field == "choice";
+}
+
 NodePtr node_of(const Node& n, std::string_view field) {
   const FieldValue* v = n.value(field);
   return v && v->type.kind == FieldKind::kNode && !v->nodes.empty() ? v->nodes[0] : nullptr;
@@ -400,7 +405,7 @@ class Pipeline {
   void run(scene::Scene& s) {
     x3d_ = s.header.starts_with("#X3D");
     camera_angle_ = opt_.range.camera_angle;
-    for (const auto& r : s.roots) collect(r, 1.0);
+    for (const auto& r : s.roots) collect(r, 1.0, "children");
     if (!opt_.camera_angle_given && found_viewpoint_) camera_angle_ = viewpoint_angle_;
     result_.camera_angle = camera_angle_;
     for (Job& j : jobs_) make_lod(j);
@@ -415,7 +420,9 @@ class Pipeline {
   }
 
  private:
-  void collect(const NodePtr& n, double scale) {
+  // `via`: the name of the field that holds `n`. Only a Shape that is a child
+  // (of a grouping node, a LOD or a Switch) can be replaced by a LOD.
+  void collect(const NodePtr& n, double scale, std::string_view via) {
     if (!n || n->statement) return;
     if (n->type == "Viewpoint" && !found_viewpoint_) {
       found_viewpoint_ = true;
@@ -427,6 +434,15 @@ class Pipeline {
     if (n->type == "Shape") {
       NodePtr g = node_of(*n, "geometry");
       if (!g || !is_supported_geometry(g->type)) return;
+      if (!is_child_list(via)) {
+        if (via == "skin" || via == "shapes")
+          result_.log.warn(
+              LogCategory::kGeneral,
+              fmt::format("line {}: a skinned Shape (HAnim skin, Castle Skin) is left at full "
+                          "detail: simplifying it needs its joint weights",
+                          n->first_line));
+        return;
+      }
       auto [it, fresh] = job_of_.try_emplace(n.get(), jobs_.size());
       if (fresh) jobs_.push_back({.shape = n, .geometry = g});
       Job& j = jobs_[it->second];
@@ -443,7 +459,7 @@ class Pipeline {
     if (!fresh && seen->second >= scale) return;
     seen->second = std::max(seen->second, scale);
     for (const auto& f : n->fields)
-      for (const auto& c : f.value.nodes) collect(c, scale);
+      for (const auto& c : f.value.nodes) collect(c, scale, f.name);
   }
 
   void make_lod(Job& j) {
@@ -505,8 +521,7 @@ class Pipeline {
                std::unordered_set<const Node*>& done) {
     if (!n || !done.insert(n.get()).second) return;
     for (auto& f : n->fields) {
-      const bool child_list = f.value.type.kind == FieldKind::kNode && f.value.type.multi &&
-                              (f.name == "children" || f.name == "level" || f.name == "choice");
+      const bool child_list = f.value.type.kind == FieldKind::kNode && is_child_list(f.name);
       for (auto& c : f.value.nodes) {
         if (!c) continue;
         auto it = child_list ? lods.find(c.get()) : lods.end();

@@ -22,7 +22,6 @@ namespace lodforge {
 namespace {
 
 using scene::FieldKind;
-using scene::FieldValue;
 using scene::Node;
 using scene::NodePtr;
 
@@ -52,24 +51,24 @@ bool is_child_list(std::string_view field) {
 }
 
 NodePtr node_of(const Node& n, std::string_view field) {
-  const FieldValue* v = n.value(field);
+  const scene::FieldValue* v = n.value(field);
   return v && v->type.kind == FieldKind::kNode && !v->nodes.empty() ? v->nodes[0] : nullptr;
 }
 
 bool bool_of(const Node& n, std::string_view field, bool fallback) {
-  const FieldValue* v = n.value(field);
+  const scene::FieldValue* v = n.value(field);
   return v && v->type.kind == FieldKind::kBool && !v->ints.empty() ? v->ints[0] != 0 : fallback;
 }
 
 const std::vector<std::int32_t>* ints_of(const Node& n, std::string_view field) {
-  const FieldValue* v = n.value(field);
+  const scene::FieldValue* v = n.value(field);
   return v && v->type.kind == FieldKind::kLong && !v->ints.empty() ? &v->ints : nullptr;
 }
 
 // The values of an attribute node's array field, and how many there are.
 std::size_t attribute_count(const NodePtr& n, std::string_view field) {
   if (!n) return 0;
-  const FieldValue* v = n->value(field);
+  const scene::FieldValue* v = n->value(field);
   return v ? v->count() : 0;
 }
 
@@ -180,11 +179,11 @@ class GeometryReader {
   }
 
   int int_of(std::string_view field) const {
-    const FieldValue* v = g_.value(field);
+    const scene::FieldValue* v = g_.value(field);
     return v && !v->ints.empty() ? v->ints[0] : 0;
   }
   float float_of(std::string_view field) const {
-    const FieldValue* v = g_.value(field);
+    const scene::FieldValue* v = g_.value(field);
     return v && !v->floats.empty() ? v->floats[0] : 1.f;
   }
 
@@ -192,7 +191,7 @@ class GeometryReader {
   // x, t along z: X3D 13.3.4) as nodes, so its levels are IndexedFaceSets.
   void elevation_grid_nodes() {
     const int nx = int_of("xDimension"), nz = int_of("zDimension");
-    const FieldValue* h = g_.value("height");
+    const scene::FieldValue* h = g_.value("height");
     if (nx < 2 || nz < 2 || !h || h->floats.size() < std::size_t(nx) * std::size_t(nz)) return;
     const float dx = float_of("xSpacing"), dz = float_of("zSpacing");
     std::vector<float> points, tex;
@@ -366,15 +365,15 @@ class LevelBuilder {
       ifs->set("colorIndex", scene::make_longs(std::move(color_index)));
     }
     for (const char* f : {"ccw", "solid", "colorPerVertex", "normalPerVertex", "creaseAngle"})
-      if (const FieldValue* v = j_.geometry->value(f)) ifs->set(f, *v);
+      if (const scene::FieldValue* v = j_.geometry->value(f)) ifs->set(f, *v);
     auto shape = scene::make_node("Shape");
     if (NodePtr app = node_of(*j_.shape, "appearance")) shape->set("appearance", node_value(app));
     shape->set("geometry", node_value(ifs));
     return shape;
   }
 
-  static FieldValue node_value(NodePtr n) {
-    FieldValue v;
+  static scene::FieldValue node_value(NodePtr n) {
+    scene::FieldValue v;
     v.type = {FieldKind::kNode, false};
     v.nodes.push_back(std::move(n));
     return v;
@@ -426,7 +425,7 @@ class Pipeline {
     if (!n || n->statement) return;
     if (n->type == "Viewpoint" && !found_viewpoint_) {
       found_viewpoint_ = true;
-      const FieldValue* fov = n->value("fieldOfView");
+      const scene::FieldValue* fov = n->value("fieldOfView");
       viewpoint_angle_ = fov && !fov->floats.empty() && fov->floats[0] > 0 && fov->floats[0] < 3.1
                              ? fov->floats[0]
                              : kDefaultFieldOfView;
@@ -451,7 +450,7 @@ class Pipeline {
       return;
     }
     if (n->type == "Transform")
-      if (const FieldValue* sc = n->value("scale"); sc && sc->floats.size() == 3)
+      if (const scene::FieldValue* sc = n->value("scale"); sc && sc->floats.size() == 3)
         scale *= std::max(
             {std::fabs(sc->floats[0]), std::fabs(sc->floats[1]), std::fabs(sc->floats[2])});
     // A subgraph met again at no larger scale adds nothing new.
@@ -491,7 +490,7 @@ class Pipeline {
     stats.method = chosen.method;
     stats.stop_reason = chosen.stop_reason;
     LevelBuilder builder(j, reader);
-    FieldValue levels;
+    scene::FieldValue levels;
     levels.type = {FieldKind::kNode, true};
     levels.nodes.push_back(j.shape);
     std::vector<double> errors;

@@ -11,6 +11,7 @@
 #include "lodforge/apps/batch.h"
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
@@ -63,6 +64,7 @@ struct Settings {
   std::string output, out_dir, stats, manifest, shard_text, report;
   Shard shard;
   std::string method = "qem", export_flavour = "spec";
+  std::string format;  ///< --format: VRML97 / X3D output encoding
   double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing,
          level_ratio = kDefaultLevelRatio;
   double camera_angle = -1, quad_split_angle = 0.174533;
@@ -183,7 +185,7 @@ void print_summary(const std::string& file, const LodResult& r, bool table) {
   }
   fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
              file, r.shapes.size(), lods, levels, r.camera_angle);
-  if (!table) return;
+  if (!table || r.triangles_by_distance.empty()) return;
   fmt::print(stderr, "  distance      triangles drawn\n");
   for (const auto& [d, t] : r.triangles_by_distance)
     fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
@@ -208,16 +210,23 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
   BatchOutcome out{.index = item.index, .input = input, .output = output_of(item, s)};
   out.bytes_in = file_size_or_zero(input);
   try {
-    SceneReadSettings read = s.read;
-    read.quiet = true;  // the reader's warnings are printed here, off the bar
-    vrml1::ReadResult r = read_scene(input, read);
-    if (!s.read.quiet && !r.log.entries().empty()) {
-      bar.clear();
-      print_diagnostics(r.log.entries());
-    }
     LodOptions drawn = options;
     drawn.progress = progress;
-    LodResult result = generate_lod(std::move(r.scene), drawn);
+    const bool vrml97 = is_vrml97_input(input);
+    if (!vrml97 && !s.format.empty())
+      throw DataError(
+          fmt::format("--format {}: only VRML97 / X3D inputs can be written so", s.format));
+    LodResult result = vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn) : LodResult{};
+    if (!vrml97) {
+      SceneReadSettings read = s.read;
+      read.quiet = true;  // the reader's warnings are printed here, off the bar
+      vrml1::ReadResult r = read_scene(input, read);
+      if (!s.read.quiet && !r.log.entries().empty()) {
+        bar.clear();
+        print_diagnostics(r.log.entries());
+      }
+      result = generate_lod(std::move(r.scene), drawn);
+    }
     bar.clear();
     if (!s.read.quiet) {
       std::vector<Diagnostic> show;
@@ -232,7 +241,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     std::error_code ec;
     if (!to.empty() && (fs::create_directories(to, ec), ec))
       throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
-    if (input != "-" && target != "-") {
+    if (!vrml97 && input != "-" && target != "-") {
       const auto moved =
           scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
       if (moved.rewritten && !s.read.quiet)
@@ -240,7 +249,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                    moved.rewritten, moved.rewritten == 1 ? "" : "s",
                    to.empty() ? "." : to.string());
     }
-    vrml1::write_vrml1_file(result.scene, target, s.write);
+    if (!vrml97) vrml1::write_vrml1_file(result.scene, target, s.write);
     if (!s.read.silent) print_summary(input, result, !s.read.quiet);
     stats = stats_json(input, result);
     out.written = true;
@@ -366,6 +375,10 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--report", s->report,
                   "Write the batch report (JSON: every scene's outcome, sizes, triangles, time) "
                   "to this file; `lodforge report` merges the reports of shards");
+  cmd->add_option("--format", s->format,
+                  "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
+                  "X3D classic, else the input's)")
+      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));

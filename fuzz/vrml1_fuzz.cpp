@@ -1,11 +1,7 @@
 // libFuzzer target: the VRML 1.0 reader, and the writer on whatever it reads
 // (the written text must read back to the same scene). Bad input may only
 // raise DataError.
-//
-// "The same scene" is the writer's contract: every float bit for bit (a NaN
-// read is a NaN written), the sharing pattern kept, and DEF names kept
-// except where the writer documents a renaming: a shared node without a
-// name gets "lf_N", and a name a later USE could not reach gets "NAME_N".
+// "The same scene": fuzz/round_trip.h.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -18,68 +14,7 @@
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/scene/statistics.h"
-
-namespace {
-
-using lodforge::scene::Field;
-using lodforge::scene::Node;
-using lodforge::scene::NodePtr;
-
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
-}
-
-bool same_field(const Field& a, const Field& b) {
-  return a.name == b.name && a.is_raw == b.is_raw && a.raw == b.raw &&
-         a.value.type == b.value.type && same_bits(a.value.floats, b.value.floats) &&
-         a.value.ints == b.value.ints && a.value.strings == b.value.strings;
-}
-
-// `written` is `name` or the writer's renaming of it: "NAME_N" ("lf_N" for
-// no name) with N a positive number.
-bool renamed(const std::string& name, const std::string& written) {
-  const std::string base = (name.empty() ? "lf" : name) + "_";
-  if (!written.starts_with(base) || written.size() == base.size()) return false;
-  for (std::size_t i = base.size(); i < written.size(); ++i)
-    if (written[i] < '0' || written[i] > '9') return false;
-  return true;
-}
-
-class RoundTripComparer {
- public:
-  explicit RoundTripComparer(const lodforge::scene::Scene& a) {
-    for (const auto& r : a.roots) count(r);
-  }
-  bool nodes(const NodePtr& a, const NodePtr& b) {
-    auto it = pairs_.find(a.get());
-    if (it != pairs_.end()) return it->second == b.get();
-    if (!paired_.emplace(b.get()).second) return false;
-    pairs_[a.get()] = b.get();
-    const bool shared = refs_[a.get()] > 1;
-    if (a->type != b->type || !(a->name == b->name || (shared && renamed(a->name, b->name))) ||
-        a->fields.size() != b->fields.size() || a->declared != b->declared ||
-        a->has_declaration != b->has_declaration || a->is_a != b->is_a || a->is_raw != b->is_raw ||
-        a->raw_body != b->raw_body || a->children.size() != b->children.size())
-      return false;
-    for (std::size_t i = 0; i < a->fields.size(); ++i)
-      if (!same_field(a->fields[i], b->fields[i])) return false;
-    for (std::size_t i = 0; i < a->children.size(); ++i)
-      if (!nodes(a->children[i], b->children[i])) return false;
-    return true;
-  }
-
- private:
-  void count(const NodePtr& n) {
-    if (++refs_[n.get()] > 1) return;
-    for (const auto& c : n->children) count(c);
-  }
-  std::unordered_map<const Node*, std::size_t> refs_;
-  std::unordered_map<const Node*, const Node*> pairs_;
-  std::unordered_set<const Node*> paired_;
-};
-
-}  // namespace
+#include "round_trip.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -97,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     auto back = lodforge::vrml1::read_vrml1(out, read_back);
     if (r.scene.header != back.scene.header || r.scene.roots.size() != back.scene.roots.size())
       __builtin_trap();
-    RoundTripComparer same(r.scene);
+    lodforge::fuzz::RoundTripComparer same(r.scene);
     for (std::size_t i = 0; i < r.scene.roots.size(); ++i)
       if (!same.nodes(r.scene.roots[i], back.scene.roots[i])) __builtin_trap();
   } catch (const lodforge::DataError&) {

@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcoin-dev libmeshoptimizer-dev
   libosmesa6-dev libstb-dev libtinygltf-dev
+  view3dscene xvfb xauth
   nodejs
   parallel
 )

@@ -41,6 +41,34 @@ TEST_F(Cli, InfoTextNamesTheOriginalCounts) {
   EXPECT_THAT(r.out, HasSubstr("bounds ["));
 }
 
+// A mesh file: its counts, bounds and topology (two tetrahedra: two
+// components, closed, four faces each).
+TEST_F(Cli, InfoDescribesAMeshFile) {
+  const std::string mesh = path("two.off");
+  std::ofstream(mesh) << "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                         "5 0 0\n6 0 0\n5 1 0\n5 0 1\n"
+                         "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
+                         "3 4 6 5\n3 4 5 7\n3 4 7 6\n3 5 6 7\n";
+  auto r = run_lodforge("info --json " + mesh);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["triangles"].get<int>(), 8);
+  EXPECT_EQ(j["vertices"].get<int>(), 8);
+  EXPECT_EQ(j["components"].get<int>(), 2);
+  EXPECT_EQ(j["boundary_edges"].get<int>(), 0);
+  EXPECT_DOUBLE_EQ(j["bounds"]["max"][0].get<double>(), 6.0);
+  auto text = run_lodforge("info " + mesh);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("triangles 8, vertices 8"));
+  EXPECT_THAT(text.out, HasSubstr("components 2, boundary edges 0"));
+  // A mesh file that is not one: the reader's message, exit 1.
+  const std::string bad = path("bad.off");
+  std::ofstream(bad) << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
+  auto b = run_lodforge("info " + bad);
+  EXPECT_EQ(b.exit_code, 1);
+  EXPECT_THAT(b.err, HasSubstr("bad.off"));
+}
+
 TEST_F(Cli, FormatRoundTripsThroughStdinAndStdout) {
   auto r = run_lodforge("format - -o - --minimize", kExample);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -53,13 +53,13 @@ TEST_F(McoCli, BuildInfoExtract) {
   auto j = nlohmann::json::parse(info.out);
   for (const char* k : {"version", "depth", "cells", "priorities", "full_triangles", "levels"})
     EXPECT_TRUE(j.contains(k)) << k;
-  EXPECT_EQ(j["version"].get<int>(), 3);
+  EXPECT_EQ(j["version"].get<int>(), 4);
   const auto full = j["full_triangles"].get<std::uint64_t>();
   const auto priorities = j["priorities"].get<std::uint64_t>();
 
   auto text = run_lodforge("mco info " + m);
   EXPECT_EQ(text.exit_code, 0);
-  EXPECT_THAT(text.err, HasSubstr("marching-cube octree, version 3"));
+  EXPECT_THAT(text.err, HasSubstr("marching-cube octree, version 4"));
 
   std::string out = path("full.ply");
   auto r = run_lodforge("mco extract " + m + " -o " + out);
@@ -106,24 +106,58 @@ TEST_F(McoCli, SurfaceVerticesChoice) {
             info_json(surface)["vertices"].get<std::uint64_t>());
 }
 
-TEST_F(McoCli, ExtractFromATruncatedFileUpToWhatItHolds) {
+// A progressive file cut anywhere (a partial download) answers info and
+// extract for the levels it holds: a percentage of the whole model beyond
+// them is clamped to the finest level held, with a message; a cut before
+// the first level is an error without output.
+TEST_F(McoCli, TruncatedFilesAnswerForTheLevelsTheyHold) {
   std::string m = model();
-  std::string data = read_text(m);
+  const std::string data = read_text(m);
+  const auto whole = info_json(m);
+  const auto full = whole["full_triangles"].get<std::uint64_t>();
+  const auto priorities = whole["priorities"].get<std::uint64_t>();
   std::string cut = path("cut.mco");
-  std::ofstream(cut, std::ios::binary) << data.substr(0, data.size() / 2);
-  // The first priorities are in the first half of a progressive file.
-  auto r = run_lodforge("mco extract " + cut + " -o " + path("low.ply") + " --priority 5");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_GT(read_mesh(path("low.ply")).triangle_count(), 0u);
-  // The whole model is not.
-  std::string out = path("all.ply");
-  r = run_lodforge("mco extract " + cut + " -o " + out);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("truncated .mco file"));
-  EXPECT_FALSE(fs::exists(out));
-  r = run_lodforge("mco info " + cut);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("truncated .mco file"));
+  std::size_t answered = 0;
+  std::uint64_t previous_held = 0;
+  for (int i = 1; i <= 50; ++i) {
+    const std::size_t size = data.size() * std::size_t(i) / 51;
+    std::ofstream(cut, std::ios::binary) << data.substr(0, size);
+    const std::string out = path("cut.ply");
+    fs::remove(out);
+    auto info = run_lodforge("mco info " + cut + " --json");
+    auto extract = run_lodforge("mco extract " + cut + " -o " + out + " --percent 50");
+    if (info.exit_code != 0) {
+      // Only a cut before the first level's end is refused.
+      EXPECT_EQ(answered, 0u) << "cut at " << size;
+      EXPECT_EQ(info.exit_code, 1);
+      EXPECT_THAT(info.err, HasSubstr("truncated .mco file"));
+      EXPECT_EQ(extract.exit_code, 1);
+      EXPECT_FALSE(fs::exists(out));
+      continue;
+    }
+    ++answered;
+    const auto j = nlohmann::json::parse(info.out);
+    EXPECT_TRUE(j["truncated"].get<bool>());
+    EXPECT_EQ(j["file_priorities"].get<std::uint64_t>(), priorities);
+    EXPECT_EQ(j["full_triangles"].get<std::uint64_t>(), full);
+    const auto held = j["held_triangles"].get<std::uint64_t>();
+    EXPECT_GE(held, previous_held) << "a longer prefix holds at least as much";
+    previous_held = held;
+    EXPECT_LT(j["priorities"].get<std::uint64_t>(), priorities);
+    EXPECT_THAT(info.err, HasSubstr("the file ends after priority"));
+    ASSERT_EQ(extract.exit_code, 0) << extract.err;
+    const std::size_t got = read_mesh(out).triangle_count();
+    if (held < full / 2) {
+      EXPECT_EQ(got, held);  // clamped to the finest level held
+      EXPECT_THAT(extract.err, HasSubstr("clamped"));
+    } else {
+      EXPECT_LE(got, held);
+      EXPECT_NEAR(double(got), double(full) / 2, 0.1 * double(full));
+    }
+  }
+  EXPECT_GE(answered, 40u);
+  // The whole file is not truncated.
+  EXPECT_FALSE(whole["truncated"].get<bool>());
 }
 
 TEST_F(McoCli, CorruptedOrWrongFilesAreErrorsWithoutOutput) {

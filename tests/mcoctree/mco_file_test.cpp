@@ -245,5 +245,53 @@ TEST(McoFile, PrefixExtractsTheSameLevels) {
   }
 }
 
+// A cut file read as a prefix: up to the last priority it holds in full,
+// the same levels as the whole model; the summary says how much is there.
+TEST(McoFile, CutFilesReadAsAPrefix) {
+  McLodModel t = small_model(false);
+  const std::string data = write_mco_data(t);
+  const McoFileSummary whole = summarize_mco_data(data, "m.mco");
+  EXPECT_FALSE(whole.truncated());
+  EXPECT_EQ(whole.version, kMcoVersion);
+  EXPECT_EQ(whole.priorities, t.priorities());
+  EXPECT_EQ(whole.full_triangles, t.full_triangles());
+  EXPECT_EQ(whole.complete_priorities, t.priorities() + 1u);
+  const std::uint32_t n = t.priorities() / 3;
+  const std::uint64_t size = mco_prefix_size(data, n, "m.mco");
+  // One byte short of priority n + 1: n is the last one held.
+  const std::string_view cut =
+      std::string_view(data).substr(0, mco_prefix_size(data, n + 1, "m.mco") - 1);
+  ASSERT_GT(cut.size(), size);
+  const McoFileSummary s = summarize_mco_data(cut, "m.mco");
+  EXPECT_TRUE(s.truncated());
+  EXPECT_EQ(s.complete_priorities, n + 1u);
+  EXPECT_EQ(s.full_triangles, t.full_triangles());
+  McLodModel r = read_mco_data(cut, "m.mco", {.prefix = true});
+  EXPECT_EQ(r.priorities(), n);
+  EXPECT_EQ(extract_mc_mesh(r, {.priority = n}).mesh.triangles,
+            extract_mc_mesh(t, {.priority = n}).mesh.triangles);
+  // Without the prefix option a cut file is an error; so is a cut before
+  // priority 0 even with it.
+  EXPECT_THROW(read_mco_data(cut, "m.mco"), DataError);
+  EXPECT_THROW(read_mco_data(data.substr(0, 100), "m.mco", {.prefix = true}), DataError);
+}
+
+// Version 3 files (no full triangle count in the header) are still read.
+TEST(McoFile, VersionThreeIsRead) {
+  McLodModel t = small_model(false);
+  std::string data = write_mco_data(t);
+  const std::uint32_t three = 3, zero = 0;
+  std::memcpy(data.data() + 8, &three, 4);
+  std::memcpy(data.data() + 36, &zero, 4);
+  std::uint64_t h = 1469598103934665603ULL;  // the header's FNV-1a 64, made again
+  for (std::size_t i = 0; i < 80; ++i)
+    h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ULL;
+  std::memcpy(data.data() + 80, &h, 8);
+  const McoFileSummary s = summarize_mco_data(data, "m.mco");
+  EXPECT_EQ(s.version, 3u);
+  EXPECT_EQ(s.full_triangles, 0u);
+  EXPECT_EQ(read_mco_data(data, "m.mco").accumulated, t.accumulated);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -34,6 +34,7 @@
 #include <Inventor/SoInput.h>
 #include <Inventor/SoPath.h>
 #include <Inventor/SoPrimitiveVertex.h>
+#include <Inventor/VRMLnodes/SoVRMLLOD.h>
 #include <Inventor/actions/SoCallbackAction.h>
 #include <Inventor/actions/SoSearchAction.h>
 #include <Inventor/errors/SoDebugError.h>
@@ -129,10 +130,11 @@ void on_triangle(void* data, SoCallbackAction*, const SoPrimitiveVertex* a,
   if (p != q && q != r && r != p) ++counts->distinct[counts->current];
 }
 
-// Every LOD / LevelOfDetail under `root` becomes a Switch on child `k` (or
+// Every LOD / LevelOfDetail / VRML97 LOD under `root` becomes a Switch on child `k` (or
 // its last) with the same children.
 void fix_lod_children(SoNode* root, int k) {
-  for (SoType type : {SoLOD::getClassTypeId(), SoLevelOfDetail::getClassTypeId()}) {
+  for (SoType type :
+       {SoLOD::getClassTypeId(), SoLevelOfDetail::getClassTypeId(), SoVRMLLOD::getClassTypeId()}) {
     SoSearchAction search;
     search.setType(type);
     search.setInterest(SoSearchAction::ALL);

@@ -1,5 +1,6 @@
-// `lodforge info SCENE [--json]`: what a scene holds — node counts per type,
-// the shape counts the original tool showed, vertices, triangles, bounds.
+// `lodforge info SCENE|MESH [--json]`: what a scene holds — node counts per
+// type, the shape counts the original tool showed, vertices, triangles,
+// bounds; for a mesh file its counts, bounds and topology.
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
@@ -7,10 +8,63 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/info_gltf.h"
+#include "lodforge/apps/load_geometry.h"
 #include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/mesh/adjacency.h"
+#include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/statistics.h"
 
 namespace lodforge::apps {
+namespace {
+
+// A mesh file: counts, bounds and the topology a simplifier cares about.
+int mesh_info(const std::string& path, bool json) {
+  const TriangleMesh mesh = read_mesh(path);
+  const TopologyReport t = mesh_topology_report(mesh);
+  Box3 bounds;
+  for (const Vec3& p : mesh.positions) bounds.add(p);
+  if (json) {
+    nlohmann::ordered_json j;
+    j["file"] = path;
+    j["vertices"] = t.vertices;
+    j["triangles"] = t.triangles;
+    j["edges"] = t.edges;
+    j["components"] = t.components;
+    j["boundary_edges"] = t.boundary_edges;
+    j["non_manifold_edges"] = t.non_manifold_edges;
+    j["non_manifold_vertices"] = t.non_manifold_vertices;
+    j["inconsistent_edges"] = t.inconsistent_edges;
+    j["degenerate_triangles"] = t.degenerate_triangles;
+    j["isolated_vertices"] = t.isolated_vertices;
+    j["normals"] = mesh.has_normals();
+    j["colors"] = mesh.has_colors();
+    j["texcoords"] = !mesh.texcoords.empty();
+    if (!bounds.empty()) {
+      j["bounds"]["min"] = {bounds.lo.x, bounds.lo.y, bounds.lo.z};
+      j["bounds"]["max"] = {bounds.hi.x, bounds.hi.y, bounds.hi.z};
+      j["bounds"]["diagonal"] = bounds.diagonal();
+    } else {
+      j["bounds"] = nullptr;
+    }
+    fmt::print("{}\n", j.dump(2));
+    return 0;
+  }
+  fmt::print("{}\n", path);
+  fmt::print("  triangles {}, vertices {}, edges {}{}{}{}\n", t.triangles, t.vertices, t.edges,
+             mesh.has_normals() ? ", normals" : "", mesh.has_colors() ? ", colours" : "",
+             mesh.texcoords.empty() ? "" : ", texture coordinates");
+  fmt::print(
+      "  components {}, boundary edges {}, non-manifold edges {}, non-manifold vertices {}, "
+      "inconsistently oriented edges {}, degenerate triangles {}, unused vertices {}\n",
+      t.components, t.boundary_edges, t.non_manifold_edges, t.non_manifold_vertices,
+      t.inconsistent_edges, t.degenerate_triangles, t.isolated_vertices);
+  if (!bounds.empty())
+    fmt::print("  bounds [{} {} {}] .. [{} {} {}], diagonal {}\n", bounds.lo.x, bounds.lo.y,
+               bounds.lo.z, bounds.hi.x, bounds.hi.y, bounds.hi.z, bounds.diagonal());
+  return 0;
+}
+
+}  // namespace
 
 void add_info_command(CLI::App& app, Runner& run) {
   struct Settings {
@@ -19,16 +73,19 @@ void add_info_command(CLI::App& app, Runner& run) {
     SceneReadSettings read;
   };
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd = app.add_subcommand("info", "Show what a VRML 1.0 or Open Inventor scene holds");
-  cmd->add_option(
-         "SCENE", s->input,
-         "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), or glTF (.gltf, .glb)")
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Show what a VRML 1.0 or Open Inventor scene, a glTF scene, or a mesh file, holds");
+  cmd->add_option("SCENE", s->input,
+                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), glTF (.gltf, "
+                  ".glb), or a mesh (.ply, .obj, .off, .stl)")
       ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   add_scene_read_options(*cmd, s->read);
   cmd->callback([s, &run] {
     run = [s] {
       if (gltf::is_gltf_path(s->input)) return print_gltf_info(s->input, s->json, s->read.quiet);
+      if (!is_scene_path(s->input) && format_from_path(s->input) != MeshFormat::kAuto)
+        return mesh_info(s->input, s->json);
       SceneReadSettings read = s->read;
       read.quiet = read.quiet || s->json;
       vrml1::ReadResult r = read_scene(s->input, read);

@@ -12,6 +12,7 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/lod_gltf.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
@@ -64,7 +65,7 @@ struct Settings {
   std::string output, out_dir, stats, manifest, shard_text, report;
   Shard shard;
   std::string method = "qem", export_flavour = "spec";
-  std::string format;  ///< --format: the output format ("": from the output's name)
+  std::string format;  ///< --format: VRML97 / X3D output encoding, or glTF container
   double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing,
          level_ratio = kDefaultLevelRatio;
   double camera_angle = -1, quad_split_angle = 0.174533;
@@ -185,7 +186,7 @@ void print_summary(const std::string& file, const LodResult& r, bool table) {
   }
   fmt::print(stderr, "{}: {} shapes, {} with LOD ({} levels in all), camera angle {:.4g} rad\n",
              file, r.shapes.size(), lods, levels, r.camera_angle);
-  if (!table) return;
+  if (!table || r.triangles_by_distance.empty()) return;
   fmt::print(stderr, "  distance      triangles drawn\n");
   for (const auto& [d, t] : r.triangles_by_distance)
     fmt::print(stderr, "  {:>10.4g}  {:>12}\n", d, t);
@@ -206,41 +207,6 @@ void make_output_folder(const std::string& target) {
     throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
 }
 
-// The VRML 1.0 / Inventor path of lod_one: read, generate_lod, write.
-LodResult lod_vrml(const BatchItem& item, const Settings& s, const LodOptions& drawn,
-                   const std::vector<LogCategory>& shown, Progress& bar) {
-  namespace fs = std::filesystem;
-  const std::string& input = item.input;
-  SceneReadSettings read = s.read;
-  read.quiet = true;  // the reader's warnings are printed here, off the bar
-  vrml1::ReadResult r = read_scene(input, read);
-  if (!s.read.quiet && !r.log.entries().empty()) {
-    bar.clear();
-    print_diagnostics(r.log.entries());
-  }
-  LodResult result = generate_lod(std::move(r.scene), drawn);
-  bar.clear();
-  if (!s.read.quiet) {
-    std::vector<Diagnostic> show;
-    for (const auto& d : result.log.entries())
-      if (d.level != LogLevel::kMessage ||
-          std::find(shown.begin(), shown.end(), d.category) != shown.end())
-        show.push_back(d);
-    print_diagnostics(show);
-  }
-  const std::string target = output_of(item, s);
-  make_output_folder(target);
-  const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
-  if (input != "-" && target != "-") {
-    const auto moved = scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
-    if (moved.rewritten && !s.read.quiet)
-      fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n", input,
-                 moved.rewritten, moved.rewritten == 1 ? "" : "s", to.empty() ? "." : to.string());
-  }
-  vrml1::write_vrml1_file(result.scene, target, s.write);
-  return result;
-}
-
 // Reads one scene, makes its LODs and writes them; a DataError is the
 // outcome's error. `progress` receives the library's progress, drawn on
 // `bar`, which is cleared before anything is printed; `stats` gets the
@@ -256,18 +222,48 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
   try {
     LodOptions drawn = options;
     drawn.progress = progress;
-    const std::string& target = out.output;
-    LodResult result;
-    if (is_gltf_input(input)) {
-      make_output_folder(target);
-      result = lod_gltf_file(input, target, s.format, drawn);
-      bar.clear();
-      if (!s.read.quiet) print_diagnostics(result.log.entries());
-    } else {
-      if (!s.format.empty())
-        throw DataError(fmt::format("--format {} needs a glTF scene (.gltf, .glb)", s.format));
-      result = lod_vrml(item, s, drawn, shown, bar);
+    const bool gltf = is_gltf_input(input);
+    const bool vrml97 = !gltf && is_vrml97_input(input);
+    if (!vrml97 && !gltf && !s.format.empty())
+      throw DataError(fmt::format(
+          "--format {}: only VRML97 / X3D inputs (vrml97, x3dv, x3d) and glTF inputs (gltf, glb) "
+          "can be written so",
+          s.format));
+    if (gltf) make_output_folder(out.output);
+    LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
+                       : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
+                                : LodResult{};
+    if (!vrml97 && !gltf) {
+      SceneReadSettings read = s.read;
+      read.quiet = true;  // the reader's warnings are printed here, off the bar
+      vrml1::ReadResult r = read_scene(input, read);
+      if (!s.read.quiet && !r.log.entries().empty()) {
+        bar.clear();
+        print_diagnostics(r.log.entries());
+      }
+      result = generate_lod(std::move(r.scene), drawn);
     }
+    bar.clear();
+    if (!s.read.quiet) {
+      std::vector<Diagnostic> show;
+      for (const auto& d : result.log.entries())
+        if (d.level != LogLevel::kMessage ||
+            std::find(shown.begin(), shown.end(), d.category) != shown.end())
+          show.push_back(d);
+      print_diagnostics(show);
+    }
+    const std::string& target = out.output;
+    const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
+    make_output_folder(target);
+    if (!vrml97 && !gltf && input != "-" && target != "-") {
+      const auto moved =
+          scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
+      if (moved.rewritten && !s.read.quiet)
+        fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n", input,
+                   moved.rewritten, moved.rewritten == 1 ? "" : "s",
+                   to.empty() ? "." : to.string());
+    }
+    if (!vrml97 && !gltf) vrml1::write_vrml1_file(result.scene, target, s.write);
     if (!s.read.silent) print_summary(input, result, !s.read.quiet);
     stats = stats_json(input, result);
     out.written = true;
@@ -394,8 +390,10 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "Write the batch report (JSON: every scene's outcome, sizes, triangles, time) "
                   "to this file; `lodforge report` merges the reports of shards");
   cmd->add_option("--format", s->format,
-                  "Output format (default: from the output's name): gltf or glb, for a glTF scene")
-      ->check(CLI::IsMember({"gltf", "glb"}));
+                  "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
+                  "X3D classic, else the input's), or of a glTF scene: gltf or glb (default: "
+                  "from the output name, else the input's)")
+      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));

@@ -19,6 +19,7 @@
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/load_geometry.h"
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/core/progress.h"
 #include "lodforge/mcoctree/build_mc_octree.h"
@@ -179,6 +180,37 @@ void add_mco_build(CLI::App* mco, Runner& run) {
   build->callback([b, &run] { run = [b] { return run_mco_build(*b); }; });
 }
 
+// A model file, or a file cut short (a partial download): read up to the
+// last priority it holds in full, with a warning saying what is missing.
+// `full_triangles` is the whole model's count at full resolution (the held
+// part's finest count if the file is cut and does not record it).
+struct LoadedModel {
+  McLodModel model;
+  McoFileSummary summary;
+  std::uint64_t full_triangles = 0;
+};
+
+LoadedModel load_model(const std::string& path, std::int64_t max_priority = -1) {
+  const std::string data = read_file(path);
+  LoadedModel out;
+  out.summary = summarize_mco_data(data, path);
+  const McoFileSummary& s = out.summary;
+  if (s.truncated() && s.complete_priorities > 0 &&
+      (max_priority < 0 || static_cast<std::uint64_t>(max_priority) >= s.complete_priorities))
+    fmt::print(stderr,
+               "warning: {}: the file ends after priority {} of {} ({} bytes); only the levels "
+               "up to it can be extracted\n",
+               path, s.complete_priorities - 1, s.priorities, data.size());
+  out.model = read_mco_data(data, path, {.max_priority = max_priority, .prefix = true});
+  out.full_triangles = s.full_triangles ? s.full_triangles : out.model.full_triangles();
+  if (s.truncated() && !s.full_triangles)
+    fmt::print(stderr,
+               "warning: {}: a version {} file does not record its full triangle count; "
+               "percentages are of the {} triangles it holds\n",
+               path, s.version, out.full_triangles);
+  return out;
+}
+
 struct Extract {
   std::string input, output;
   std::int64_t triangles = -1, priority = -1;
@@ -209,18 +241,23 @@ void add_mco_extract(CLI::App* mco, Runner& run) {
                          std::array{e->input});
       // --priority N reads only what priorities 0..N need (the file is
       // progressive: a prefix, e.g. a partial download, is enough).
-      McLodModel model = read_mco_file(e->input, {.max_priority = e->priority});
-      auto r = extract_mc_mesh(
-          model, {.priority = e->priority, .triangles = e->triangles, .percent = e->percent});
+      const LoadedModel loaded = load_model(e->input, e->priority);
+      const McLodModel& model = loaded.model;
+      // A percentage is of the whole model, whatever part of it the file holds.
+      std::int64_t triangles = e->triangles;
+      if (e->percent >= 0)
+        triangles = std::llround(double(loaded.full_triangles) * e->percent / 100.0);
+      auto r = extract_mc_mesh(model, {.priority = e->priority, .triangles = triangles});
       if (r.clamped)
-        fmt::print(stderr, "warning: request beyond the model's range, clamped to priority {}\n",
+        fmt::print(stderr, "warning: request beyond the {}, clamped to priority {}\n",
+                   loaded.summary.truncated() ? "levels the file holds" : "model's range",
                    r.priority);
       write_mesh(r.mesh, e->output);
       fmt::print(stderr, "{}: priority {} of {}{}, {} triangles, {} vertices", e->output,
                  r.priority, model.priorities(), e->priority >= 0 ? " read" : "",
                  r.mesh.triangle_count(), r.mesh.vertex_count());
       if (e->triangles >= 0 || e->percent >= 0)
-        fmt::print(stderr, " (requested {}, nearest reachable)", r.requested);
+        fmt::print(stderr, " (requested {}, nearest reachable)", triangles);
       fmt::print(stderr, "\n");
       return 0;
     };
@@ -239,10 +276,14 @@ void add_mco_info(CLI::App* mco, Runner& run) {
   info->add_flag("--json", i->json, "Print JSON on stdout");
   info->callback([i, &run] {
     run = [i] {
-      McLodModel t = read_mco_file(i->input);
+      const LoadedModel loaded = load_model(i->input);
+      const McLodModel& t = loaded.model;
+      const McoFileSummary& s = loaded.summary;
       nlohmann::ordered_json j;
       j["file"] = i->input;
-      j["version"] = kMcoVersion;
+      j["version"] = s.version;
+      j["truncated"] = s.truncated();
+      j["file_priorities"] = s.priorities;
       j["depth"] = t.depth;
       j["cell_size"] = t.cell_size;
       j["origin"] = {t.origin.x, t.origin.y, t.origin.z};
@@ -251,30 +292,39 @@ void add_mco_info(CLI::App* mco, Runner& run) {
       j["intervals"] = t.intervals.size() - 1;
       j["stored_triangles"] = t.stored_triangles();
       j["priorities"] = t.priorities();
-      j["full_triangles"] = t.full_triangles();
+      j["full_triangles"] = loaded.full_triangles;
+      j["held_triangles"] = t.full_triangles();
       j["colors"] = !t.colors.empty();
       j["memory_bytes"] = t.memory_bytes();
       nlohmann::ordered_json levels = nlohmann::ordered_json::array();
       for (int pct : {100, 80, 60, 40, 20, 5}) {
-        auto n = priority_for_triangles(t, t.full_triangles() * pct / 100);
-        levels.push_back({{"percent", pct}, {"priority", n}, {"triangles", t.accumulated[n]}});
+        const std::uint64_t want = loaded.full_triangles * pct / 100;
+        auto n = priority_for_triangles(t, want);
+        levels.push_back({{"percent", pct},
+                          {"priority", n},
+                          {"triangles", t.accumulated[n]},
+                          {"held", want <= t.full_triangles()}});
       }
       j["levels"] = levels;
       if (i->json) {
         fmt::print("{}\n", j.dump(2));
         return 0;
       }
-      fmt::print(stderr, "{}: marching-cube octree, version {}\n", i->input, kMcoVersion);
+      fmt::print(stderr, "{}: marching-cube octree, version {}{}\n", i->input, s.version,
+                 s.truncated() ? fmt::format(", cut short: priorities 0..{} of {} held",
+                                             t.priorities(), s.priorities)
+                               : "");
       fmt::print(stderr,
                  "  depth {} (cell {:.6g}), {} cells, {} intervals, {} stored triangles, {} "
                  "vertices{}\n",
                  t.depth, t.cell_size, t.cell_count(), t.intervals.size() - 1, t.stored_triangles(),
                  t.positions.size(), t.colors.empty() ? "" : ", coloured");
       fmt::print(stderr, "  {} priorities, {} triangles at full resolution, {} bytes in memory\n",
-                 t.priorities(), t.full_triangles(), t.memory_bytes());
+                 t.priorities(), loaded.full_triangles, t.memory_bytes());
       for (const auto& l : levels)
-        fmt::print(stderr, "  {:3}%: priority {:8}, {:9} triangles\n", l["percent"].get<int>(),
-                   l["priority"].get<std::uint32_t>(), l["triangles"].get<std::uint64_t>());
+        fmt::print(stderr, "  {:3}%: priority {:8}, {:9} triangles{}\n", l["percent"].get<int>(),
+                   l["priority"].get<std::uint32_t>(), l["triangles"].get<std::uint64_t>(),
+                   l["held"].get<bool>() ? "" : " (the finest level the file holds)");
       return 0;
     };
   });

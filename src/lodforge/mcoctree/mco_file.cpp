@@ -50,6 +50,7 @@ std::uint64_t padded(std::uint64_t n) {
 
 struct Header {
   std::uint32_t version = 0, flags = 0, depth = 0;
+  std::uint32_t full_triangles = 0;  // version 4; 0 in version 3 (not recorded)
   std::uint64_t nv = 0, nc = 0, ni = 0, nt = 0, nl = 0;
   std::uint64_t vertex_size() const { return 16 + (flags & 1 ? 3 : 0); }
 };
@@ -71,15 +72,15 @@ Header read_header(std::string_view data, McLodModel& m, const std::string& name
     at += sizeof(v);
   };
   Header h;
-  std::uint32_t zero;
   std::uint64_t checksum;
   get(h.version);
-  if (h.version != kMcoVersion) throw fail("unsupported .mco version " + std::to_string(h.version));
+  if (h.version != kMcoVersion && h.version != 3)
+    throw fail("unsupported .mco version " + std::to_string(h.version));
   get(h.flags);
   get(h.depth);
   get(m.origin);
   get(m.cell_size);
-  get(zero);
+  get(h.full_triangles);
   get(h.nv);
   get(h.nc);
   get(h.ni);
@@ -99,10 +100,13 @@ Header read_header(std::string_view data, McLodModel& m, const std::string& name
 }
 
 // Walks chunks 0..last; calls fn(k, chunk bytes, counts) for each, after
-// checking its size and checksum. Returns the end offset.
+// checking its size and checksum. Returns the end offset. Data that end
+// before chunk `last` is complete are an error, unless `complete` is given:
+// it then receives the number of complete chunks and the walk stops there.
 template <class Fn>
 std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t last,
-                        const std::string& name, bool verify, Fn&& fn) {
+                        const std::string& name, bool verify, Fn&& fn,
+                        std::uint64_t* complete = nullptr) {
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   std::size_t at = kHeader;
   ChunkCounts total;
@@ -111,7 +115,12 @@ std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t la
       return fail("truncated .mco file: priority " + std::to_string(k) + " of " +
                   std::to_string(h.nl) + " missing (" + std::to_string(data.size()) + " bytes)");
     };
-    if (data.size() - at < kChunkHeader) throw truncated();
+    auto stop = [&] {
+      if (!complete) throw truncated();
+      *complete = k;
+      return at;
+    };
+    if (data.size() - at < kChunkHeader) return stop();
     ChunkCounts c;
     std::memcpy(&c.cells, data.data() + at, 4);
     std::memcpy(&c.intervals, data.data() + at + 4, 4);
@@ -129,7 +138,7 @@ std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t la
     std::uint64_t size = kChunkHeader + padded(std::uint64_t{c.vertices} * h.vertex_size()) +
                          8 * std::uint64_t{c.cells} + 8 * std::uint64_t{c.intervals} +
                          padded(12 * std::uint64_t{c.triangles} + 4 * std::uint64_t{c.centroids});
-    if (data.size() - at < size + 8) throw truncated();
+    if (data.size() - at < size + 8) return stop();
     std::uint64_t checksum;
     std::memcpy(&checksum, data.data() + at + size, 8);
     std::string_view chunk = data.substr(at, size);
@@ -138,6 +147,7 @@ std::size_t walk_chunks(std::string_view data, const Header& h, std::uint64_t la
     fn(k, chunk, c);
     at += size + 8;
   }
+  if (complete) *complete = last + 1;
   return at;
 }
 
@@ -152,7 +162,7 @@ std::string write_mco_data(const McLodModel& m) {
   put(out, static_cast<std::uint32_t>(m.depth));
   put(out, m.origin);
   put(out, m.cell_size);
-  put(out, 0u);
+  put(out, static_cast<std::uint32_t>(m.full_triangles()));
   put(out, static_cast<std::uint64_t>(nv));
   put(out, static_cast<std::uint64_t>(nc));
   put(out, static_cast<std::uint64_t>(nc ? m.intervals.size() - 1 : 0));
@@ -218,10 +228,17 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
   auto fail = [&](const std::string& what) { return DataError(name + ": " + what); };
   McLodModel m;
   Header h = read_header(data, m, name, options.verify_checksums);
-  const std::uint64_t last =
+  std::uint64_t last =
       options.max_priority < 0
           ? h.nl
           : std::min<std::uint64_t>(h.nl, static_cast<std::uint64_t>(options.max_priority));
+  if (options.prefix) {
+    std::uint64_t complete = 0;
+    walk_chunks(
+        data, h, last, name, options.verify_checksums, [](auto&&...) {}, &complete);
+    if (complete == 0) walk_chunks(data, h, 0, name, options.verify_checksums, [](auto&&...) {});
+    last = complete - 1;
+  }
   // Each chunk takes at least its header and checksum: a file too short for
   // `last` is truncated, found (with its message) before anything is sized
   // by a forged count.
@@ -332,6 +349,20 @@ McLodModel read_mco_data(std::string_view data, const std::string& name,
 
 McLodModel read_mco_file(const std::string& path, const McoReadOptions& options) {
   return read_mco_data(read_file(path), path, options);
+}
+
+McoFileSummary summarize_mco_data(std::string_view data, const std::string& name) {
+  McLodModel m;
+  const Header h = read_header(data, m, name);
+  McoFileSummary out;
+  out.version = h.version;
+  out.priorities = h.nl;
+  out.full_triangles = h.full_triangles;
+  std::uint64_t complete = 0;
+  walk_chunks(
+      data, h, h.nl, name, true, [](auto&&...) {}, &complete);
+  out.complete_priorities = complete;
+  return out;
 }
 
 std::uint64_t mco_prefix_size(std::string_view data, std::uint32_t priority,

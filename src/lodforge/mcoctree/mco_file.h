@@ -9,12 +9,12 @@
 ///
 ///   offset  size  field
 ///   0       8     magic "LFMCO\r\n\x1a" (catches text-mode mangling)
-///   8       4     version (3)
+///   8       4     version (4; version 3 is read too)
 ///   12      4     flags: bit 0 = colours present
 ///   16      4     depth
 ///   20      12    origin (3 x f32)
 ///   32      4     cell size (f32)
-///   36      4     0
+///   36      4     triangles at full resolution (version 4; 0 in version 3)
 ///   40      8     vertex count V
 ///   48      8     cell count C
 ///   56      8     interval count I
@@ -35,7 +35,9 @@
 ///                   u64 FNV-1a 64 of the chunk's bytes before it
 ///
 /// Version 2 stored the build-time tree; version 3 stores what extraction
-/// reads, so reading does no triangulation.
+/// reads, so reading does no triangulation; version 4 records the
+/// full-resolution triangle count in the header, so that a prefix of the
+/// file knows what a percentage of the whole model is.
 #include <string>
 #include <string_view>
 
@@ -43,7 +45,7 @@
 
 namespace lodforge {
 
-inline constexpr std::uint32_t kMcoVersion = 3;
+inline constexpr std::uint32_t kMcoVersion = 4;
 
 /// The file's bytes. Never throws except std::bad_alloc.
 std::string write_mco_data(const McLodModel& model);
@@ -58,7 +60,28 @@ struct McoReadOptions {
   /// structural checks behind them (which still reject any inconsistent
   /// data). Never for real files.
   bool verify_checksums = true;
+  /// true: data that end early (a partial download, a cut file) are read up
+  /// to the last priority they hold in full, instead of being an error; data
+  /// without even priority 0 are still an error.
+  bool prefix = false;
 };
+
+/// What the header and the complete chunks of a .mco file say, without
+/// reading the model: for a file that may be cut short.
+struct McoFileSummary {
+  std::uint32_t version = 0;
+  std::uint64_t priorities = 0;      ///< L, the model's priorities
+  std::uint64_t full_triangles = 0;  ///< at priority L; 0: not recorded (version 3)
+  /// Chunks the data hold in full: priorities 0 .. complete_priorities - 1
+  /// can be read (L + 1 for a whole file).
+  std::uint64_t complete_priorities = 0;
+  bool truncated() const { return complete_priorities < priorities + 1; }
+};
+
+/// Reads the header and walks the chunks (sizes and checksums). Throws
+/// DataError as read_mco_data for a bad header or a corrupted chunk, but not
+/// for data that end early.
+McoFileSummary summarize_mco_data(std::string_view data, const std::string& name);
 
 /// Parses a model (or its first priorities); `name` is used in messages.
 /// Throws DataError ("name: ...") for a wrong magic, an unknown version, a

@@ -26,7 +26,8 @@ class GraphComparer {
     reverse_[b.get()] = a.get();
     if (a->type != b->type || a->name != b->name || !fields(*a, *b) || a->declared != b->declared ||
         a->has_declaration != b->has_declaration || a->is_a != b->is_a || a->is_raw != b->is_raw ||
-        a->raw_body != b->raw_body || a->children.size() != b->children.size())
+        a->raw_body != b->raw_body || a->statement != b->statement ||
+        a->children.size() != b->children.size())
       return false;
     for (std::size_t i = 0; i < a->children.size(); ++i)
       if (!nodes(a->children[i], b->children[i])) return false;

@@ -107,6 +107,9 @@ struct Node {
   /// its body (the text between its braces) is kept verbatim and written back.
   bool is_raw = false;
   std::string raw_body;
+  /// A VRML97 / X3D statement kept verbatim (PROTO, ROUTE, PROFILE, ...):
+  /// `type` is its keyword, `raw_body` the text after it (no braces).
+  bool statement = false;
   int first_line = 0;  ///< where the node was read (0 if built in code)
   int last_line = 0;
 

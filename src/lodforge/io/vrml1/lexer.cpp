@@ -306,4 +306,58 @@ std::string unquote(std::string_view quoted) {
   return s;
 }
 
+HeaderLine header_line(const Lexer& lex) {
+  std::string_view all = lex.rest();
+  std::string_view first = all.substr(0, all.find('\n'));
+  if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
+  return {first, Token{TokenKind::kWord, first.substr(0, 40), 1, 1}};
+}
+
+Token read_node_name(Lexer& lex, std::string_view keyword) {
+  Token name = lex.next();
+  if (name.kind != TokenKind::kWord)
+    lex.expected(name, fmt::format("a node name after {}", keyword));
+  return name;
+}
+
+NodeStart read_node_start(Lexer& lex, const std::unordered_map<std::string, scene::NodePtr>& defs,
+                          const Token& first) {
+  NodeStart start;
+  start.type = first;
+  if (first.text == "USE") {
+    const Token name = read_node_name(lex, "USE");
+    start.used = use_of(lex, defs, name, name.text);
+  } else if (first.text == "DEF") {
+    start.def_name = std::string(read_node_name(lex, "DEF").text);
+    start.type = lex.next();
+    const Token& t = start.type;
+    if (t.kind != TokenKind::kWord || t.text == "USE" || t.text == "DEF" || t.text == "NULL")
+      lex.expected(t, "a node type after DEF " + start.def_name);
+  }
+  return start;
+}
+
+const scene::NodePtr& use_of(const Lexer& lex,
+                             const std::unordered_map<std::string, scene::NodePtr>& defs,
+                             const Token& name, std::string_view node_name) {
+  auto it = defs.find(std::string(node_name));
+  if (it == defs.end()) lex.fail(name, fmt::format("USE of undefined node name '{}'", node_name));
+  return it->second;
+}
+
+scene::NodePtr open_node(Lexer& lex, const Token& type, Token& open) {
+  auto node = std::make_shared<scene::Node>();
+  node->type = std::string(type.text);
+  node->first_line = type.line;
+  open = lex.next();
+  if (open.kind != TokenKind::kLBrace)
+    lex.expected(open, fmt::format("'{{' after node type {}", type.text));
+  return node;
+}
+
+void bad_value(Lexer& lex, const Token& field, scene::FieldType type, std::string_view what) {
+  lex.fail_here(fmt::format("expected {} for {} field '{}', got {}", what, scene::type_name(type),
+                            field.text, Lexer::describe(lex.peek())));
+}
+
 }  // namespace lodforge::vrml1::detail

@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
+
+#include "lodforge/scene/node.h"
 
 namespace lodforge::vrml1::detail {
 
@@ -113,6 +116,45 @@ inline bool is_delimiter(char c) {
       return false;
   }
 }
+
+/// The header: the unread text's first line (without a trailing '\r'), and a
+/// token for messages at its start (its first 40 characters).
+struct HeaderLine {
+  std::string_view text;
+  Token at;
+};
+HeaderLine header_line(const Lexer& lex);
+
+/// The name after DEF or USE (`keyword`): the next token, which must be a
+/// word (else ParseError "expected a node name after KEYWORD").
+Token read_node_name(Lexer& lex, std::string_view keyword);
+
+/// The start of a node whose first token `first` (a word) has been read:
+/// `USE NAME` gives the node NAME is bound to in `defs` as `used`; `DEF NAME
+/// TYPE` gives NAME as `def_name` and the TYPE token (a word other than DEF,
+/// USE and NULL, else ParseError) as `type`; anything else is the type.
+struct NodeStart {
+  scene::NodePtr used;
+  std::string def_name;
+  Token type;
+};
+NodeStart read_node_start(Lexer& lex, const std::unordered_map<std::string, scene::NodePtr>& defs,
+                          const Token& first);
+
+/// The node a USE names (`name`, read by read_node_name) is bound to in
+/// `defs`; ParseError "USE of undefined node name 'NAME'" if none.
+const scene::NodePtr& use_of(const Lexer& lex,
+                             const std::unordered_map<std::string, scene::NodePtr>& defs,
+                             const Token& name, std::string_view node_name);
+
+/// A node of type `type` (its token read) whose opening '{' is read next
+/// (else ParseError "expected '{' after node type TYPE"); `open` gets the '{'.
+scene::NodePtr open_node(Lexer& lex, const Token& type, Token& open);
+
+/// ParseError at the lexer's cursor: "expected WHAT for TYPE field 'FIELD',
+/// got <the next token>".
+[[noreturn]] void bad_value(Lexer& lex, const Token& field, scene::FieldType type,
+                            std::string_view what);
 
 /// Resolves the escapes of a quoted string token ("a \"b\"" -> a "b").
 std::string unquote(std::string_view quoted);

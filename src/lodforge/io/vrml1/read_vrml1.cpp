@@ -123,10 +123,7 @@ class Parser {
 
  private:
   void parse_header() {
-    std::string_view all = lex_.rest();
-    std::string_view first = all.substr(0, all.find('\n'));
-    if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
-    Token at{TokenKind::kWord, first.substr(0, 40), 1, 1};
+    const auto [first, at] = detail::header_line(lex_);
     if (first.starts_with("#VRML V1.0 ascii") || first.starts_with("#Inventor V2.") ||
         first.starts_with("#Inventor V1.")) {
       if (first.starts_with("#Inventor") && first.find("binary") != std::string_view::npos)
@@ -145,28 +142,14 @@ class Parser {
   NodePtr parse_node(int depth) { return parse_node_from(lex_.next(), depth); }
 
   // A node whose first token (type, DEF or USE) has been read already.
-  NodePtr parse_node_from(Token t, int depth) {
+  NodePtr parse_node_from(const Token& t, int depth) {
     if (depth >= options_.max_depth)
       lex_.fail(t, fmt::format("nodes nested deeper than {} levels", options_.max_depth));
     if (t.kind != TokenKind::kWord) lex_.expected(t, "a node type, DEF or USE");
-    if (t.text == "USE") {
-      Token name = lex_.next();
-      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after USE");
-      auto it = defs_.find(std::string(name.text));
-      if (it == defs_.end())
-        lex_.fail(name, fmt::format("USE of undefined node name '{}'", name.text));
-      return it->second;
-    }
-    std::string def_name;
-    if (t.text == "DEF") {
-      Token name = lex_.next();
-      if (name.kind != TokenKind::kWord) lex_.expected(name, "a node name after DEF");
-      def_name = std::string(name.text);
-      t = lex_.next();
-      if (t.kind != TokenKind::kWord) lex_.expected(t, "a node type after DEF " + def_name);
-      if (t.text == "USE" || t.text == "DEF") lex_.expected(t, "a node type after DEF " + def_name);
-    }
-    NodePtr node = parse_body(t, depth);
+    detail::NodeStart start = detail::read_node_start(lex_, defs_, t);
+    if (start.used) return start.used;
+    const std::string& def_name = start.def_name;
+    NodePtr node = parse_body(start.type, depth);
     if (!def_name.empty()) {
       node->name = def_name;
       // Bound after the body: a USE inside its own DEF cannot make a cycle.
@@ -202,12 +185,8 @@ class Parser {
   }
 
   NodePtr parse_body(const Token& type, int depth) {
-    auto node = std::make_shared<Node>();
-    node->type = std::string(type.text);
-    node->first_line = type.line;
-    Token open = lex_.next();
-    if (open.kind != TokenKind::kLBrace)
-      lex_.expected(open, fmt::format("'{{' after node type {}", type.text));
+    Token open;
+    NodePtr node = detail::open_node(lex_, type, open);
     // Inventor node types and fields count only in Inventor files.
     const scene::NodeSpec* spec = scene::find_node_spec(node->type, inventor_);
 
@@ -327,8 +306,7 @@ class Parser {
           // "USE name.field": a name holds no '.', so the word splits there.
           const Token name = lex_.next();
           const std::string_view node_name = name.text.substr(0, name.text.find('.'));
-          if (!defs_.count(std::string(node_name)))
-            lex_.fail(name, fmt::format("USE of undefined node name '{}'", node_name));
+          detail::use_of(lex_, defs_, name, node_name);
           dot = name;
           dot.text = name.text.substr(node_name.size());
         } else {
@@ -469,8 +447,7 @@ class Parser {
   }
 
   [[noreturn]] void bad_value(const Token& field, FieldType type, std::string_view what) {
-    lex_.fail_here(fmt::format("expected {} for {} field '{}', got {}", what,
-                               scene::type_name(type), field.text, Lexer::describe(lex_.peek())));
+    detail::bad_value(lex_, field, type, what);
   }
 
   float read_float(const Token& field, FieldType type, bool commas) {

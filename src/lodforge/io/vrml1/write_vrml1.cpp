@@ -96,6 +96,11 @@ class Writer {
       bound_[name] = n.get();
     }
     out_ += n->type;
+    if (n->statement) {
+      out_ += ' ';
+      out_ += n->raw_body;
+      return;
+    }
     out_ += " {";
     if (n->is_raw) {
       out_ += n->raw_body;

@@ -1,0 +1,219 @@
+// The VRML97 / X3D LOD pipeline on scenes written as text and on the corpus.
+#include "lodforge/lod/generate_lod_vrml97.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "lodforge/io/vrml97/read_vrml97.h"
+#include "lodforge/io/vrml97/write_vrml97.h"
+
+namespace lodforge {
+namespace {
+
+using scene::NodePtr;
+
+// A bumpy grid of n x n quads as an IndexedFaceSet with per-vertex texture
+// coordinates and per-face colours, DEF S, used twice (once scaled by 2).
+std::string grid_scene(const std::string& header, int n) {
+  std::string points, tex, index, colors, color_index;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) {
+      const double z = 0.05 * std::sin(x * 0.7) * std::cos(y * 0.5);
+      points += fmt::format("{} {} {}, ", x / double(n), y / double(n), z);
+      tex += fmt::format("{} {}, ", x / double(n), y / double(n));
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x;
+      index += fmt::format("{} {} {} {} -1 ", a, a + 1, a + n + 2, a + n + 1);
+      color_index += fmt::format("{} ", (x + y) % 2);
+    }
+  return header + "\nViewpoint { fieldOfView 0.5 }\n" +
+         "DEF S Shape { appearance DEF A Appearance { material Material {} }\n"
+         "  geometry IndexedFaceSet { solid FALSE colorPerVertex FALSE\n"
+         "    coord Coordinate { point [" +
+         points +
+         "] }\n"
+         "    texCoord DEF T TextureCoordinate { point [" +
+         tex +
+         "] }\n"
+         "    color DEF C Color { color [1 0 0, 0 1 0] } colorIndex [" +
+         color_index +
+         "]\n"
+         "    coordIndex [" +
+         index +
+         "] } }\n"
+         "Transform { scale 2 2 2 children [ USE S ] }\n";
+}
+
+TEST(GenerateLodVrml97, ShapesBecomeLodsWithLevelsSharingOneCoordinate) {
+  auto read = vrml97::read_vrml97(grid_scene("#VRML V2.0 utf8", 30));
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  ASSERT_EQ(r.shapes.size(), 1u);  // the shape USEd twice is one job
+  const ShapeStatistics& s = r.shapes[0];
+  EXPECT_EQ(s.occurrences, 2u);
+  EXPECT_DOUBLE_EQ(s.scale, 2.0);
+  EXPECT_FLOAT_EQ(float(r.camera_angle), 0.5f);  // the Viewpoint's fieldOfView
+  EXPECT_EQ(s.levels.front().triangles, 30u * 30u * 2u);
+  ASSERT_GE(s.levels.size(), 3u);  // level 0, simplified ones, the empty one
+  for (std::size_t i = 1; i + 1 < s.levels.size(); ++i)
+    EXPECT_LT(s.levels[i].triangles, s.levels[i - 1].triangles);
+  EXPECT_EQ(s.ranges.size(), s.levels.size() - 1);
+  for (std::size_t i = 1; i < s.ranges.size(); ++i) EXPECT_GT(s.ranges[i], s.ranges[i - 1]);
+
+  // Both places of the shape hold the same LOD; level 0 is the input shape.
+  const NodePtr& lod = r.scene.roots[1];
+  ASSERT_EQ(lod->type, "LOD");
+  const auto& transform_children = r.scene.roots[2]->value("children")->nodes;
+  EXPECT_EQ(transform_children.at(0), lod);
+  const auto& levels = lod->value("level")->nodes;
+  ASSERT_EQ(levels.size(), s.levels.size());
+  EXPECT_EQ(levels[0]->name, "S");
+  EXPECT_EQ(levels.back()->type, "Group");
+  const NodePtr input_geometry = levels[0]->value("geometry")->nodes[0];
+  NodePtr shared_coord;
+  for (std::size_t i = 1; i + 1 < levels.size(); ++i) {
+    const auto& shape = *levels[i];
+    EXPECT_EQ(shape.value("appearance")->nodes.at(0), levels[0]->value("appearance")->nodes[0]);
+    const auto& ifs = *shape.value("geometry")->nodes.at(0);
+    EXPECT_EQ(ifs.type, "IndexedFaceSet");
+    const NodePtr coord = ifs.value("coord")->nodes.at(0);
+    if (!shared_coord) shared_coord = coord;
+    EXPECT_EQ(coord, shared_coord);  // one Coordinate for all simplified levels
+    // Attributes are the input's own nodes, indexed per corner / per face.
+    EXPECT_EQ(ifs.value("texCoord")->nodes.at(0), input_geometry->value("texCoord")->nodes[0]);
+    EXPECT_EQ(ifs.value("color")->nodes.at(0), input_geometry->value("color")->nodes[0]);
+    const auto& ci = ifs.value("coordIndex")->ints;
+    const std::size_t faces = std::size_t(std::count(ci.begin(), ci.end(), -1));
+    EXPECT_EQ(faces, s.levels[i].triangles);
+    EXPECT_EQ(ifs.value("colorIndex")->ints.size(), faces);  // per face
+    EXPECT_EQ(ifs.value("texCoordIndex")->ints.size(), ci.size());
+    for (std::int32_t c : ifs.value("colorIndex")->ints) EXPECT_TRUE(c == 0 || c == 1);
+  }
+  // Written and read back, the scene is the same (sharing included; the
+  // shared nodes made without a name are named "lf_N" when written).
+  const std::string text = vrml97::write_vrml97(r.scene);
+  const auto back = vrml97::read_vrml97(text);
+  EXPECT_EQ(vrml97::write_vrml97(back.scene), text);
+  EXPECT_EQ(back.scene.roots.at(1)->value("level")->nodes.at(1)->value("appearance")->nodes.at(0),
+            back.scene.roots.at(1)->value("level")->nodes.at(0)->value("appearance")->nodes.at(0));
+}
+
+TEST(GenerateLodVrml97, X3dLodsHoldTheirLevelsInChildren) {
+  auto read = vrml97::read_vrml97(grid_scene("#X3D V3.2 utf8\nPROFILE Immersive", 8));
+  LodResult r = generate_lod_vrml97(std::move(read.scene),
+                                    {.range = {.camera_angle = 1.0f}, .camera_angle_given = true});
+  EXPECT_FLOAT_EQ(float(r.camera_angle), 1.0f);  // --camera-angle wins over the Viewpoint
+  const NodePtr& lod = r.scene.roots[2];
+  ASSERT_EQ(lod->type, "LOD");
+  EXPECT_EQ(lod->value("level"), nullptr);
+  ASSERT_NE(lod->value("children"), nullptr);
+  EXPECT_EQ(lod->value("children")->nodes.at(0)->name, "S");
+}
+
+TEST(GenerateLodVrml97, AnIndexOutOfRangeLeavesTheShapeAsItIsWithAWarning) {
+  auto read = vrml97::read_vrml97(R"(#VRML V2.0 utf8
+Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] }
+                                  coordIndex [0 1 7 -1] } }
+)");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  EXPECT_TRUE(r.shapes.empty());
+  EXPECT_EQ(r.scene.roots[0]->type, "Shape");
+  ASSERT_FALSE(r.log.entries().empty());
+  EXPECT_NE(r.log.entries()[0].text.find("line 2: IndexedFaceSet index 7 out of range"),
+            std::string::npos)
+      << r.log.entries()[0].text;
+}
+
+TEST(GenerateLodVrml97, TriangleAndQuadSetsBecomeIndexedFaceSetLevels) {
+  auto read = vrml97::read_vrml97_file(std::string(LODFORGE_SHARED_DATA) +
+                                       "/x3d/castle-engine__demo-models/x3d/"
+                                       "triangle_quad_sets.x3dv");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  std::set<std::string> types;
+  for (const auto& s : r.shapes) types.insert(s.type);
+  EXPECT_TRUE(types.count("IndexedTriangleSet"));
+  EXPECT_TRUE(types.count("TriangleSet"));
+  EXPECT_TRUE(types.count("IndexedQuadSet"));
+}
+
+TEST(GenerateLodVrml97, TheTeapotGetsAChainOfLevels) {
+  auto read = vrml97::read_vrml97_file(std::string(LODFORGE_SHARED_DATA) +
+                                       "/vrml2/castle-engine__demo-models/vrml_2/teapot.wrl");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  ASSERT_EQ(r.shapes.size(), 1u);
+  EXPECT_EQ(r.shapes[0].levels.front().triangles, 3014u);
+  EXPECT_GE(r.shapes[0].levels.size(), 5u);
+  EXPECT_LT(r.shapes[0].levels[r.shapes[0].levels.size() - 2].triangles, 100u);
+  EXPECT_GT(r.shapes[0].scale, 18.0);  // the Transform's scale 18.29
+}
+
+}  // namespace
+}  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoordinates) {
+  std::string heights;
+  for (int z = 0; z < 20; ++z)
+    for (int x = 0; x < 20; ++x) heights += fmt::format("{} ", 0.3 * std::sin(x * 0.4 + z * 0.3));
+  auto read = vrml97::read_vrml97(
+      "#VRML V2.0 utf8\nShape { geometry ElevationGrid { xDimension 20 "
+      "zDimension 20 xSpacing 0.5 zSpacing 0.5 height [" +
+      heights + "] } }\n");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  ASSERT_EQ(r.shapes.size(), 1u);
+  EXPECT_EQ(r.shapes[0].type, "ElevationGrid");
+  EXPECT_EQ(r.shapes[0].levels[0].triangles, 19u * 19u * 2u);
+  const auto& levels = r.scene.roots.at(0)->value("level")->nodes;
+  ASSERT_GE(levels.size(), 3u);
+  EXPECT_EQ(levels[0]->value("geometry")->nodes.at(0)->type, "ElevationGrid");
+  const auto& ifs = *levels[1]->value("geometry")->nodes.at(0);
+  EXPECT_EQ(ifs.type, "IndexedFaceSet");
+  // The grid's default texture coordinates, s along x and t along z.
+  const auto& tex = ifs.value("texCoord")->nodes.at(0)->value("point")->floats;
+  ASSERT_EQ(tex.size(), 2u * 400u);
+  EXPECT_FLOAT_EQ(tex[2 * 19], 1.f);
+  EXPECT_FLOAT_EQ(tex[2 * 19 + 1], 0.f);
+  // Faces keep the grid's orientation: normals towards +y.
+  const auto& p = ifs.value("coord")->nodes.at(0)->value("point")->floats;
+  const auto& ci = ifs.value("coordIndex")->ints;
+  int up = 0, down = 0;
+  for (std::size_t f = 0; f + 3 < ci.size(); f += 4) {
+    auto at = [&](int k, int c) {
+      return p[3 * std::size_t(ci[f + std::size_t(k)]) + std::size_t(c)];
+    };
+    const float ux = at(1, 0) - at(0, 0), uz = at(1, 2) - at(0, 2);
+    const float vx = at(2, 0) - at(0, 0), vz = at(2, 2) - at(0, 2);
+    (uz * vx - ux * vz > 0 ? up : down)++;
+  }
+  EXPECT_GT(up, 0);
+  EXPECT_EQ(down, 0);
+}
+
+}  // namespace
+}  // namespace lodforge
+
+namespace lodforge {
+namespace {
+
+TEST(GenerateLodVrml97, ASkinnedShapeIsLeftAtFullDetailWithAMessage) {
+  auto read = vrml97::read_vrml97(R"(#X3D V4.0 utf8
+Skin { shapes Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] }
+                                                coordIndex [0 1 2 -1] } } }
+)");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  EXPECT_TRUE(r.shapes.empty());
+  ASSERT_EQ(r.log.entries().size(), 1u);
+  EXPECT_NE(r.log.entries()[0].text.find("line 2: a skinned Shape"), std::string::npos);
+  EXPECT_EQ(r.scene.roots[0]->value("shapes")->nodes.at(0)->type, "Shape");
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -10,8 +10,9 @@ packages=(
   libtbb-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcoin-dev libmeshoptimizer-dev
-  libosmesa6-dev libstb-dev
+  libosmesa6-dev libstb-dev libtinygltf-dev
   view3dscene xvfb xauth
+  nodejs
   parallel
 )
 
@@ -21,6 +22,9 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# The glTF tests run the Khronos validator with node; npm installs it
+# (scripts/install-gltf-validator.sh). Some node packages bring their own npm.
+command -v npm >/dev/null || missing+=(npm)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${missing[*]}" >&2

@@ -11,6 +11,7 @@
 #include "lodforge/apps/batch.h"
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/lod_gltf.h"
 #include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
@@ -64,7 +65,7 @@ struct Settings {
   std::string output, out_dir, stats, manifest, shard_text, report;
   Shard shard;
   std::string method = "qem", export_flavour = "spec";
-  std::string format;  ///< --format: VRML97 / X3D output encoding
+  std::string format;  ///< --format: VRML97 / X3D output encoding, or glTF container
   double error_range_pct = 2, min_diff_pct = 20, level_spacing = kDefaultLevelSpacing,
          level_ratio = kDefaultLevelRatio;
   double camera_angle = -1, quad_split_angle = 0.174533;
@@ -197,6 +198,15 @@ std::size_t file_size_or_zero(const std::string& path) {
   return ec ? 0 : static_cast<std::size_t>(size);
 }
 
+// The folder of `target`, created if missing.
+void make_output_folder(const std::string& target) {
+  namespace fs = std::filesystem;
+  const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
+  std::error_code ec;
+  if (!to.empty() && (fs::create_directories(to, ec), ec))
+    throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
+}
+
 // Reads one scene, makes its LODs and writes them; a DataError is the
 // outcome's error. `progress` receives the library's progress, drawn on
 // `bar`, which is cleared before anything is printed; `stats` gets the
@@ -212,12 +222,18 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
   try {
     LodOptions drawn = options;
     drawn.progress = progress;
-    const bool vrml97 = is_vrml97_input(input);
-    if (!vrml97 && !s.format.empty())
-      throw DataError(
-          fmt::format("--format {}: only VRML97 / X3D inputs can be written so", s.format));
-    LodResult result = vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn) : LodResult{};
-    if (!vrml97) {
+    const bool gltf = is_gltf_input(input);
+    const bool vrml97 = !gltf && is_vrml97_input(input);
+    if (!vrml97 && !gltf && !s.format.empty())
+      throw DataError(fmt::format(
+          "--format {}: only VRML97 / X3D inputs (vrml97, x3dv, x3d) and glTF inputs (gltf, glb) "
+          "can be written so",
+          s.format));
+    if (gltf) make_output_folder(out.output);
+    LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
+                       : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
+                                : LodResult{};
+    if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
       read.quiet = true;  // the reader's warnings are printed here, off the bar
       vrml1::ReadResult r = read_scene(input, read);
@@ -238,10 +254,8 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     }
     const std::string& target = out.output;
     const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
-    std::error_code ec;
-    if (!to.empty() && (fs::create_directories(to, ec), ec))
-      throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
-    if (!vrml97 && input != "-" && target != "-") {
+    make_output_folder(target);
+    if (!vrml97 && !gltf && input != "-" && target != "-") {
       const auto moved =
           scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
       if (moved.rewritten && !s.read.quiet)
@@ -249,7 +263,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                    moved.rewritten, moved.rewritten == 1 ? "" : "s",
                    to.empty() ? "." : to.string());
     }
-    if (!vrml97) vrml1::write_vrml1_file(result.scene, target, s.write);
+    if (!vrml97 && !gltf) vrml1::write_vrml1_file(result.scene, target, s.write);
     if (!s.read.silent) print_summary(input, result, !s.read.quiet);
     stats = stats_json(input, result);
     out.written = true;
@@ -377,8 +391,9 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "to this file; `lodforge report` merges the reports of shards");
   cmd->add_option("--format", s->format,
                   "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
-                  "X3D classic, else the input's)")
-      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d"}));
+                  "X3D classic, else the input's), or of a glTF scene: gltf or glb (default: "
+                  "from the output name, else the input's)")
+      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()
       ->check(CLI::IsMember({"cluster", "decimate", "qem"}));

@@ -1,11 +1,15 @@
 #include "lodforge/apps/load_geometry.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cctype>
 #include <unordered_set>
 
 #include "lodforge/apps/common_options.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/scene_mesh.h"
 #include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/scene/flatten_scene.h"
@@ -34,6 +38,13 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
     check_coordinate_range(m, name);
     return scene::FlatScene{.mesh = std::move(m)};
   };
+  if (gltf::is_gltf_path(path)) {
+    // A glTF scene: its triangles in world space (no appearance).
+    gltf::GltfReadResult g = gltf::read_gltf_file(path);
+    if (!read.quiet)
+      for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", name, w);
+    return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level));
+  }
   vrml1::ReadResult r;
   if (is_scene_path(path)) {
     r = read_scene(path, read);

@@ -1,0 +1,49 @@
+#include "lodforge/apps/lod_gltf.h"
+
+#include <fmt/core.h>
+
+#include "lodforge/core/error.h"
+#include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/write_gltf.h"
+#include "lodforge/lod/gltf_lod.h"
+
+namespace lodforge::apps {
+namespace {
+
+bool ends_with_lower(std::string path, std::string_view suffix) {
+  for (auto& c : path) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (path.ends_with(".gz")) path.resize(path.size() - 3);
+  return path.ends_with(suffix);
+}
+
+}  // namespace
+
+bool is_gltf_input(const std::string& input) {
+  return gltf::is_gltf_path(input);
+}
+
+LodResult lod_gltf_file(const std::string& input, const std::string& output,
+                        const std::string& format, const LodOptions& options) {
+  bool binary = ends_with_lower(input, ".glb");
+  if (format == "glb" || format == "gltf") {
+    binary = format == "glb";
+  } else if (!format.empty()) {
+    throw DataError(
+        fmt::format("a glTF scene is written as glTF (--format gltf or glb), not {}", format));
+  } else if (ends_with_lower(output, ".glb") || ends_with_lower(output, ".gltf")) {
+    binary = ends_with_lower(output, ".glb");
+  } else if (output != "-") {
+    throw DataError(
+        fmt::format("{}: a glTF scene is written as .gltf or .glb (or give --format)", output));
+  }
+  gltf::GltfReadResult read = gltf::read_gltf_file(input);
+  Log log;
+  for (const auto& w : read.warnings) log.warn(LogCategory::kParse, input + ": " + w);
+  LodResult result = gltf_lod(read.scene, options);
+  log.merge(result.log);
+  result.log = std::move(log);
+  gltf::write_gltf_file(read.scene, output, {.binary = binary});
+  return result;
+}
+
+}  // namespace lodforge::apps

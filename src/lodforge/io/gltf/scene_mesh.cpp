@@ -1,0 +1,54 @@
+#include "lodforge/io/gltf/scene_mesh.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include "lodforge/core/error.h"
+#include "lodforge/io/gltf/node_matrices.h"
+#include "lodforge/io/gltf/primitive_mesh.h"
+
+namespace lodforge::gltf {
+
+namespace {
+
+// The mesh node `n` draws at `lod_level` (MSFT_lod's ids name the levels).
+int mesh_at_level(const tinygltf::Model& model, std::size_t n, int lod_level) {
+  const auto& node = model.nodes[n];
+  const auto lod = node.extensions.find("MSFT_lod");
+  if (lod_level <= 0 || lod == node.extensions.end()) return node.mesh;
+  const tinygltf::Value& ids = lod->second.Get("ids");
+  if (!ids.IsArray() || ids.ArrayLen() == 0) return node.mesh;
+  const int k = std::min(lod_level, int(ids.ArrayLen())) - 1;
+  const int id = ids.Get(k).IsNumber() ? ids.Get(k).GetNumberAsInt() : -1;
+  if (id < 0 || std::size_t(id) >= model.nodes.size() || model.nodes[std::size_t(id)].mesh < 0)
+    throw DataError(fmt::format("node {}: MSFT_lod id {} is not a node with a mesh", n, id));
+  return model.nodes[std::size_t(id)].mesh;
+}
+
+}  // namespace
+
+TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level) {
+  TriangleMesh out;
+  const auto placements = node_placements(model);
+  std::vector<std::vector<TriangleMesh>> meshes(model.meshes.size());
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const int mi = mesh_at_level(model, n, lod_level);
+    if (mi < 0 || !placements[n].in_scene) continue;
+    auto& parts = meshes[std::size_t(mi)];
+    if (parts.empty())
+      for (const auto& p : model.meshes[std::size_t(mi)].primitives)
+        parts.push_back(primitive_mesh(model, p, mi));
+    for (const auto& part : parts) {
+      const auto base = std::uint32_t(out.positions.size());
+      for (const auto& v : part.positions)
+        out.positions.push_back(placements[n].world.transform_point(v));
+      for (const auto& t : part.triangles)
+        out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+      for (const auto& l : part.lines) out.lines.push_back({l[0] + base, l[1] + base});
+    }
+  }
+  return out;
+}
+
+}  // namespace lodforge::gltf

@@ -1,0 +1,616 @@
+// The glTF LOD pipeline (gltf_lod.h). Levels come from choose_levels, as
+// for every scene format; what is glTF's own is how they are stored (shared
+// vertex sets, index accessors, level meshes and nodes) and announced
+// (MSFT_lod and MSFT_screencoverage, the extensions of Microsoft's glTF
+// vendor extension specifications that Babylon.js implements).
+#include "lodforge/lod/gltf_lod.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <unordered_map>
+
+#include "lodforge/core/error.h"
+#include "lodforge/io/gltf/accessor_data.h"
+#include "lodforge/io/gltf/node_matrices.h"
+#include "lodforge/io/gltf/primitive_mesh.h"
+#include "lodforge/lod/choose_levels.h"
+
+namespace lodforge {
+namespace {
+
+using tinygltf::Model;
+using tinygltf::Value;
+
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+bool is_triangles(int mode) {
+  return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+         mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+std::size_t round4(std::size_t n) {
+  return (n + 3) / 4 * 4;
+}
+
+// New buffer views, all in one buffer that gltf_lod appends to the model.
+class BufferAppender {
+ public:
+  explicit BufferAppender(Model& m) : m_(m), buffer_(int(m.buffers.size())) {
+    m_.buffers.emplace_back();
+  }
+  int add_view(const std::vector<unsigned char>& bytes, int target, std::size_t stride) {
+    auto& data = m_.buffers[std::size_t(buffer_)].data;
+    data.resize(round4(data.size()), 0);
+    tinygltf::BufferView v;
+    v.buffer = buffer_;
+    v.byteOffset = data.size();
+    v.byteLength = bytes.size();
+    v.byteStride = stride;
+    v.target = target;
+    data.insert(data.end(), bytes.begin(), bytes.end());
+    m_.bufferViews.push_back(std::move(v));
+    return int(m_.bufferViews.size() - 1);
+  }
+  // A buffer nothing was added to is removed (a glTF buffer is never empty).
+  void finish() {
+    if (m_.buffers[std::size_t(buffer_)].data.empty()) m_.buffers.pop_back();
+  }
+
+ private:
+  Model& m_;
+  int buffer_;
+};
+
+// Bounding sphere about the box centre, as the VRML pipeline takes it.
+double bounding_radius(const std::vector<Vec3>& points) {
+  Box3 b;
+  for (const auto& p : points) b.add(p);
+  if (b.empty()) return 0;
+  const Vec3 c = b.center();
+  double r = 0;
+  for (const auto& p : points) r = std::max(r, double(length(p - c)));
+  return r;
+}
+
+// One triangle primitive's levels and where they are stored.
+struct PrimitiveLevels {
+  int primitive = -1;
+  TriangleMesh input;
+  double radius = 0;
+  std::size_t triangles = 0;              ///< level 0
+  std::vector<ChosenLevel> levels;        ///< levels 1..n
+  std::vector<double> distances;          ///< switch distance of each, unit scale
+  double vanish = 0;                      ///< where it is dropped, unit scale
+  std::vector<int> index_accessors;       ///< per level 1..n (-1: not written)
+  std::map<std::string, int> attributes;  ///< the shared vertex set of levels 1..n
+};
+
+// One level of a mesh: per primitive of the mesh, -1 (left out), 0 (the
+// input primitive) or the primitive's level k.
+struct MeshLevel {
+  double distance = 0;  ///< unit scale
+  std::vector<int> choice;
+  std::size_t triangles = 0, vertices = 0;
+  double error = 0;
+};
+
+struct MeshJob {
+  int mesh = -1;
+  std::vector<int> nodes;
+  double radius = 0;
+  double vanish = 0;                        ///< unit scale
+  std::vector<PrimitiveLevels> primitives;  ///< the simplified ones
+  std::vector<MeshLevel> levels;            ///< levels 1..m
+  std::vector<int> level_meshes;
+  ShapeStatistics stats;
+};
+
+std::string mesh_label(const Model& m, int mesh) {
+  const std::string& name = m.meshes[std::size_t(mesh)].name;
+  return name.empty() ? fmt::format("mesh {}", mesh) : fmt::format("mesh {} '{}'", mesh, name);
+}
+
+double camera_angle_of(const Model& m, const LodOptions& o) {
+  if (o.camera_angle_given) return o.range.camera_angle;
+  for (const auto& c : m.cameras)
+    if (c.type == "perspective" && c.perspective.yfov > 0 && c.perspective.yfov < kPi)
+      return c.perspective.yfov;
+  return o.range.camera_angle;
+}
+
+// Why a mesh stays at full detail ("" if it need not): the weights of
+// skins and morph targets, and vertex data held by a compression extension
+// (KHR_draco_mesh_compression, EXT_meshopt_compression), are not simplified.
+std::string full_detail_reason(const Model& m, const MeshJob& job) {
+  for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives) {
+    if (!p.targets.empty()) return "it has morph targets (simplifying it needs the weights)";
+    if (p.extensions.count("KHR_draco_mesh_compression"))
+      return "a primitive has the extension KHR_draco_mesh_compression";
+    auto attributes = p.attributes;
+    if (p.indices >= 0) attributes["indices"] = p.indices;
+    for (const auto& [name, index] : attributes) {
+      const auto& a = m.accessors[std::size_t(index)];
+      if (a.bufferView < 0 && !a.sparse.isSparse)
+        return fmt::format("its {} accessor has no data (compressed?)", name);
+      if (a.bufferView >= 0 && !m.bufferViews[std::size_t(a.bufferView)].extensions.empty())
+        return fmt::format("its {} data is in a buffer view with the extension {}", name,
+                           m.bufferViews[std::size_t(a.bufferView)].extensions.begin()->first);
+    }
+  }
+  for (int n : job.nodes)
+    if (m.nodes[std::size_t(n)].skin >= 0)
+      return fmt::format("node {} skins it (simplifying it needs the weights)", n);
+  return "";
+}
+
+// The input vertex and new position (if moved) of each level vertex, over
+// all levels of a primitive: vertices the simplifier moved are appended to
+// the input's, once per distinct (source, position).
+class VertexSet {
+ public:
+  VertexSet(const TriangleMesh& input, bool positions_float)
+      : input_(input), float_(positions_float) {}
+  std::uint32_t add(const SimplifyResult& level, std::uint32_t v) {
+    const std::uint32_t src = v < level.vertex_map.size() ? level.vertex_map[v] : kNone;
+    if (src >= input_.positions.size())
+      throw DataError("a simplified vertex without a source vertex");
+    const Vec3 p = level.mesh.positions[v];
+    const Vec3 q = input_.positions[src];
+    if (!float_ || std::memcmp(&p, &q, sizeof p) == 0) return src;
+    Key key{src, 0, 0, 0};
+    std::memcpy(&key[1], &p, sizeof p);
+    auto [it, added] =
+        index_.try_emplace(key, std::uint32_t(input_.positions.size() + sources_.size()));
+    if (added) {
+      sources_.push_back(src);
+      moved_.push_back(p);
+    }
+    return it->second;
+  }
+  std::size_t size() const { return input_.positions.size() + sources_.size(); }
+  const std::vector<std::uint32_t>& sources() const { return sources_; }
+  const std::vector<Vec3>& moved() const { return moved_; }
+
+ private:
+  const TriangleMesh& input_;
+  bool float_;
+  using Key = std::array<std::uint32_t, 4>;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      std::uint64_t h = 0;
+      for (std::uint32_t v : k) h = (h ^ v) * 0x100000001B3ull;
+      return std::size_t(h ^ (h >> 29));
+    }
+  };
+  std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+  std::vector<std::uint32_t> sources_;
+  std::vector<Vec3> moved_;
+};
+
+// Accessor `index` extended by the vertices `set` appended: the input's
+// elements, then each appended vertex's source element (its position, for
+// POSITION, where it moved). Raw bytes where the accessor has a buffer view,
+// else decoded as floats. POSITION gets its min and max.
+int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet& set,
+                      bool position) {
+  const tinygltf::Accessor a = m.accessors[std::size_t(index)];
+  const std::size_t n = a.count, total = set.size();
+  const auto components = std::size_t(tinygltf::GetNumComponentsInType(std::uint32_t(a.type)));
+  tinygltf::Accessor e;
+  e.type = a.type;
+  e.count = total;
+  std::vector<unsigned char> bytes;
+  std::size_t stride = 0;
+  const bool raw = a.bufferView >= 0 && !a.sparse.isSparse;
+  if (raw) {
+    const auto& view = m.bufferViews[std::size_t(a.bufferView)];
+    const std::size_t in_stride = std::size_t(a.ByteStride(view));
+    const std::size_t element =
+        components * std::size_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType)));
+    const unsigned char* base =
+        m.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+    stride = round4(element);
+    bytes.assign(stride * total, 0);
+    for (std::size_t i = 0; i < total; ++i) {
+      const std::size_t src = i < n ? i : set.sources()[i - n];
+      std::memcpy(bytes.data() + i * stride, base + src * in_stride, element);
+      if (position && i >= n && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+        std::memcpy(bytes.data() + i * stride, &set.moved()[i - n], sizeof(Vec3));
+    }
+    e.componentType = a.componentType;
+    e.normalized = a.normalized;
+  } else {
+    const gltf::AccessorValues v = gltf::read_accessor(m, index);
+    stride = components * 4;
+    bytes.assign(stride * total, 0);
+    for (std::size_t i = 0; i < total; ++i) {
+      const std::size_t src = i < n ? i : set.sources()[i - n];
+      for (std::size_t c = 0; c < components; ++c) {
+        float f = float(v.values[src * components + c]);
+        if (position && i >= n) f = (&set.moved()[i - n].x)[c];
+        std::memcpy(bytes.data() + i * stride + c * 4, &f, 4);
+      }
+    }
+    e.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  }
+  if (position) {
+    const gltf::AccessorValues v = gltf::read_accessor(m, index);
+    e.minValues.assign(components, INFINITY);
+    e.maxValues.assign(components, -INFINITY);
+    for (std::size_t i = 0; i < total; ++i)
+      for (std::size_t c = 0; c < components; ++c) {
+        const double x = i < n ? v.values[i * components + c] : (&set.moved()[i - n].x)[c];
+        e.minValues[c] = std::min(e.minValues[c], x);
+        e.maxValues[c] = std::max(e.maxValues[c], x);
+      }
+  }
+  e.bufferView = out.add_view(bytes, kArrayBuffer, stride);
+  m.accessors.push_back(std::move(e));
+  return int(m.accessors.size() - 1);
+}
+
+int index_accessor(BufferAppender& out, Model& m, const std::vector<std::uint32_t>& indices,
+                   std::size_t vertices) {
+  tinygltf::Accessor a;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = indices.size();
+  std::vector<unsigned char> bytes;
+  // The largest value of the type is the primitive restart value, which glTF forbids.
+  if (vertices < 65535) {
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    bytes.resize(indices.size() * 2);
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      const auto v = std::uint16_t(indices[i]);
+      std::memcpy(bytes.data() + 2 * i, &v, 2);
+    }
+  } else {
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    bytes.resize(indices.size() * 4);
+    std::memcpy(bytes.data(), indices.data(), bytes.size());
+  }
+  a.bufferView = out.add_view(bytes, kElementArrayBuffer, 0);
+  m.accessors.push_back(std::move(a));
+  return int(m.accessors.size() - 1);
+}
+
+// The shared vertex set and the index accessors of the levels of `pl` that
+// `used` marks (1-based level numbers).
+void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
+                  const std::vector<char>& used) {
+  const auto& attributes = pl.attributes;
+  const auto position = attributes.find("POSITION");
+  const bool positions_float =
+      m.accessors[std::size_t(position->second)].componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  VertexSet set(pl.input, positions_float);
+  std::vector<std::vector<std::uint32_t>> indices(pl.levels.size());
+  for (std::size_t k = 0; k < pl.levels.size(); ++k) {
+    if (!used[k + 1]) continue;
+    const SimplifyResult& level = pl.levels[k].measured.level;
+    for (const auto& t : level.mesh.triangles)
+      for (std::uint32_t v : t) indices[k].push_back(set.add(level, v));
+  }
+  pl.index_accessors.assign(pl.levels.size(), -1);
+  for (std::size_t k = 0; k < pl.levels.size(); ++k)
+    if (used[k + 1]) pl.index_accessors[k] = index_accessor(out, m, indices[k], set.size());
+  if (set.sources().empty()) return;  // no vertex moved: the levels use the input's vertices
+  std::map<std::string, int> extended;
+  for (const auto& [name, accessor] : attributes)
+    extended[name] = extended_accessor(out, m, accessor, set, name == "POSITION");
+  pl.attributes = std::move(extended);
+}
+
+ChooseLevelsOptions choose_options(const LodOptions& o, const RangeOptions& range) {
+  ChooseLevelsOptions c{.method = o.method,
+                        .min_diff = o.min_diff,
+                        .spacing = {.spacing = o.level_spacing, .max_ratio = o.level_ratio},
+                        .range = range,
+                        .max_simplified = o.max_levels >= 2 ? o.max_levels - 2 : 0,
+                        .measure_samples = o.measure_samples,
+                        .threads = o.threads};
+  const auto manual = o.manual.find("polygon");
+  if (manual != o.manual.end()) c.quality = manual->second.quality;
+  return c;
+}
+
+// The meshes the shown scene draws, each with the nodes that draw it.
+std::vector<MeshJob> collect_jobs(const Model& m, const std::vector<gltf::NodePlacement>& placed) {
+  std::vector<MeshJob> jobs(m.meshes.size());
+  for (std::size_t n = 0; n < m.nodes.size(); ++n)
+    if (placed[n].in_scene && m.nodes[n].mesh >= 0)
+      jobs[std::size_t(m.nodes[n].mesh)].nodes.push_back(int(n));
+  std::vector<MeshJob> used;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (!jobs[i].nodes.empty()) {
+      jobs[i].mesh = int(i);
+      used.push_back(std::move(jobs[i]));
+    }
+  return used;
+}
+
+// Level 0 of the job in its statistics: the triangles of its triangle primitives.
+void level0_statistics(const Model& m, MeshJob& job) {
+  LevelStatistics l0;
+  for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives) {
+    if (!is_triangles(p.mode)) continue;
+    const TriangleMesh t = gltf::primitive_mesh(m, p, job.mesh);
+    l0.triangles += t.triangle_count();
+    l0.vertices += t.vertex_count();
+  }
+  job.stats.levels.assign(1, l0);
+}
+
+// The levels of each triangle primitive, and the mesh's bounding radius.
+void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions& c) {
+  std::vector<Vec3> all;
+  const auto& primitives = m.meshes[std::size_t(job.mesh)].primitives;
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    const auto& p = primitives[i];
+    TriangleMesh input = gltf::primitive_mesh(m, p, job.mesh);
+    all.insert(all.end(), input.positions.begin(), input.positions.end());
+    if (!is_triangles(p.mode) || !p.attributes.count("POSITION")) continue;
+    PrimitiveLevels pl;
+    pl.primitive = int(i);
+    pl.radius = bounding_radius(input.positions);
+    pl.triangles = input.triangle_count();
+    pl.attributes = p.attributes;
+    if (pl.triangles > 0) {
+      ChosenLevels chosen = choose_levels(input, pl.radius, c);
+      pl.levels = std::move(chosen.levels);
+      job.stats.method = chosen.method;
+      job.stats.stop_reason = chosen.stop_reason;
+    }
+    pl.input = std::move(input);
+    job.primitives.push_back(std::move(pl));
+  }
+  job.radius = bounding_radius(all);
+}
+
+// The levels of the mesh: its primitives' switching points (and the points
+// where small primitives vanish), gathered within the level spacing, each
+// group switching at its latest point.
+void plan_levels(MeshJob& job, const Model& m, const LodOptions& o, const RangeOptions& range) {
+  const double r = job.radius;
+  if (!(r > 0) || !std::isfinite(r)) return;
+  auto unit = [&](double error) { return switch_distance(error, 1.0, r, range); };
+  job.vanish = unit(vanishing_error(r));
+  std::vector<double> events;
+  for (auto& pl : job.primitives) {
+    for (const auto& l : pl.levels) pl.distances.push_back(unit(l.switch_error));
+    pl.vanish = unit(vanishing_error(pl.radius));
+    for (double d : pl.distances)
+      if (d < job.vanish) events.push_back(d);
+    if (pl.vanish < job.vanish) events.push_back(pl.vanish);
+  }
+  std::sort(events.begin(), events.end());
+  const std::size_t count = m.meshes[std::size_t(job.mesh)].primitives.size();
+  const double spacing = std::max(1.0, o.level_spacing);
+  std::vector<int> previous(count, 0);
+  for (std::size_t i = 0; i < events.size();) {
+    std::size_t j = i;
+    while (j < events.size() && events[j] <= events[i] * spacing) ++j;
+    MeshLevel level{.distance = events[j - 1], .choice = std::vector<int>(count, 0)};
+    i = j;
+    for (const auto& pl : job.primitives) {
+      int& c = level.choice[std::size_t(pl.primitive)];
+      if (pl.vanish <= level.distance) {
+        c = -1;
+        continue;
+      }
+      c = int(std::upper_bound(pl.distances.begin(), pl.distances.end(), level.distance) -
+              pl.distances.begin());
+      const auto& l = c > 0 ? pl.levels[std::size_t(c - 1)].measured : MeasuredLevel{};
+      level.triangles += c > 0 ? l.level.mesh.triangle_count() : pl.triangles;
+      level.vertices += c > 0 ? l.level.mesh.vertex_count() : pl.input.vertex_count();
+      level.error = std::max(level.error, c > 0 ? l.error : 0.0);
+    }
+    if (level.choice == previous) continue;
+    if (std::all_of(level.choice.begin(), level.choice.end(), [](int c) { return c < 0; })) {
+      job.vanish = level.distance;  // nothing left to draw
+      break;
+    }
+    previous = level.choice;
+    job.levels.push_back(std::move(level));
+  }
+  if (o.max_levels >= 2 && job.levels.size() > o.max_levels - 2)
+    job.levels.resize(o.max_levels - 2);
+}
+
+// The level meshes, after the vertex sets and index accessors they use.
+void write_level_meshes(BufferAppender& out, Model& m, MeshJob& job) {
+  const tinygltf::Mesh input = m.meshes[std::size_t(job.mesh)];
+  std::vector<int> which(input.primitives.size(), -1);
+  for (std::size_t k = 0; k < job.primitives.size(); ++k) {
+    PrimitiveLevels& pl = job.primitives[k];
+    which[std::size_t(pl.primitive)] = int(k);
+    std::vector<char> used(pl.levels.size() + 1, 0);
+    for (const auto& level : job.levels) {
+      const int c = level.choice[std::size_t(pl.primitive)];
+      if (c > 0) used[std::size_t(c)] = 1;
+    }
+    store_levels(out, m, pl, used);
+  }
+  for (std::size_t k = 0; k < job.levels.size(); ++k) {
+    tinygltf::Mesh level = input;
+    level.primitives.clear();
+    if (!input.name.empty()) level.name = fmt::format("{}_lod{}", input.name, k + 1);
+    for (std::size_t i = 0; i < input.primitives.size(); ++i) {
+      const int c = job.levels[k].choice[i];
+      if (c < 0) continue;
+      tinygltf::Primitive p = input.primitives[i];
+      if (c > 0) {
+        const PrimitiveLevels& pl = job.primitives[std::size_t(which[i])];
+        p.attributes = pl.attributes;
+        p.indices = pl.index_accessors[std::size_t(c - 1)];
+        p.mode = TINYGLTF_MODE_TRIANGLES;
+      }
+      level.primitives.push_back(std::move(p));
+    }
+    m.meshes.push_back(std::move(level));
+    job.level_meshes.push_back(int(m.meshes.size() - 1));
+  }
+}
+
+double node_scale(const gltf::NodePlacement& p) {
+  const double s = p.world.max_scale();
+  return s > 0 && std::isfinite(s) ? s : 1.0;
+}
+
+// MSFT_lod with new level nodes on every node drawing the mesh, and the
+// coverages and level table in its extras.
+void attach_lod(Model& m, const MeshJob& job, const std::vector<gltf::NodePlacement>& placed,
+                double angle, Log& log) {
+  const double t = std::tan(angle / 2);
+  Value::Array coverage;
+  for (const auto& level : job.levels) coverage.emplace_back(job.radius / (level.distance * t));
+  coverage.emplace_back(job.radius / (job.vanish * t));
+  for (int n : job.nodes) {
+    const double s = node_scale(placed[std::size_t(n)]);
+    Value::Array ids;
+    for (std::size_t k = 0; k < job.levels.size(); ++k) {
+      const tinygltf::Node& node = m.nodes[std::size_t(n)];
+      tinygltf::Node level;
+      if (!node.name.empty()) level.name = fmt::format("{}_lod{}", node.name, k + 1);
+      level.mesh = job.level_meshes[k];
+      level.matrix = node.matrix;
+      level.translation = node.translation;
+      level.rotation = node.rotation;
+      level.scale = node.scale;
+      m.nodes.push_back(std::move(level));
+      ids.emplace_back(int(m.nodes.size() - 1));
+    }
+    tinygltf::Node& node = m.nodes[std::size_t(n)];
+    node.extensions["MSFT_lod"] = Value(Value::Object{{"ids", Value(std::move(ids))}});
+    if (!node.extras.IsObject() && node.extras.Type() != tinygltf::NULL_TYPE) {
+      log.warn(LogCategory::kGeneral,
+               fmt::format("node {}: its extras are not an object, so MSFT_screencoverage is not "
+                           "written (viewers switch by their own rule)",
+                           n));
+      continue;
+    }
+    Value::Object extras;
+    if (node.extras.IsObject()) extras = node.extras.Get<Value::Object>();
+    Value::Array levels;
+    levels.emplace_back(Value::Object{{"switch_distance", Value(0.0)},
+                                      {"error", Value(0.0)},
+                                      {"triangles", Value(int(job.stats.levels[0].triangles))}});
+    for (const auto& l : job.levels)
+      levels.emplace_back(Value::Object{{"switch_distance", Value(l.distance * s)},
+                                        {"error", Value(l.error)},
+                                        {"triangles", Value(int(l.triangles))}});
+    extras["MSFT_screencoverage"] = Value(coverage);
+    extras["lodforge_lod"] = Value(Value::Object{
+        {"levels", Value(std::move(levels))},
+        {"vanishing_distance", Value(job.vanish * s)},
+        {"bounding_radius", Value(job.radius * s)},
+        {"camera_angle", Value(angle)},
+        {"coverage", Value(std::string("MSFT_screencoverage[i] = bounding_radius / "
+                                       "(switch_distance[i + 1] * tan(camera_angle / 2)), the "
+                                       "last one at vanishing_distance"))}});
+    node.extras = Value(std::move(extras));
+  }
+}
+
+// Triangles drawn when every node is seen from each switching distance.
+std::vector<std::pair<double, std::size_t>> triangles_by_distance(
+    const std::vector<MeshJob>& jobs, const std::vector<gltf::NodePlacement>& placed) {
+  std::vector<double> distances{0};
+  for (const auto& job : jobs)
+    for (int n : job.nodes) {
+      const double s = node_scale(placed[std::size_t(n)]);
+      if (job.levels.empty()) continue;
+      for (const auto& l : job.levels) distances.push_back(l.distance * s);
+      distances.push_back(job.vanish * s);
+    }
+  std::sort(distances.begin(), distances.end());
+  distances.erase(std::unique(distances.begin(), distances.end()), distances.end());
+  std::vector<std::pair<double, std::size_t>> out;
+  for (double d : distances) {
+    std::size_t drawn = 0;
+    for (const auto& job : jobs)
+      for (int n : job.nodes) {
+        const double s = node_scale(placed[std::size_t(n)]);
+        if (!job.levels.empty() && d >= job.vanish * s) continue;
+        std::size_t t = job.stats.levels[0].triangles;
+        for (const auto& l : job.levels)
+          if (d >= l.distance * s) t = l.triangles;
+        drawn += t;
+      }
+    out.emplace_back(d, drawn);
+  }
+  return out;
+}
+
+// The statistics entry of a job.
+void finish_statistics(const Model& m, MeshJob& job,
+                       const std::vector<gltf::NodePlacement>& placed) {
+  const std::string& name = m.meshes[std::size_t(job.mesh)].name;
+  job.stats.type = "mesh";
+  job.stats.name = name.empty() ? fmt::format("mesh {}", job.mesh) : name;
+  job.stats.occurrences = job.nodes.size();
+  job.stats.radius = job.radius;
+  for (int n : job.nodes)
+    job.stats.scale = std::max(job.stats.scale, node_scale(placed[std::size_t(n)]));
+  if (job.stats.method.empty()) job.stats.method = "none";
+  if (job.levels.empty()) return;
+  for (const auto& l : job.levels) {
+    job.stats.levels.push_back({l.triangles, l.vertices, l.error});
+    job.stats.ranges.push_back(float(l.distance * job.stats.scale));
+  }
+  job.stats.ranges.push_back(float(job.vanish * job.stats.scale));
+}
+
+}  // namespace
+
+LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
+  Model& m = scene.model;
+  LodResult result;
+  const double angle = camera_angle_of(m, options);
+  result.camera_angle = angle;
+  RangeOptions range = options.range;
+  range.camera_angle = float(angle);
+  const ChooseLevelsOptions choose = choose_options(options, range);
+  const auto placed = gltf::node_placements(m);
+  std::vector<MeshJob> jobs = collect_jobs(m, placed);
+  BufferAppender out(m);
+  bool any = false;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    MeshJob& job = jobs[i];
+    level0_statistics(m, job);
+    const std::string why = full_detail_reason(m, job);
+    if (!why.empty()) {
+      result.log.warn(LogCategory::kGeneral, fmt::format("{}: kept at full detail because {}",
+                                                         mesh_label(m, job.mesh), why));
+    } else if (choose.quality == 0 || choose.quality == 1) {
+      // Manual mode without simplified levels: the mesh stays as it is.
+    } else {
+      try {
+        simplify_primitives(m, job, choose);
+      } catch (const DataError& e) {
+        throw DataError(fmt::format("{}: {}", mesh_label(m, job.mesh), e.what()));
+      }
+      plan_levels(job, m, options, range);
+      if (!job.levels.empty()) {
+        write_level_meshes(out, m, job);
+        attach_lod(m, job, placed, angle, result.log);
+        any = true;
+      }
+    }
+    finish_statistics(m, job, placed);
+    if (options.progress) options.progress("shapes", i + 1, jobs.size());
+  }
+  out.finish();
+  if (any && std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "MSFT_lod") ==
+                 m.extensionsUsed.end())
+    m.extensionsUsed.push_back("MSFT_lod");
+  result.triangles_by_distance = triangles_by_distance(jobs, placed);
+  for (auto& job : jobs) result.shapes.push_back(std::move(job.stats));
+  return result;
+}
+
+}  // namespace lodforge

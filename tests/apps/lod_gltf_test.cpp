@@ -1,0 +1,142 @@
+// `lodforge lod` on glTF scenes, judged by the Khronos glTF-Validator (npm
+// gltf-validator, run with node): every corpus scene gives a file with no
+// validator error, MSFT_lod on the simplified nodes (with a screen coverage
+// per level), and the input's materials, textures and images.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "apps/run_command.h"
+#include "core/temp_dir.h"
+#include "gltf/gltf_corpus.h"
+#include "lodforge/io/gltf/read_gltf.h"
+
+namespace lodforge::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRepository = fs::path(LODFORGE_EXAMPLES).parent_path();
+
+// Runs shell text, returning its exit code and standard output.
+std::pair<int, std::string> shell(const std::string& command) {
+  std::string out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {-1, ""};
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// The validator's summary of `file` ({"errors", "warnings", "messages"}), or
+// a skip when node is missing.
+class LodGltf : public TempDirTest, public ::testing::WithParamInterface<std::string> {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    if (shell("command -v node >/dev/null 2>&1").first != 0)
+      GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it): the glTF "
+                      "validator cannot run";
+    const auto [code, out] =
+        shell((kRepository / "scripts/install-gltf-validator.sh").string() + " 2>&1");
+    ASSERT_EQ(code, 0) << "scripts/install-gltf-validator.sh failed: " << out;
+  }
+  nlohmann::json validate(const std::string& file) {
+    const auto [code, out] =
+        shell("node " + (kRepository / "tests/tools/validate_gltf.js").string() + " " +
+              (kRepository / ".tools/gltf-validator").string() + " '" + file + "'");
+    EXPECT_EQ(code, 0) << out;
+    return nlohmann::json::parse(out);
+  }
+};
+
+TEST_P(LodGltf, OutputIsValidWithMsftLodAndTheInputsMaterials) {
+  const std::string input = GetParam();
+  const std::string output = path("out.glb"), stats = path("stats.json");
+  const CommandResult r =
+      run_lodforge("lod '" + input + "' -o " + output + " --stats " + stats + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = validate(output);
+  EXPECT_EQ(report["errors"], 0) << input << ": " << report.dump(1);
+
+  const auto in = gltf::read_gltf_file(input).scene.model;
+  const auto out = gltf::read_gltf_file(output).scene.model;
+  // Materials, textures and images of the input, in the same places.
+  ASSERT_EQ(in.materials.size(), out.materials.size());
+  for (std::size_t i = 0; i < in.materials.size(); ++i)
+    EXPECT_EQ(in.materials[i].name, out.materials[i].name);
+  EXPECT_EQ(in.textures, out.textures);
+  ASSERT_EQ(in.images.size(), out.images.size());
+  for (std::size_t i = 0; i < in.images.size(); ++i)
+    EXPECT_EQ(in.images[i].image, out.images[i].image);
+
+  // Every shape the statistics give levels has its nodes carry MSFT_lod.
+  const auto j = nlohmann::json::parse(read_text(stats));
+  std::size_t expected = 0;
+  for (const auto& s : j["shapes"])
+    if (!s["ranges"].empty()) expected += s["occurrences"].get<std::size_t>();
+  std::size_t with_lod = 0;
+  for (const auto& node : out.nodes) {
+    const auto lod = node.extensions.find("MSFT_lod");
+    if (lod == node.extensions.end()) continue;
+    ++with_lod;
+    const auto& ids = lod->second.Get("ids");
+    ASSERT_TRUE(ids.IsArray());
+    for (std::size_t k = 0; k < ids.ArrayLen(); ++k) {
+      const int id = ids.Get(int(k)).GetNumberAsInt();
+      ASSERT_TRUE(id >= 0 && std::size_t(id) < out.nodes.size());
+      EXPECT_GE(out.nodes[std::size_t(id)].mesh, 0);
+    }
+    // One coverage per level and one where the mesh vanishes, decreasing.
+    const auto& coverage = node.extras.Get("MSFT_screencoverage");
+    ASSERT_EQ(coverage.ArrayLen(), ids.ArrayLen() + 1);
+    for (std::size_t k = 1; k < coverage.ArrayLen(); ++k)
+      EXPECT_LT(coverage.Get(int(k)).GetNumberAsDouble(),
+                coverage.Get(int(k - 1)).GetNumberAsDouble());
+  }
+  EXPECT_EQ(with_lod, expected) << input;
+  if (expected > 0)
+    EXPECT_NE(std::find(out.extensionsUsed.begin(), out.extensionsUsed.end(), "MSFT_lod"),
+              out.extensionsUsed.end());
+  EXPECT_EQ(std::find(out.extensionsRequired.begin(), out.extensionsRequired.end(), "MSFT_lod"),
+            out.extensionsRequired.end());
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, LodGltf, ::testing::ValuesIn(gltf_corpus_files()),
+                         [](const auto& info) { return gltf_test_name(info.param); });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(LodGltf);
+
+// The torus (one mesh, no skin): levels exist, and a JSON .gltf is written
+// for a .gltf name or --format gltf.
+TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
+  const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                            "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
+  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("a.gltf") + " -q").exit_code, 0);
+  EXPECT_EQ(read_text(path("a.gltf")).front(), '{');
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("b.out") + " --format gltf -q").exit_code,
+            0);
+  EXPECT_EQ(read_text(path("b.out")).front(), '{');
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("c.glb") + " -q").exit_code, 0);
+  EXPECT_TRUE(read_text(path("c.glb")).starts_with("glTF"));
+  // A glTF scene is not written as VRML.
+  const CommandResult bad = run_lodforge("lod " + input + " -o " + path("d.wrl") + " -q");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("written as .gltf or .glb"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("d.wrl")));
+}
+
+TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {
+  const std::string bad =
+      write("bad.gltf", R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 3}]})");
+  const CommandResult r = run_lodforge("lod " + bad + " -o " + path("out.glb") + " -q");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(bad + ": node 0 refers to mesh 3, but there are 0"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(path("out.glb")));
+}
+
+}  // namespace
+}  // namespace lodforge::testing

@@ -1,0 +1,168 @@
+// gltf_lod: levels in MSFT_lod form on a small model built in memory.
+#include "lodforge/lod/gltf_lod.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gltf/gltf_builder.h"
+#include "lodforge/io/gltf/accessor_data.h"
+
+namespace lodforge {
+namespace {
+
+using testing::add_floats;
+using testing::add_indices;
+
+// A wavy 40 x 40 grid (3 042 triangles) with normals and texture
+// coordinates, as mesh 0 of `m`; returns the mesh's index.
+int add_wavy_grid(tinygltf::Model& m) {
+  const int n = 40;
+  std::vector<float> p, nrm, uv;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(i) / n, y = float(j) / n;
+      p.insert(p.end(), {x, y, 0.05f * std::sin(9 * x) * std::cos(7 * y)});
+      nrm.insert(nrm.end(), {0, 0, 1});
+      uv.insert(uv.end(), {x, y});
+    }
+  std::vector<std::uint32_t> idx;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + n + 1, d = c + 1;
+      idx.insert(idx.end(), {a, b, d, a, d, c});
+    }
+  tinygltf::Primitive prim;
+  prim.attributes["POSITION"] = add_floats(m, p, TINYGLTF_TYPE_VEC3);
+  prim.attributes["NORMAL"] = add_floats(m, nrm, TINYGLTF_TYPE_VEC3);
+  prim.attributes["TEXCOORD_0"] = add_floats(m, uv, TINYGLTF_TYPE_VEC2);
+  prim.indices = add_indices(m, idx);
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = 0;
+  tinygltf::Mesh mesh;
+  mesh.name = "grid";
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  return int(m.meshes.size() - 1);
+}
+
+// Two nodes share the grid (the second scaled 2x); a third draws a copy of
+// it with a morph target.
+gltf::GltfScene shared_and_morphed() {
+  gltf::GltfScene s;
+  auto& m = s.model;
+  m.materials.emplace_back();
+  const int grid = add_wavy_grid(m);
+  tinygltf::Mesh morphed = m.meshes[std::size_t(grid)];
+  morphed.name = "morphed";
+  morphed.primitives[0].targets.push_back(
+      {{"POSITION", morphed.primitives[0].attributes["POSITION"]}});
+  m.meshes.push_back(morphed);
+  tinygltf::Node a, b, c;
+  a.mesh = grid;
+  b.mesh = grid;
+  b.scale = {2, 2, 2};
+  c.mesh = 1;
+  m.nodes = {a, b, c};
+  tinygltf::Scene scene;
+  scene.nodes = {0, 1, 2};
+  m.scenes.push_back(scene);
+  return s;
+}
+
+const tinygltf::Value::Array& ids_of(const tinygltf::Node& node) {
+  return node.extensions.at("MSFT_lod").Get("ids").Get<tinygltf::Value::Array>();
+}
+
+TEST(GltfLod, SharedMeshGetsOneSetOfLevelMeshesAndEachNodeItsLevelNodes) {
+  gltf::GltfScene s = shared_and_morphed();
+  const tinygltf::Mesh input = s.model.meshes[0];
+  const LodResult r = gltf_lod(s, {.threads = 1});
+  const auto& m = s.model;
+  const auto& a = ids_of(m.nodes[0]);
+  const auto& b = ids_of(m.nodes[1]);
+  ASSERT_GE(a.size(), 2u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const auto& la = m.nodes[std::size_t(a[k].GetNumberAsInt())];
+    const auto& lb = m.nodes[std::size_t(b[k].GetNumberAsInt())];
+    EXPECT_EQ(la.mesh, lb.mesh);            // one level mesh for both nodes
+    EXPECT_EQ(lb.scale, m.nodes[1].scale);  // each level node where its node is
+    EXPECT_TRUE(la.children.empty());
+  }
+  // Level 0 is the input unchanged; MSFT_lod is used, not required.
+  EXPECT_EQ(m.meshes[0], input);
+  EXPECT_EQ(m.extensionsUsed, std::vector<std::string>{"MSFT_lod"});
+  EXPECT_TRUE(m.extensionsRequired.empty());
+  // The morphed mesh stays whole, with a warning naming it.
+  EXPECT_EQ(m.nodes[2].extensions.count("MSFT_lod"), 0u);
+  ASSERT_FALSE(r.log.entries().empty());
+  EXPECT_NE(r.log.entries()[0].text.find("mesh 1 'morphed': kept at full detail because it has "
+                                         "morph targets"),
+            std::string::npos);
+  // Switch distances scale with the node, coverages do not and decrease.
+  const auto& ea = m.nodes[0].extras.Get("lodforge_lod").Get("levels");
+  const auto& eb = m.nodes[1].extras.Get("lodforge_lod").Get("levels");
+  for (int k = 1; k < int(ea.ArrayLen()); ++k)
+    EXPECT_NEAR(eb.Get(k).Get("switch_distance").GetNumberAsDouble(),
+                2 * ea.Get(k).Get("switch_distance").GetNumberAsDouble(), 1e-9);
+  const auto& ca = m.nodes[0].extras.Get("MSFT_screencoverage");
+  const auto& cb = m.nodes[1].extras.Get("MSFT_screencoverage");
+  ASSERT_EQ(ca.ArrayLen(), a.size() + 1);
+  for (int k = 0; k < int(ca.ArrayLen()); ++k) {
+    EXPECT_DOUBLE_EQ(ca.Get(k).GetNumberAsDouble(), cb.Get(k).GetNumberAsDouble());
+    if (k > 0) EXPECT_LT(ca.Get(k).GetNumberAsDouble(), ca.Get(k - 1).GetNumberAsDouble());
+  }
+}
+
+TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttributes) {
+  gltf::GltfScene s = shared_and_morphed();
+  gltf_lod(s, {.threads = 1});
+  const auto& m = s.model;
+  const auto& ids = ids_of(m.nodes[0]);
+  const auto& first = m.meshes[std::size_t(m.nodes[std::size_t(ids[0].GetNumberAsInt())].mesh)];
+  const auto& input = m.meshes[0].primitives[0];
+  const auto in_uv = gltf::read_accessor(m, input.attributes.at("TEXCOORD_0")).values;
+  const std::size_t n = in_uv.size() / 2;
+  for (const auto& id : ids) {
+    const auto& level = m.meshes[std::size_t(m.nodes[std::size_t(id.GetNumberAsInt())].mesh)];
+    ASSERT_EQ(level.primitives.size(), 1u);
+    const auto& p = level.primitives[0];
+    EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+    EXPECT_EQ(p.material, input.material);
+    EXPECT_EQ(p.attributes, first.primitives[0].attributes);  // one vertex set for all levels
+    EXPECT_NE(p.indices, input.indices);
+  }
+  const auto& attributes = first.primitives[0].attributes;
+  const auto uv = gltf::read_accessor(m, attributes.at("TEXCOORD_0")).values;
+  const auto normals = gltf::read_accessor(m, attributes.at("NORMAL")).values;
+  ASSERT_GT(uv.size(), in_uv.size());  // the simplifier moved vertices
+  // The input's vertices first, unchanged; every added one carries the
+  // texture coordinates of an input vertex and the input's normal.
+  EXPECT_TRUE(std::equal(in_uv.begin(), in_uv.end(), uv.begin()));
+  for (std::size_t v = n; v < uv.size() / 2; ++v) {
+    const double u = uv[2 * v], w = uv[2 * v + 1];
+    EXPECT_NEAR(u * 40, std::round(u * 40), 1e-4) << v;
+    EXPECT_NEAR(w * 40, std::round(w * 40), 1e-4) << v;
+    EXPECT_EQ(normals[3 * v + 2], 1.0);
+  }
+}
+
+TEST(GltfLod, CompressedVertexDataStaysWholeWithAWarning) {
+  // Draco keeps the real vertices in its own stream: the accessors' data is not the mesh.
+  gltf::GltfScene s = shared_and_morphed();
+  s.model.meshes[0].primitives[0].extensions["KHR_draco_mesh_compression"] =
+      tinygltf::Value(tinygltf::Value::Object{});
+  const LodResult r = gltf_lod(s, {.threads = 1});
+  EXPECT_TRUE(s.model.nodes[0].extensions.empty());
+  EXPECT_TRUE(s.model.extensionsUsed.empty());
+  ASSERT_FALSE(r.log.entries().empty());
+  EXPECT_NE(r.log.entries()[0].text.find(
+                "mesh 0 'grid': kept at full detail because a primitive has the extension "
+                "KHR_draco_mesh_compression"),
+            std::string::npos)
+      << r.log.entries()[0].text;
+}
+
+}  // namespace
+}  // namespace lodforge

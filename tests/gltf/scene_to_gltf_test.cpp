@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "lodforge/io/gltf/accessor_data.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
@@ -97,21 +101,37 @@ TEST(SceneToGltf, ShapesKeepTheirColoursAndWorldPlace) {
   EXPECT_TRUE(saw_red);
 }
 
-TEST(SceneToGltf, TextureFilesBecomeImagesAndInlineOnesAreLeftOutWithAWarning) {
+// Texture2 files beside the scene become images (file names as URIs); an
+// inline image or a missing file is left out with a warning, so the output
+// stays valid.
+TEST(SceneToGltf, TextureFilesBecomeImagesTheRestIsLeftOutWithWarnings) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("lodforge_scene_to_gltf_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "maps");
+  std::ofstream(dir / "maps" / "wood grain.png") << "not decoded";
   Log log;
   const tinygltf::Model m = scene_to_gltf(vrml1::read_vrml1(R"(#VRML V1.0 ascii
 Separator {
-  Texture2 { filename "wood.png" wrapS CLAMP }
   Coordinate3 { point [0 0 0, 1 0 0, 0 1 0] }
-  IndexedFaceSet { coordIndex [0, 1, 2, -1] }
-  Texture2 { image 1 1 3 0xff0000 }
-  IndexedFaceSet { coordIndex [0, 2, 1, -1] }
+  Separator {
+    Texture2 { filename "maps/wood grain.png" wrapS CLAMP }
+    IndexedFaceSet { coordIndex [0, 1, 2, -1] }
+  }
+  Separator {
+    Texture2 { image 1 1 3 0xff0000 }
+    IndexedFaceSet { coordIndex [0, 2, 1, -1] }
+  }
+  Separator {
+    Texture2 { filename "no_such_file.png" }
+    IndexedFaceSet { coordIndex [1, 2, 0, -1] }
+  }
 })")
                                               .scene,
-                                          {}, log)
+                                          {.base_dir = dir.string()}, log)
                                 .model;
+  std::filesystem::remove_all(dir);
   ASSERT_EQ(m.images.size(), 1u);
-  EXPECT_EQ(m.images[0].uri, "wood.png");
+  EXPECT_EQ(m.images[0].uri, "maps/wood%20grain.png");
   ASSERT_EQ(m.samplers.size(), 1u);
   EXPECT_EQ(m.samplers[0].wrapS, TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE);
   EXPECT_EQ(m.samplers[0].wrapT, TINYGLTF_TEXTURE_WRAP_REPEAT);
@@ -122,8 +142,10 @@ Separator {
           p.attributes.count("TEXCOORD_0") &&
           m.materials[std::size_t(p.material)].pbrMetallicRoughness.baseColorTexture.index == 0;
   EXPECT_EQ(textured, 1u);
-  ASSERT_EQ(log.entries().size(), 1u);
-  EXPECT_NE(log.entries()[0].text.find("inline"), std::string::npos);
+  std::string warnings;
+  for (const auto& e : log.entries()) warnings += e.text + "\n";
+  EXPECT_NE(warnings.find("inline"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("no_such_file.png"), std::string::npos) << warnings;
 }
 
 }  // namespace

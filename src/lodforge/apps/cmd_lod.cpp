@@ -11,12 +11,12 @@
 #include "lodforge/apps/batch.h"
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/write_scene_gltf.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/core/progress.h"
-#include "lodforge/io/gltf/scene_to_gltf.h"
-#include "lodforge/io/gltf/write_gltf.h"
+#include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 
@@ -197,21 +197,6 @@ std::size_t file_size_or_zero(const std::string& path) {
   return ec ? 0 : static_cast<std::size_t>(size);
 }
 
-// A VRML 1.0 / Inventor LOD scene written as glTF (.glb binary, .gltf JSON):
-// its texture file names are already relative to `folder`, the output's.
-void write_as_gltf(const LodResult& result, const std::string& target, const std::string& folder,
-                   bool quiet) {
-  Log log;
-  const gltf::GltfScene g = gltf::scene_to_gltf(
-      result.scene, {.camera_angle = result.camera_angle, .base_dir = folder}, log);
-  if (!quiet) print_diagnostics(log.entries());
-  std::string lower = target;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  if (lower.ends_with(".gz")) lower.resize(lower.size() - 3);
-  gltf::write_gltf_file(g, target, {.binary = lower.ends_with(".glb"), .output_dir = folder});
-}
-
 // Reads one scene, makes its LODs and writes them; a DataError is the
 // outcome's error. `progress` receives the library's progress, drawn on
 // `bar`, which is cleared before anything is printed; `stats` gets the
@@ -258,7 +243,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                    to.empty() ? "." : to.string());
     }
     if (gltf::is_gltf_path(target))
-      write_as_gltf(result, target, to.string(), s.read.quiet);
+      write_scene_gltf(result.scene, target, to.string(), result.camera_angle, s.read.quiet);
     else
       vrml1::write_vrml1_file(result.scene, target, s.write);
     if (!s.read.silent) print_summary(input, result, !s.read.quiet);

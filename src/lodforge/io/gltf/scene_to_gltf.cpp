@@ -8,8 +8,10 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -60,10 +62,19 @@ struct LodGroup {
   std::vector<std::vector<ShapeSurface>> levels;
 };
 
+// Smooth vertex normals; glTF wants unit length for every vertex, also one
+// that only degenerate triangles (or none) use: it gets +z.
+std::vector<Vec3> unit_normals(const TriangleMesh& mesh) {
+  std::vector<Vec3> n = angle_weighted_normals(mesh);
+  for (Vec3& v : n)
+    if (!is_finite(v) || std::abs(length(v) - 1.0f) > 1e-3f) v = {0, 0, 1};
+  return n;
+}
+
 // Builds the model: one buffer, views and accessors appended as they come.
 class ModelBuilder {
  public:
-  ModelBuilder() {
+  explicit ModelBuilder(std::string base_dir) : base_dir_(std::move(base_dir)) {
     model_.asset.version = "2.0";
     model_.asset.generator = "lodforge";
     model_.buffers.emplace_back();
@@ -95,6 +106,8 @@ class ModelBuilder {
   tinygltf::Model take() { return std::move(model_); }
   /// Texture2 nodes whose image is inline (left out).
   std::size_t inline_images() const { return inline_images_; }
+  /// Texture2 file names that name no file relative to the base folder.
+  const std::vector<std::string>& missing_textures() const { return missing_; }
 
  private:
   template <class T>
@@ -178,12 +191,15 @@ class ModelBuilder {
     if (!texture2) return -1;
     if (auto it = textures_.find(texture2); it != textures_.end()) return it->second;
     const scene::FieldValue* file = scene::field_or_default(*texture2, "filename");
+    const std::string name = file && !file->strings.empty() ? file->strings[0] : "";
     int index = -1;
-    if (!file || file->strings.empty() || file->strings[0].empty())
+    if (name.empty()) {
       ++inline_images_;
-    else {
+    } else if (!readable_file(name)) {
+      missing_.push_back(name);
+    } else {
       tinygltf::Image image;
-      image.uri = file->strings[0];
+      image.uri = uri_of(name);
       model_.images.push_back(std::move(image));
       tinygltf::Sampler sampler;
       auto wrap = [&](const char* field) {
@@ -227,7 +243,7 @@ class ModelBuilder {
       tinygltf::Primitive p;
       p.mode = TINYGLTF_MODE_TRIANGLES;
       p.attributes["POSITION"] = add_positions(s.mesh.positions);
-      p.attributes["NORMAL"] = add_vec3(angle_weighted_normals(s.mesh));
+      p.attributes["NORMAL"] = add_vec3(unit_normals(s.mesh));
       bool transparent = false;
       if (s.mesh.has_colors()) p.attributes["COLOR_0"] = add_colors(s, transparent);
       const int texture = s.mesh.has_texcoords() ? texture_of(s.texture) : -1;
@@ -256,6 +272,29 @@ class ModelBuilder {
   std::map<const Node*, int> textures_;
   std::map<std::pair<int, bool>, int> materials_;
   std::size_t inline_images_ = 0;
+  std::vector<std::string> missing_;
+  std::string base_dir_;
+
+  // A relative file name of an existing file under the base folder (a glTF
+  // URI may not be absolute, and a missing image makes the file invalid).
+  bool readable_file(const std::string& name) const {
+    const std::filesystem::path p(name);
+    std::error_code ec;
+    return p.is_relative() && name.find(':') == std::string::npos &&
+           std::filesystem::is_regular_file(std::filesystem::path(base_dir_) / p, ec);
+  }
+  // A file name as a URI reference: characters outside RFC 3986's
+  // unreserved set and '/' percent-encoded.
+  static std::string uri_of(const std::string& name) {
+    std::string out;
+    for (unsigned char c : name) {
+      if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/')
+        out.push_back(char(c));
+      else
+        out += fmt::format("%{:02X}", c);
+    }
+    return out;
+  }
 };
 
 // What the traversals find: shapes outside any LOD, and per LOD occurrence
@@ -365,7 +404,7 @@ void add_lod(ModelBuilder& b, const LodGroup& g, double angle, std::size_t numbe
 GltfScene scene_to_gltf(const scene::Scene& s, const SceneToGltfOptions& options, Log& log) {
   Collected c = collect(s, log);
   const double angle = camera_angle(options, c.camera);
-  ModelBuilder b;
+  ModelBuilder b(options.base_dir.empty() ? "." : options.base_dir);
   for (std::size_t i = 0; i < c.plain.size(); ++i) {
     const int n = b.add_node({c.plain[i]}, fmt::format("shape{}", i));
     if (n >= 0) b.show(n);
@@ -378,8 +417,17 @@ GltfScene scene_to_gltf(const scene::Scene& s, const SceneToGltfOptions& options
              fmt::format("{} Texture2 images are given inline in the file; the glTF output "
                          "leaves them out (their shapes keep their colours)",
                          inline_images));
+  for (const std::string& name : b.missing_textures())
+    log.warn(LogCategory::kTexCoord,
+             fmt::format("Texture2 file \"{}\" is not a file beside the scene; the glTF output "
+                         "leaves it out (its shapes keep their colours)",
+                         name));
   GltfScene out;
   out.model = b.take();
+  // A scene that draws nothing: no buffer (glTF forbids an empty one), and a
+  // named scene (an empty one would be written as null).
+  if (out.model.buffers[0].data.empty()) out.model.buffers.clear();
+  out.model.scenes[0].name = "scene";
   out.base_dir = options.base_dir;
   return out;
 }

@@ -13,10 +13,12 @@
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/lod_gltf.h"
 #include "lodforge/apps/lod_vrml97.h"
+#include "lodforge/apps/write_scene_gltf.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/core/progress.h"
+#include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 
@@ -224,11 +226,13 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     drawn.progress = progress;
     const bool gltf = is_gltf_input(input);
     const bool vrml97 = !gltf && is_vrml97_input(input);
-    if (!vrml97 && !gltf && !s.format.empty())
+    const bool as_gltf = s.format == "gltf" || s.format == "glb" ||
+                         (s.format.empty() && gltf::is_gltf_path(out.output));
+    if (!vrml97 && !gltf && !s.format.empty() && !as_gltf)
       throw DataError(fmt::format(
-          "--format {}: only VRML97 / X3D inputs (vrml97, x3dv, x3d) and glTF inputs (gltf, glb) "
-          "can be written so",
-          s.format));
+          "--format {}: a VRML 1.0 or Inventor input is written as VRML 1.0 / Inventor or as glTF "
+          "(gltf, glb); {} is for VRML97 / X3D inputs",
+          s.format, s.format));
     if (gltf) make_output_folder(out.output);
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
                        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
@@ -263,7 +267,16 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                    moved.rewritten, moved.rewritten == 1 ? "" : "s",
                    to.empty() ? "." : to.string());
     }
-    if (!vrml97 && !gltf) vrml1::write_vrml1_file(result.scene, target, s.write);
+    if (!vrml97 && !gltf) {
+      // A VRML 1.0 / Inventor scene is written as glTF when asked (--format
+      // or an output named .glb / .gltf), else in its own language.
+      if (as_gltf)
+        write_scene_gltf(result.scene, target, to.string(), result.camera_angle,
+                         s.format.empty() ? gltf_binary_name(target) : s.format == "glb",
+                         s.read.quiet);
+      else
+        vrml1::write_vrml1_file(result.scene, target, s.write);
+    }
     if (!s.read.silent) print_summary(input, result, !s.read.quiet);
     stats = stats_json(input, result);
     out.written = true;

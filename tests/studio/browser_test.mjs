@@ -65,17 +65,26 @@ try {
   console.log(`non-background pixels: ${(covered * 100).toFixed(1)} %`);
   if (!(covered > 0.05)) fail(`the canvas draws too little: ${covered}`);
 
-  // Triangles drawn as the slider moves out: never more, and fewer at the end.
+  // Triangles drawn as the slider moves out (geometric steps from the
+  // near view to the slider's end): never more, and fewer at the end.
   const max = await page.$eval('#distance-slider', (e) => Number(e.max));
+  const near = await page.evaluate(() => window.studio.bounds.getSize(new window.studio.camera.position.constructor()).length() * 0.8);
+  const distances = [0, 1, 2, 3, 4, 5, 6].map((i) => near * Math.pow(max / near, i / 6));
   const counts = [];
-  for (const f of [0.05, 0.2, 0.4, 0.7, 1.0]) {
-    await page.evaluate((d) => window.studio.viewFrom(d), f * max);
+  for (const d of distances) {
+    await page.evaluate((x) => window.studio.viewFrom(x), d);
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     counts.push(await page.evaluate(() => window.studio.trianglesDrawn));
   }
-  console.log(`triangles drawn at ${[0.05, 0.2, 0.4, 0.7, 1.0].map((f) => (f * max).toPrecision(4)).join(', ')}: ${counts.join(', ')}`);
+  console.log(`triangles drawn at ${distances.map((d) => d.toPrecision(4)).join(', ')}: ${counts.join(', ')}`);
   for (let i = 1; i < counts.length; ++i) if (counts[i] > counts[i - 1]) fail(`more triangles farther out: ${counts}`);
   if (!(counts.at(-1) < counts[0])) fail(`the drawn triangles do not fall: ${counts}`);
+  if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
+    await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
+    await page.click('#colour-levels');
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });
+  }
   if (errors.length) fail(`console errors: ${errors.join(' | ')}`);
 } catch (e) {
   fail(e.stack || e.message);

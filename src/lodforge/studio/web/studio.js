@@ -189,13 +189,17 @@ function drawPlot(points) {
   g.clearRect(0, 0, c.width, c.height);
   g.strokeStyle = '#888'; g.strokeRect(40, 10, c.width - 50, c.height - 40);
   if (!points.length) return;
-  const maxD = Math.max(...points.map((p) => p.distance)) || 1, maxT = Math.max(...points.map((p) => p.triangles)) || 1;
-  const x = (d) => 40 + (c.width - 50) * d / maxD, y = (t) => c.height - 30 - (c.height - 40) * t / maxT;
+  // Distance on a log scale: the switches of small and large objects are
+  // decades apart.
+  const ds = points.map((p) => p.distance).filter((d) => d > 0);
+  const minD = Math.min(...ds) || 1, maxD = Math.max(...ds) || 1, maxT = Math.max(...points.map((p) => p.triangles)) || 1;
+  const span = Math.log(maxD / minD) || 1;
+  const x = (d) => 40 + (c.width - 50) * (d > 0 ? Math.log(d / minD) / span : 0), y = (t) => c.height - 30 - (c.height - 40) * t / maxT;
   g.strokeStyle = '#2060c0'; g.beginPath();
   points.forEach((p, i) => (i ? g.lineTo(x(p.distance), y(p.triangles)) : g.moveTo(x(p.distance), y(p.triangles))));
   g.stroke();
   g.fillStyle = '#000';
-  g.fillText(`${maxT} triangles`, 42, 20); g.fillText(`distance ${maxD.toPrecision(4)}`, c.width - 120, c.height - 12); g.fillText('0', 30, c.height - 30);
+  g.fillText(`${maxT} triangles`, 42, 20); g.fillText(`distance ${maxD.toPrecision(4)} (log scale)`, c.width - 170, c.height - 12); g.fillText(minD.toPrecision(3), 40, c.height - 12); g.fillText('0', 30, c.height - 30);
 }
 
 function showMessages() {

@@ -75,6 +75,21 @@ try {
     await page.evaluate((x) => window.studio.viewFrom(x), d);
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     counts.push(await page.evaluate(() => window.studio.trianglesDrawn));
+    // What the written file draws from this eye: every LOD's child by its
+    // own distance (VRML 1.0's rule), from the server's level geometry.
+    const expected = await page.evaluate(async () => {
+      const s = window.studio, eye = s.camera.position;
+      const g = await (await fetch(`/api/geometry?which=output&path=${encodeURIComponent(s.current)}`)).json();
+      let n = 0;
+      for (const m of g.shapes) n += m.indices.length / 3;
+      for (const l of g.lods) {
+        const d = Math.hypot(eye.x - l.center[0], eye.y - l.center[1], eye.z - l.center[2]);
+        const child = Math.min(l.ranges.filter((r) => r <= d).length, l.levels.length - 1);
+        for (const m of l.levels[child]) n += m.indices.length / 3;
+      }
+      return n;
+    });
+    if (counts.at(-1) !== expected) fail(`at ${d.toPrecision(4)} the page draws ${counts.at(-1)} triangles, the file ${expected}`);
   }
   console.log(`triangles drawn at ${distances.map((d) => d.toPrecision(4)).join(', ')}: ${counts.join(', ')}`);
   for (let i = 1; i < counts.length; ++i) if (counts[i] > counts[i - 1]) fail(`more triangles farther out: ${counts}`);

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "lodforge/core/error.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/scene/flatten_scene.h"
 
 namespace lodforge::studio {
 namespace {
@@ -59,6 +64,51 @@ Separator {
 TEST(LevelGeometry, TooManyTrianglesIsADataError) {
   const auto r = vrml1::read_vrml1("#VRML V1.0 ascii\nSeparator { Sphere { } }");
   EXPECT_THROW(level_geometry(r.scene, {.max_triangles = 10}), DataError);
+}
+
+}  // namespace
+}  // namespace lodforge::studio
+
+namespace lodforge::studio {
+namespace {
+
+// What the page draws from `eye` (each LOD instance's child by the distance
+// from the eye to its centre, VRML 1.0's rule that THREE.LOD follows with
+// addLevel at the ranges), counted from the JSON.
+std::size_t triangles_seen(const json& g, const Vec3& eye) {
+  std::size_t n = 0;
+  for (const auto& s : g["shapes"]) n += s["indices"].size() / 3;
+  for (const auto& lod : g["lods"]) {
+    const auto c = lod["center"].get<std::vector<float>>();
+    const float d = length(Vec3{c[0], c[1], c[2]} - eye);
+    const auto ranges = lod["ranges"].get<std::vector<float>>();
+    std::size_t child = std::upper_bound(ranges.begin(), ranges.end(), d) - ranges.begin();
+    child = std::min(child, lod["levels"].size() - 1);
+    for (const auto& m : lod["levels"][child]) n += m["indices"].size() / 3;
+  }
+  return n;
+}
+
+// The example scene after `lod`: from every eye position, the levels of the
+// JSON switched by their ranges draw as many triangles as the written file
+// does in a VRML 1.0 browser (flatten_scene with a viewpoint).
+TEST(LevelGeometry, SwitchingByTheJsonDrawsWhatTheWrittenFileDraws) {
+  const auto input = vrml1::read_vrml1_file(std::string(LODFORGE_EXAMPLES) + "/scene.wrl");
+  const LodResult lod = generate_lod(input.scene);
+  const scene::Scene written = vrml1::read_vrml1(vrml1::write_vrml1(lod.scene)).scene;
+  const json g = json::parse(level_geometry(written));
+  ASSERT_GT(g["lods"].size(), 3u);
+  const Box3 box = scene::flatten_scene(written).bounds();
+  const Vec3 centre = (box.lo + box.hi) * 0.5f;
+  std::set<std::size_t> counts;
+  for (float d : {1.f, 50.f, 120.f, 200.f, 400.f, 1000.f, 3000.f, 20000.f})
+    for (const Vec3& dir : {Vec3{0, 0, 1}, Vec3{1, 0.5f, 0.2f} / length(Vec3{1, 0.5f, 0.2f})}) {
+      const Vec3 eye = centre + dir * d;
+      const std::size_t drawn = scene::flatten_scene(written, {.viewpoint = eye}).triangles.size();
+      EXPECT_EQ(triangles_seen(g, eye), drawn) << "eye at " << d;
+      counts.insert(drawn);
+    }
+  EXPECT_GT(counts.size(), 4u) << "the eye positions should see several levels";
 }
 
 }  // namespace

@@ -246,6 +246,8 @@ function meshOf(m, offset, level) {
     const own = new THREE.MeshLambertMaterial({ vertexColors: !!m.colors, side: THREE.DoubleSide });
     const byLevel = new THREE.MeshLambertMaterial({ color: LEVEL_COLOURS[level % LEVEL_COLOURS.length], side: THREE.DoubleSide });
     const mesh = new THREE.Mesh(g, $('colour-levels').checked ? byLevel : own);
+    // "Triangles drawn" counts what the LODs choose, in view or not.
+    mesh.frustumCulled = false;
     mesh.userData = { own, byLevel };
     state.meshes.push(mesh);
     group.add(mesh);

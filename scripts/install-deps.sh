@@ -14,7 +14,11 @@ packages=(
   view3dscene xvfb xauth
   nodejs
   parallel
+  libcpp-httplib-dev chromium
 )
+# `lodforge studio`'s page takes three.js from npm (scripts/install-web-deps.sh);
+# Debian's npm only where no Node.js with its npm is installed already.
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do

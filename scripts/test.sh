@@ -10,6 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+bash scripts/install-web-deps.sh
 
 build=build
 args=(-DCMAKE_BUILD_TYPE=Release)

@@ -18,5 +18,6 @@ void add_compare_command(CLI::App& app, Runner& run);
 void add_simplify_command(CLI::App& app, Runner& run);
 void add_mco_command(CLI::App& app, Runner& run);
 void add_report_command(CLI::App& app, Runner& run);
+void add_studio_command(CLI::App& app, Runner& run);
 
 }  // namespace lodforge::apps

@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   add_simplify_command(app, run);
   add_mco_command(app, run);
   add_report_command(app, run);
+  add_studio_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

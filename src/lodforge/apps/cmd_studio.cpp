@@ -1,0 +1,78 @@
+// `lodforge studio SCENE... [--port N] [--host H] [--open]`: the local web
+// page over the scenes (src/lodforge/studio/).
+#include <fmt/core.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "lodforge/apps/commands.h"
+#include "lodforge/studio/studio_server.h"
+
+namespace lodforge::apps {
+namespace {
+
+struct Settings {
+  std::vector<std::string> scenes;
+  std::string host = "127.0.0.1";
+  int port = 8765;
+  int threads = 0;
+  bool open = false;
+};
+
+// The page and three.js: installed beside the program (share/lodforge/studio),
+// else the source tree's this program was built from.
+std::pair<std::string, std::string> asset_folders() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path installed = exe.parent_path().parent_path() / "share/lodforge/studio";
+  if (!ec && fs::exists(installed / "web/index.html"))
+    return {(installed / "web").string(), (installed / "three").string()};
+  return {LODFORGE_STUDIO_WEB, LODFORGE_STUDIO_THREE};
+}
+
+int run_studio(const Settings& s) {
+  const auto [web, three] = asset_folders();
+  studio::StudioServer server(studio::StudioOptions{.scenes = s.scenes,
+                                                    .host = s.host,
+                                                    .port = s.port,
+                                                    .web_root = web,
+                                                    .three_root = three,
+                                                    .threads = s.threads});
+  const int port = server.bind();
+  const std::string url = fmt::format("http://{}:{}/", s.host, port);
+  fmt::print(stderr, "lodforge studio: {} (Ctrl-C ends it)\n", url);
+  if (s.open) {
+    // The browser is the desktop's; its failure leaves the server running.
+    const std::string command = fmt::format("xdg-open '{}' >/dev/null 2>&1 &", url);
+    if (std::system(command.c_str()) != 0)
+      fmt::print(stderr, "could not start a browser; open {} by hand\n", url);
+  }
+  server.serve();
+  return 0;
+}
+
+}  // namespace
+
+void add_studio_command(CLI::App& app, Runner& run) {
+  auto s = std::make_shared<Settings>();
+  CLI::App* cmd = app.add_subcommand(
+      "studio",
+      "A local web page to load scenes, make LODs, read their statistics and watch the "
+      "levels switch in a 3D view");
+  cmd->add_option("SCENE", s->scenes,
+                  "VRML 1.0 or Inventor files; the studio opens and writes files under their "
+                  "folders only")
+      ->required();
+  cmd->add_option("--port", s->port, "Port to listen on (0: any free port)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--host", s->host, "Address to listen on (the default serves this machine only)")
+      ->capture_default_str();
+  cmd->add_option("--threads", s->threads, "Worker threads of a LOD run (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--open", s->open, "Open the page in the desktop's browser (xdg-open)");
+  cmd->callback([s, &run] { run = [s] { return run_studio(*s); }; });
+}
+
+}  // namespace lodforge::apps

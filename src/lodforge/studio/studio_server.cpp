@@ -1,0 +1,423 @@
+#include "lodforge/studio/studio_server.h"
+
+#include <fmt/core.h>
+#include <httplib.h>
+
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+#include <unordered_map>
+
+#include "lodforge/core/error.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/scene/relocate_references.h"
+#include "lodforge/scene/statistics.h"
+#include "lodforge/scene/traverse.h"
+#include "lodforge/studio/level_geometry.h"
+#include "lodforge/studio/lod_request.h"
+#include "lodforge/studio/scene_tree.h"
+
+namespace lodforge::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// An answer other than 200, carried to the handler's end.
+struct ApiError : std::runtime_error {
+  ApiError(int status, const std::string& text) : std::runtime_error(text), status(status) {}
+  int status;
+};
+
+json diagnostics_json(const std::vector<Diagnostic>& entries) {
+  json out = json::array();
+  for (const auto& d : entries)
+    out.push_back(
+        {{"category", to_string(d.category)}, {"level", to_string(d.level)}, {"text", d.text}});
+  return out;
+}
+
+// The statistics of a run as the page shows them: per shape its levels with
+// the distance from which each is drawn.
+json result_json(const LodResult& r) {
+  json j;
+  j["camera_angle"] = r.camera_angle;
+  j["joined"] = r.joined;
+  j["shapes"] = json::array();
+  std::size_t original = 0;
+  for (const auto& s : r.shapes) {
+    json levels = json::array();
+    for (std::size_t i = 0; i < s.levels.size(); ++i) {
+      const auto& l = s.levels[i];
+      json level = {{"triangles", l.triangles}, {"vertices", l.vertices}, {"error", l.error}};
+      level["from_distance"] = i == 0 ? 0.0 : (i - 1 < s.ranges.size() ? s.ranges[i - 1] : -1.0);
+      levels.push_back(std::move(level));
+    }
+    j["shapes"].push_back({{"type", s.type},
+                           {"name", s.name},
+                           {"line", s.line},
+                           {"occurrences", s.occurrences},
+                           {"method", s.method},
+                           {"radius", s.radius},
+                           {"ranges", s.ranges},
+                           {"stop_reason", s.stop_reason},
+                           {"levels", std::move(levels)}});
+    if (!s.levels.empty()) original += s.levels[0].triangles * s.occurrences;
+  }
+  j["triangles"] = original;
+  j["triangles_by_distance"] = json::array();
+  for (const auto& [d, t] : r.triangles_by_distance)
+    j["triangles_by_distance"].push_back({{"distance", d}, {"triangles", t}});
+  return j;
+}
+
+struct LodJob {
+  std::string state = "idle";  // running, done, failed
+  std::string command_line, error, stage;
+  std::uint64_t done = 0, total = 0;
+  std::shared_ptr<LodResult> result;
+  json result_json;
+};
+
+struct LoadedScene {
+  std::string path;  // canonical
+  std::size_t size = 0;
+  std::optional<scene::Scene> scene;
+  std::string error;
+  std::vector<Diagnostic> warnings;
+  json counts;  // shape type -> count
+  std::size_t triangles = 0;
+  LodJob job;
+};
+
+bool is_under(const fs::path& path, const fs::path& folder) {
+  auto p = path.begin();
+  for (auto f = folder.begin(); f != folder.end(); ++f, ++p)
+    if (p == path.end() || *p != *f) return false;
+  return true;
+}
+
+}  // namespace
+
+struct StudioServer::Impl {
+  StudioOptions options;
+  std::vector<fs::path> folders;  // canonical
+  std::mutex mutex;               // guards scenes and their jobs
+  std::map<std::string, std::unique_ptr<LoadedScene>> scenes;
+  std::vector<std::thread> workers;
+  std::atomic<bool> running_job{false};
+  httplib::Server server;
+  int port = 0;
+
+  // The canonical form of a path the API was given, if it lies under an
+  // allowed folder; ApiError 403 otherwise.
+  fs::path allowed(const std::string& given) const {
+    if (given.empty()) throw ApiError(400, "no path given");
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(given), ec);
+    if (!ec)
+      for (const auto& f : folders)
+        if (is_under(p, f)) return p;
+    std::string list;
+    for (const auto& f : folders) list += (list.empty() ? "" : ", ") + f.string();
+    throw ApiError(403, fmt::format("{}: refused, the studio opens and writes only files under "
+                                    "the folders of the scenes it was started with ({})",
+                                    given, list));
+  }
+
+  LoadedScene& load(const fs::path& path) {
+    auto entry = std::make_unique<LoadedScene>();
+    entry->path = path.string();
+    std::error_code ec;
+    entry->size = std::size_t(fs::file_size(path, ec));
+    if (ec) throw ApiError(404, fmt::format("{}: {}", path.string(), ec.message()));
+    try {
+      vrml1::ReadResult r = vrml1::read_vrml1_file(path.string());
+      entry->warnings = r.log.entries();
+      const scene::SceneStatistics stats = scene::scene_statistics(r.scene);
+      entry->counts = json::object();
+      for (const auto& [type, n] : stats.node_counts)
+        if (scene::is_shape_type(type) || type == "LOD") entry->counts[type] = n;
+      entry->triangles = stats.total_triangles;
+      entry->scene = std::move(r.scene);
+    } catch (const DataError& e) {
+      entry->error = e.what();
+    }
+    auto& slot = scenes[entry->path];
+    slot = std::move(entry);
+    return *slot;
+  }
+
+  LoadedScene& scene_of(const std::string& given) {
+    const fs::path p = allowed(given);
+    auto it = scenes.find(p.string());
+    if (it == scenes.end()) throw ApiError(404, given + ": not loaded (open it first)");
+    return *it->second;
+  }
+
+  json file_json(const LoadedScene& s) const {
+    json j = {{"path", s.path},
+              {"size", s.size},
+              {"shapes", s.counts.is_null() ? json::object() : s.counts},
+              {"triangles", s.triangles},
+              {"warnings", diagnostics_json(s.warnings)}};
+    if (!s.error.empty()) j["error"] = s.error;
+    return j;
+  }
+
+  json files() {
+    std::lock_guard lock(mutex);
+    json j = {{"folders", json::array()}, {"files", json::array()}};
+    for (const auto& f : folders) j["folders"].push_back(f.string());
+    for (const auto& given : options.scenes) {
+      auto it = scenes.find(fs::weakly_canonical(fs::absolute(given)).string());
+      if (it != scenes.end()) j["files"].push_back(file_json(*it->second));
+    }
+    for (const auto& [path, s] : scenes) {
+      bool listed = false;
+      for (const auto& f : j["files"]) listed = listed || f["path"] == path;
+      if (!listed) j["files"].push_back(file_json(*s));
+    }
+    return j;
+  }
+
+  json open(const json& body) {
+    const fs::path p = allowed(body.value("path", ""));
+    std::lock_guard lock(mutex);
+    if (running_job && scenes.count(p.string()))
+      throw ApiError(409, "a LOD run is going on; open again when it ends");
+    return file_json(load(p));
+  }
+
+  json start_lod(const json& body) {
+    std::lock_guard lock(mutex);
+    LoadedScene& s = scene_of(body.value("path", ""));
+    if (!s.scene) throw ApiError(400, s.path + " did not parse: " + s.error);
+    if (running_job) throw ApiError(409, "a LOD run is going on already");
+    const fs::path in(s.path);
+    const std::string output =
+        (in.parent_path() / (in.stem().string() + "_lod" + in.extension().string())).string();
+    LodRequest request;
+    try {
+      request = lod_request(body.contains("options") ? body["options"] : json(), s.path, output);
+    } catch (const DataError& e) {
+      throw ApiError(400, e.what());
+    }
+    if (options.threads) request.options.threads = options.threads;
+    s.job = LodJob{.state = "running", .command_line = request.command_line};
+    running_job = true;
+    for (auto& w : workers) w.join();
+    workers.clear();
+    workers.emplace_back([this, &s, request, scene = *s.scene]() mutable {
+      run_job(s, std::move(request), std::move(scene));
+    });
+    return {{"state", "running"}, {"command_line", request.command_line}};
+  }
+
+  void run_job(LoadedScene& s, LodRequest request, scene::Scene scene) {
+    request.options.progress = [this, &s](std::string_view stage, std::uint64_t done,
+                                          std::uint64_t total) {
+      std::lock_guard lock(mutex);
+      s.job.stage = std::string(stage);
+      s.job.done = done;
+      s.job.total = total;
+    };
+    std::shared_ptr<LodResult> result;
+    std::string error;
+    try {
+      // The copy shares its nodes with the loaded scene, which the taking
+      // overload of generate_lod could change: the copying one is used.
+      const scene::Scene& shared = scene;
+      result = std::make_shared<LodResult>(generate_lod(shared, request.options));
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    std::lock_guard lock(mutex);
+    if (result) {
+      s.job.result_json = result_json(*result);
+      std::vector<Diagnostic> messages = s.warnings;
+      for (const auto& d : result->log.entries()) messages.push_back(d);
+      s.job.result_json["messages"] = diagnostics_json(messages);
+      s.job.result = std::move(result);
+      s.job.state = "done";
+    } else {
+      s.job.error = error;
+      s.job.state = "failed";
+    }
+    running_job = false;
+  }
+
+  json lod_status(const std::string& path) {
+    std::lock_guard lock(mutex);
+    const LodJob& job = scene_of(path).job;
+    json j = {{"state", job.state},
+              {"command_line", job.command_line},
+              {"progress", {{"stage", job.stage}, {"done", job.done}, {"total", job.total}}}};
+    if (job.state == "done") j["result"] = job.result_json;
+    if (job.state == "failed") j["error"] = job.error;
+    return j;
+  }
+
+  json save(const json& body) {
+    std::shared_ptr<LodResult> result;
+    std::string input;
+    {
+      std::lock_guard lock(mutex);
+      LoadedScene& s = scene_of(body.value("path", ""));
+      if (s.job.state != "done") throw ApiError(400, s.path + ": no LOD result to save (Make LOD)");
+      result = s.job.result;
+      input = s.path;
+    }
+    const fs::path out = allowed(body.value("output", ""));
+    if (out == fs::path(input)) throw ApiError(400, out.string() + ": the output is the input");
+    // The result stays as it is for later saves: the references are
+    // rewritten on a deep copy.
+    scene::Scene copy = result->scene;
+    std::unordered_map<const scene::Node*, scene::NodePtr> done;
+    for (auto& root : copy.roots) root = scene::copy_subtree(root, done);
+    scene::relocate_references(copy, fs::path(input).parent_path(), out.parent_path());
+    try {
+      vrml1::write_vrml1_file(copy, out.string());
+    } catch (const DataError& e) {
+      throw ApiError(400, e.what());
+    }
+    std::error_code ec;
+    return {{"written", out.string()}, {"bytes", fs::file_size(out, ec)}};
+  }
+
+  std::string geometry(const std::string& path, const std::string& which) {
+    std::shared_ptr<LodResult> result;
+    std::optional<scene::Scene> input;
+    {
+      std::lock_guard lock(mutex);
+      LoadedScene& s = scene_of(path);
+      if (which == "output") {
+        if (s.job.state != "done") throw ApiError(400, s.path + ": no LOD result yet");
+        result = s.job.result;
+      } else {
+        if (!s.scene) throw ApiError(400, s.path + " did not parse: " + s.error);
+        input = s.scene;
+      }
+    }
+    try {
+      return level_geometry(result ? result->scene : *input);
+    } catch (const DataError& e) {
+      throw ApiError(400, e.what());
+    }
+  }
+
+  void routes();
+};
+
+namespace {
+
+json body_of(const httplib::Request& req) {
+  try {
+    return req.body.empty() ? json::object() : json::parse(req.body);
+  } catch (const json::exception& e) {
+    throw ApiError(400, std::string("the request is not JSON: ") + e.what());
+  }
+}
+
+// Runs an API handler, turning its errors into JSON answers.
+template <class Fn>
+httplib::Server::Handler api(Fn fn) {
+  return [fn](const httplib::Request& req, httplib::Response& res) {
+    try {
+      fn(req, res);
+    } catch (const ApiError& e) {
+      res.status = e.status;
+      res.set_content(json{{"error", e.what()}}.dump(), "application/json");
+    } catch (const std::exception& e) {
+      res.status = 500;
+      res.set_content(json{{"error", e.what()}}.dump(), "application/json");
+    }
+  };
+}
+
+void send(httplib::Response& res, const json& j) {
+  res.set_content(j.dump(), "application/json");
+}
+
+}  // namespace
+
+void StudioServer::Impl::routes() {
+  server.Get("/api/files", api([this](const auto&, auto& res) { send(res, files()); }));
+  server.Post("/api/open",
+              api([this](const auto& req, auto& res) { send(res, open(body_of(req))); }));
+  server.Get("/api/tree", api([this](const auto& req, auto& res) {
+               std::lock_guard lock(mutex);
+               LoadedScene& s = scene_of(req.get_param_value("path"));
+               if (!s.scene) throw ApiError(400, s.path + " did not parse: " + s.error);
+               send(res, scene_tree(*s.scene));
+             }));
+  server.Get("/api/geometry", api([this](const auto& req, auto& res) {
+               res.set_content(geometry(req.get_param_value("path"), req.get_param_value("which")),
+                               "application/json");
+             }));
+  server.Post("/api/lod",
+              api([this](const auto& req, auto& res) { send(res, start_lod(body_of(req))); }));
+  server.Get("/api/lod", api([this](const auto& req, auto& res) {
+               send(res, lod_status(req.get_param_value("path")));
+             }));
+  server.Post("/api/save",
+              api([this](const auto& req, auto& res) { send(res, save(body_of(req))); }));
+  // Module scripts load only with a JavaScript type.
+  server.set_file_extension_and_mimetype_mapping("js", "text/javascript");
+  if (!options.three_root.empty() && !server.set_mount_point("/three", options.three_root))
+    throw DataError(options.three_root + ": three.js is not there (scripts/install-web-deps.sh)");
+  if (!server.set_mount_point("/", options.web_root))
+    throw DataError(options.web_root + ": the studio's page is not there");
+}
+
+StudioServer::StudioServer(StudioOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = std::move(options);
+  if (impl_->options.scenes.empty()) throw DataError("studio: give at least one scene");
+  for (const auto& given : impl_->options.scenes) {
+    std::error_code ec;
+    const fs::path p = fs::canonical(given, ec);
+    if (ec || !fs::is_regular_file(p))
+      throw DataError(fmt::format("{}: {}", given, ec ? ec.message() : "not a regular file"));
+    const fs::path folder = p.parent_path();
+    if (std::find(impl_->folders.begin(), impl_->folders.end(), folder) == impl_->folders.end())
+      impl_->folders.push_back(folder);
+    impl_->load(p);
+  }
+  impl_->routes();
+}
+
+StudioServer::~StudioServer() {
+  stop();
+}
+
+int StudioServer::bind() {
+  Impl& s = *impl_;
+  if (s.options.port == 0)
+    s.port = s.server.bind_to_any_port(s.options.host);
+  else
+    s.port = s.server.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1;
+  if (s.port <= 0)
+    throw DataError(
+        fmt::format("cannot listen on {}:{} (in use? try --port)", s.options.host, s.options.port));
+  return s.port;
+}
+
+void StudioServer::serve() {
+  impl_->server.listen_after_bind();
+}
+
+void StudioServer::stop() {
+  if (!impl_) return;
+  impl_->server.stop();
+  for (auto& w : impl_->workers)
+    if (w.joinable()) w.join();
+  impl_->workers.clear();
+}
+
+}  // namespace lodforge::studio

@@ -1,0 +1,329 @@
+// The studio's page: files, scene tree, LOD options and run, statistics,
+// messages, and a three.js view in which every LOD node switches by its own
+// distance at the ranges of the file (THREE.LOD.addLevel).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+const TYPES = ['polygon', 'line', 'sphere', 'cone', 'cylinder', 'cube'];
+const LEVEL_COLOURS = [0x2e9e44, 0xe0c020, 0xe07020, 0xd02030, 0x9040c0, 0x3060d0, 0x20a0a0];
+
+// What the page holds; window.studio lets tests and the console look at it.
+const state = { files: [], current: null, result: null, lods: [], meshes: [], bounds: null };
+window.studio = state;
+
+async function api(method, url, body) {
+  const res = await fetch(url, {
+    method, headers: { 'Content-Type': 'application/json' },
+    body: body === undefined ? undefined : JSON.stringify(body),
+  });
+  const json = await res.json();
+  if (!res.ok) throw new Error(json.error || res.statusText);
+  return json;
+}
+
+function element(tag, attrs = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (k === 'class') e.className = v; else if (k.startsWith('on')) e.addEventListener(k.slice(2), v); else e.setAttribute(k, v);
+  }
+  for (const c of children) e.append(c);
+  return e;
+}
+
+// ---- files ----
+async function loadFiles() {
+  const { files } = await api('GET', '/api/files');
+  state.files = files;
+  const body = $('files').tBodies[0];
+  body.replaceChildren();
+  for (const f of files) {
+    const shapes = Object.entries(f.shapes).map(([t, n]) => `${t} ${n}`).join(', ');
+    const row = element('tr', { 'data-path': f.path, onclick: () => select(f.path) },
+      element('td', {}, f.path.split('/').pop()), element('td', {}, String(f.size)),
+      element('td', {}, f.error ? '' : shapes), element('td', {}, f.error ? '' : String(f.triangles)));
+    body.append(row);
+    if (f.error) body.append(element('tr', {}, element('td', { colspan: 4, class: 'error parse-error' }, f.error)));
+  }
+  if (!state.current && files.length) await select(files.find((f) => !f.error)?.path || files[0].path);
+}
+
+async function select(path) {
+  state.current = path;
+  for (const tr of $('files').tBodies[0].rows) tr.classList.toggle('selected', tr.dataset.path === path);
+  const f = state.files.find((x) => x.path === path);
+  $('save-path').value = path.replace(/(\.[^./]+)?$/, '_lod$1');
+  updateCommand();
+  $('tree').replaceChildren();
+  if (f && f.error) return;
+  const tree = await api('GET', `/api/tree?path=${encodeURIComponent(path)}`);
+  $('tree').append(...tree.map(treeNode));
+  const status = await api('GET', `/api/lod?path=${encodeURIComponent(path)}`);
+  showRun(status);
+  $('which').value = status.state === 'done' ? 'output' : 'input';
+  await loadGeometry();
+}
+
+function treeNode(n) {
+  const label = `${n.name ? `DEF ${n.name} ` : ''}${n.use ? 'USE ' : ''}${n.type}  (line ${n.line})`;
+  const fields = Object.entries(n.fields || {}).map(([k, v]) => element('div', { class: 'fields' }, `${k} ${v}`));
+  if (!n.children || (n.children.length === 0 && fields.length === 0)) return element('div', { class: 'leaf' }, label);
+  const d = element('details', {}, element('summary', {}, label), ...fields, ...n.children.map(treeNode));
+  d.open = n.children.length > 0 && n.children.length < 20;
+  return d;
+}
+
+$('open-form').addEventListener('submit', async (e) => {
+  e.preventDefault();
+  $('open-error').textContent = '';
+  try {
+    const f = await api('POST', '/api/open', { path: $('open-path').value });
+    await loadFiles();
+    await select(f.path);
+  } catch (err) { $('open-error').textContent = err.message; }
+});
+
+// ---- options and the command line ----
+for (const t of TYPES) {
+  $('per-type').append(element('div', {}, element('b', {}, t + ' '),
+    element('label', { style: 'display:inline' }, ' quality ', element('input', { name: `quality-${t}`, type: 'number', step: 1, placeholder: 'auto' })),
+    element('label', { style: 'display:inline' }, ' ranges ', element('input', { name: `ranges-${t}`, placeholder: 'a,b,...', size: 10 }))));
+}
+
+function options() {
+  const form = $('options');
+  const o = {};
+  const defaults = { method: 'qem', export: 'spec' };
+  for (const e of form.elements) {
+    if (!e.name) continue;
+    if (e.type === 'checkbox') { if (e.checked) o[e.name] = true; continue; }
+    if (e.value === '' || defaults[e.name] === e.value) continue;
+    if (e.name.startsWith('quality-')) (o.quality ||= []).push(`${e.name.slice(8)}=${e.value}`);
+    else if (e.name === 'ranges-all') (o.ranges ||= []).push(e.value);
+    else if (e.name.startsWith('ranges-')) (o.ranges ||= []).push(`${e.name.slice(7)}=${e.value}`);
+    else o[e.name] = e.type === 'number' ? Number(e.value) : e.value;
+  }
+  return o;
+}
+state.options = options;
+
+function shellWord(w) { return /^[A-Za-z0-9\/._\-=,+:]+$/.test(w) ? w : `'${w.replace(/'/g, `'\\''`)}'`; }
+
+// The same text the server builds (lod_request.h): keys in alphabetical order.
+function updateCommand() {
+  if (!state.current) return;
+  const args = ['lodforge', 'lod', state.current, '-o', $('save-path').value];
+  const o = options();
+  for (const k of Object.keys(o).sort()) {
+    const v = o[k];
+    if (Array.isArray(v)) for (const x of v) args.push(`--${k}`, x);
+    else if (v === true) args.push(`--${k}`);
+    else args.push(`--${k}`, String(v));
+  }
+  $('command-line').value = args.map(shellWord).join(' ');
+}
+$('options').addEventListener('input', updateCommand);
+$('save-path').addEventListener('input', updateCommand);
+$('copy-command').addEventListener('click', () => {
+  $('command-line').select();
+  navigator.clipboard?.writeText($('command-line').value).catch(() => document.execCommand('copy'));
+});
+
+// ---- the run ----
+$('make-lod').addEventListener('click', async () => {
+  $('lod-error').textContent = '';
+  try {
+    const started = await api('POST', '/api/lod', { path: state.current, options: options() });
+    $('lod-state').textContent = 'running';
+    state.running = true;
+    await poll();
+    $('which').value = 'output';
+    await loadGeometry();
+  } catch (err) { $('lod-error').textContent = err.message; }
+  state.running = false;
+});
+
+async function poll() {
+  for (;;) {
+    const s = await api('GET', `/api/lod?path=${encodeURIComponent(state.current)}`);
+    const p = s.progress;
+    $('progress').value = p.total ? p.done / p.total : 0;
+    if (s.state !== 'running') { showRun(s); if (s.state === 'failed') throw new Error(s.error); return s; }
+    await new Promise((r) => setTimeout(r, 200));
+  }
+}
+
+function showRun(s) {
+  state.result = s.result || null;
+  $('lod-state').textContent = s.state === 'idle' ? '' : s.state;
+  if (s.state === 'done') { $('progress').value = 1; $('command-line').value = s.command_line.replace(/ -o \S+/, ` -o ${shellWord($('save-path').value)}`); }
+  showStatistics();
+  showMessages();
+}
+
+$('save').addEventListener('click', async () => {
+  $('save-state').textContent = '';
+  try {
+    const r = await api('POST', '/api/save', { path: state.current, output: $('save-path').value });
+    $('save-state').textContent = `written ${r.written} (${r.bytes} bytes)`;
+  } catch (err) { $('save-state').textContent = err.message; $('save-state').className = 'error'; }
+});
+
+// ---- statistics and messages ----
+function showStatistics() {
+  const body = $('stats').tBodies[0];
+  body.replaceChildren();
+  const r = state.result;
+  drawPlot(r ? r.triangles_by_distance : []);
+  if (!r) return;
+  for (const s of r.shapes) {
+    s.levels.forEach((l, i) => body.append(element('tr', {},
+      element('td', {}, i ? '' : `${s.type}${s.name ? ' ' + s.name : ''} (line ${s.line})`), element('td', {}, String(i)),
+      element('td', {}, String(l.triangles)), element('td', {}, String(l.vertices)),
+      element('td', {}, l.error.toPrecision(3)), element('td', {}, l.from_distance < 0 ? '' : l.from_distance.toPrecision(4)))));
+  }
+}
+
+function drawPlot(points) {
+  const c = $('plot'), g = c.getContext('2d');
+  g.clearRect(0, 0, c.width, c.height);
+  g.strokeStyle = '#888'; g.strokeRect(40, 10, c.width - 50, c.height - 40);
+  if (!points.length) return;
+  // Distance on a log scale: the switches of small and large objects are
+  // decades apart.
+  const ds = points.map((p) => p.distance).filter((d) => d > 0);
+  const minD = Math.min(...ds) || 1, maxD = Math.max(...ds) || 1, maxT = Math.max(...points.map((p) => p.triangles)) || 1;
+  const span = Math.log(maxD / minD) || 1;
+  const x = (d) => 40 + (c.width - 50) * (d > 0 ? Math.log(d / minD) / span : 0), y = (t) => c.height - 30 - (c.height - 40) * t / maxT;
+  g.strokeStyle = '#2060c0'; g.beginPath();
+  points.forEach((p, i) => (i ? g.lineTo(x(p.distance), y(p.triangles)) : g.moveTo(x(p.distance), y(p.triangles))));
+  g.stroke();
+  g.fillStyle = '#000';
+  g.fillText(`${maxT} triangles`, 42, 20); g.fillText(`distance ${maxD.toPrecision(4)} (log scale)`, c.width - 170, c.height - 12); g.fillText(minD.toPrecision(3), 40, c.height - 12); g.fillText('0', 30, c.height - 30);
+}
+
+function showMessages() {
+  const msgs = state.result ? state.result.messages : [];
+  for (const [sel, key] of [['msg-category', 'category'], ['msg-level', 'level']]) {
+    const keep = $(sel).value;
+    const values = [...new Set(msgs.map((m) => m[key]))];
+    $(sel).replaceChildren(element('option', { value: '' }, 'all'), ...values.map((v) => element('option', { value: v }, v)));
+    $(sel).value = values.includes(keep) ? keep : '';
+  }
+  filterMessages();
+}
+function filterMessages() {
+  const cat = $('msg-category').value, lvl = $('msg-level').value;
+  const msgs = (state.result ? state.result.messages : []).filter((m) => (!cat || m.category === cat) && (!lvl || m.level === lvl));
+  $('messages').tBodies[0].replaceChildren(...msgs.map((m) => element('tr', {},
+    element('td', {}, m.category), element('td', {}, m.level), element('td', {}, m.text))));
+}
+$('msg-category').addEventListener('change', filterMessages);
+$('msg-level').addEventListener('change', filterMessages);
+
+// ---- 3D view ----
+const renderer = new THREE.WebGLRenderer({ canvas: $('canvas'), antialias: true });
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x223344);
+const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
+scene.add(camera);
+camera.add(new THREE.DirectionalLight(0xffffff, 2.2));
+scene.add(new THREE.AmbientLight(0xffffff, 0.6));
+const controls = new OrbitControls(camera, renderer.domElement);
+const root = new THREE.Group();
+scene.add(root);
+state.renderer = renderer; state.camera = camera; state.controls = controls; state.scene3d = scene;
+
+function meshOf(m, offset, level) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(m.positions, 3));
+  if (m.colors) g.setAttribute('color', new THREE.Float32BufferAttribute(m.colors, 3));
+  const group = new THREE.Group();
+  const matrix = new THREE.Matrix4().fromArray(m.matrix).premultiply(offset);
+  group.matrixAutoUpdate = false; group.matrix.copy(matrix);
+  if (m.indices.length) {
+    g.setIndex(m.indices); g.computeVertexNormals();
+    const own = new THREE.MeshLambertMaterial({ vertexColors: !!m.colors, side: THREE.DoubleSide });
+    const byLevel = new THREE.MeshLambertMaterial({ color: LEVEL_COLOURS[level % LEVEL_COLOURS.length], side: THREE.DoubleSide });
+    const mesh = new THREE.Mesh(g, $('colour-levels').checked ? byLevel : own);
+    // "Triangles drawn" counts what the LODs choose, in view or not.
+    mesh.frustumCulled = false;
+    mesh.userData = { own, byLevel };
+    state.meshes.push(mesh);
+    group.add(mesh);
+  }
+  if (m.lines.length) {
+    const lg = new THREE.BufferGeometry();
+    lg.setAttribute('position', g.getAttribute('position'));
+    lg.setIndex(m.lines);
+    group.add(new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0xdddddd })));
+  }
+  return group;
+}
+
+async function loadGeometry() {
+  const which = $('which').value;
+  const geo = await api('GET', `/api/geometry?path=${encodeURIComponent(state.current)}&which=${which}`);
+  for (const c of [...root.children]) root.remove(c);
+  state.meshes = []; state.lods = [];
+  const none = new THREE.Matrix4();
+  for (const s of geo.shapes) root.add(meshOf(s, none, 0));
+  for (const l of geo.lods) {
+    const lod = new THREE.LOD();
+    lod.position.fromArray(l.center);
+    const offset = new THREE.Matrix4().makeTranslation(-l.center[0], -l.center[1], -l.center[2]);
+    // Child i from range[i-1] on, as a VRML 1.0 browser switches: beyond the
+    // last range the child after it (or the last child); children past that
+    // one are never drawn.
+    l.levels.slice(0, l.ranges.length + 1).forEach((meshes, i) => {
+      const level = new THREE.Group();
+      for (const m of meshes) level.add(meshOf(m, offset, i));
+      lod.addLevel(level, i === 0 ? 0 : l.ranges[i - 1]);
+    });
+    root.add(lod);
+    state.lods.push({ lod, ranges: l.ranges, line: l.line, name: l.name });
+  }
+  root.updateMatrixWorld(true);
+  state.bounds = new THREE.Box3().setFromObject(root, true);
+  if (state.bounds.isEmpty()) state.bounds.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+  const size = state.bounds.getSize(new THREE.Vector3()).length();
+  const farthest = Math.max(size * 3, ...state.lods.map((l) => (l.ranges.at(-1) || 0) * 1.3));
+  controls.target.copy(state.bounds.getCenter(new THREE.Vector3()));
+  camera.near = size / 1000; camera.far = farthest * 4 + size * 4; camera.updateProjectionMatrix();
+  $('distance-slider').max = String(farthest);
+  if (!state.viewSet) { viewFrom(size * 1.2); state.viewSet = true; }
+}
+$('which').addEventListener('change', () => loadGeometry().catch((e) => { $('lod-error').textContent = e.message; }));
+
+// Puts the camera `d` from the scene's centre along the current view direction.
+function viewFrom(d) {
+  const dir = camera.position.clone().sub(controls.target);
+  if (dir.lengthSq() === 0) dir.set(0, 0, 1);
+  camera.position.copy(controls.target).add(dir.setLength(Math.max(d, 1e-6)));
+  controls.update();
+  $('distance-slider').value = String(d);
+}
+state.viewFrom = viewFrom;
+$('distance-slider').addEventListener('input', (e) => viewFrom(Number(e.target.value)));
+$('colour-levels').addEventListener('change', () => {
+  for (const m of state.meshes) m.material = $('colour-levels').checked ? m.userData.byLevel : m.userData.own;
+});
+
+function frame() {
+  const c = renderer.domElement;
+  if (c.width !== c.clientWidth || c.height !== c.clientHeight) {
+    renderer.setSize(c.clientWidth, c.clientHeight, false);
+    camera.aspect = c.clientWidth / Math.max(1, c.clientHeight); camera.updateProjectionMatrix();
+  }
+  renderer.render(scene, camera);
+  state.trianglesDrawn = renderer.info.render.triangles;
+  const d = camera.position.distanceTo(controls.target);
+  state.distance = d;
+  $('distance').textContent = d.toPrecision(4);
+  $('slider-value').textContent = Number($('distance-slider').value).toPrecision(4);
+  $('triangles-drawn').textContent = String(state.trianglesDrawn);
+  requestAnimationFrame(frame);
+}
+requestAnimationFrame(frame);
+
+loadFiles().catch((e) => { $('open-error').textContent = e.message; });

@@ -1,0 +1,110 @@
+// The studio's page in headless Chromium (Debian's `chromium`, driven by
+// puppeteer-core): it lists the scene, runs Make LOD, draws the scene on its
+// WebGL canvas, and draws fewer triangles as the "view from distance" slider
+// moves out. Usage: node browser_test.mjs LODFORGE_EXE SCENE [CHROMIUM]
+// Exit 0 pass, 1 fail, 77 skipped (Chromium cannot start).
+import { spawn } from 'node:child_process';
+import puppeteer from 'puppeteer-core';
+
+const [exe, scenePath, chromium = '/usr/bin/chromium'] = process.argv.slice(2);
+const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
+
+const server = spawn(exe, ['studio', scenePath, '--port', '0'], { stdio: ['ignore', 'ignore', 'pipe'] });
+const url = await new Promise((resolve, reject) => {
+  let text = '';
+  server.stderr.on('data', (d) => {
+    text += d;
+    const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+    if (m) resolve(m[0]);
+  });
+  server.on('exit', (code) => reject(new Error(`lodforge studio ended (${code}): ${text}`)));
+  setTimeout(() => reject(new Error(`no URL from lodforge studio: ${text}`)), 20000);
+});
+
+let browser;
+try {
+  browser = await puppeteer.launch({
+    executablePath: chromium, headless: true,
+    args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'],
+  });
+} catch (e) {
+  console.log(`SKIP: chromium cannot start (${e.message.split('\n')[0]})`);
+  server.kill();
+  process.exit(77);
+}
+
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 900 });
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.studio && window.studio.lods && document.querySelector('#files tbody tr'), { timeout: 30000 });
+  const listed = await page.$eval('#files tbody', (t) => t.textContent);
+  if (!listed.includes(scenePath.split('/').pop())) fail(`the file list lacks the scene: ${listed}`);
+
+  await page.click('#make-lod');
+  await page.waitForFunction(() => window.studio.result && !window.studio.running && window.studio.lods.length > 0, { timeout: 300000 });
+  const rows = await page.$$eval('#stats tbody tr', (r) => r.length);
+  if (rows === 0) fail('no statistics rows after Make LOD');
+
+  // Pixels of one frame that differ from the background (read in the task that drew them).
+  const covered = await page.evaluate(() => {
+    const s = window.studio;
+    s.viewFrom(s.bounds.getSize(new s.camera.position.constructor()).length() * 0.8);
+    s.renderer.render(s.scene3d, s.camera);
+    const gl = s.renderer.getContext();
+    const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - 0x22) + Math.abs(px[i + 1] - 0x33) + Math.abs(px[i + 2] - 0x44) > 12) ++n;
+    return n / (w * h);
+  });
+  console.log(`non-background pixels: ${(covered * 100).toFixed(1)} %`);
+  if (!(covered > 0.05)) fail(`the canvas draws too little: ${covered}`);
+
+  // Triangles drawn as the slider moves out (geometric steps from the
+  // near view to the slider's end): never more, and fewer at the end.
+  const max = await page.$eval('#distance-slider', (e) => Number(e.max));
+  const near = await page.evaluate(() => window.studio.bounds.getSize(new window.studio.camera.position.constructor()).length() * 0.8);
+  const distances = [0, 1, 2, 3, 4, 5, 6].map((i) => near * Math.pow(max / near, i / 6));
+  const counts = [];
+  for (const d of distances) {
+    await page.evaluate((x) => window.studio.viewFrom(x), d);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    counts.push(await page.evaluate(() => window.studio.trianglesDrawn));
+    // What the written file draws from this eye: every LOD's child by its
+    // own distance (VRML 1.0's rule), from the server's level geometry.
+    const expected = await page.evaluate(async () => {
+      const s = window.studio, eye = s.camera.position;
+      const g = await (await fetch(`/api/geometry?which=output&path=${encodeURIComponent(s.current)}`)).json();
+      let n = 0;
+      for (const m of g.shapes) n += m.indices.length / 3;
+      for (const l of g.lods) {
+        const d = Math.hypot(eye.x - l.center[0], eye.y - l.center[1], eye.z - l.center[2]);
+        const child = Math.min(l.ranges.filter((r) => r <= d).length, l.levels.length - 1);
+        for (const m of l.levels[child]) n += m.indices.length / 3;
+      }
+      return n;
+    });
+    if (counts.at(-1) !== expected) fail(`at ${d.toPrecision(4)} the page draws ${counts.at(-1)} triangles, the file ${expected}`);
+  }
+  console.log(`triangles drawn at ${distances.map((d) => d.toPrecision(4)).join(', ')}: ${counts.join(', ')}`);
+  for (let i = 1; i < counts.length; ++i) if (counts[i] > counts[i - 1]) fail(`more triangles farther out: ${counts}`);
+  if (!(counts.at(-1) < counts[0])) fail(`the drawn triangles do not fall: ${counts}`);
+  if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
+    await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
+    await page.click('#colour-levels');
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });
+  }
+  if (errors.length) fail(`console errors: ${errors.join(' | ')}`);
+} catch (e) {
+  fail(e.stack || e.message);
+} finally {
+  await browser.close();
+  server.kill();
+}
+if (!process.exitCode) console.log('1 passed, 0 failed');

@@ -1,0 +1,206 @@
+// The studio's API, served in-process on a free port and called through
+// cpp-httplib's client: files, tree, a LOD run on a corpus scene, save, and
+// the refusal of paths outside the folders it was given.
+#include "lodforge/studio/studio_server.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "lodforge/core/error.h"
+#include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/scene/traverse.h"
+
+namespace lodforge::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kRocket =
+    std::string(LODFORGE_SHARED_DATA) + "/vrml1/castle-engine__malfunction/data/vrmls/rocket.wrl";
+
+// A server on a free port of 127.0.0.1 over the rocket and two scenes of a
+// fresh folder (a copy of the example scene and a scene that does not parse).
+class StudioServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(kRocket)) GTEST_SKIP() << "no shared corpus at " << LODFORGE_SHARED_DATA;
+    dir_ = fs::temp_directory_path() /
+           ("studio_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    fs::copy_file(std::string(LODFORGE_EXAMPLES) + "/scene.wrl", dir_ / "scene.wrl");
+    std::ofstream(dir_ / "broken.wrl") << "#VRML V1.0 ascii\nSeparator {\n  Cube { width }\n}\n";
+    StudioOptions options{
+        .scenes = {kRocket, (dir_ / "scene.wrl").string(), (dir_ / "broken.wrl").string()},
+        .port = 0,
+        .web_root = LODFORGE_STUDIO_WEB};
+    server_ = std::make_unique<StudioServer>(options);
+    port_ = server_->bind();
+    thread_ = std::thread([this] { server_->serve(); });
+    client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
+    client_->set_read_timeout(120, 0);
+  }
+  void TearDown() override {
+    if (server_) server_->stop();
+    if (thread_.joinable()) thread_.join();
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  json get(const std::string& url, int expect = 200) {
+    auto res = client_->Get(url.c_str());
+    EXPECT_TRUE(res) << url;
+    if (!res) return {};
+    EXPECT_EQ(res->status, expect) << url << ": " << res->body;
+    return json::parse(res->body);
+  }
+  json post(const std::string& url, const json& body, int expect = 200) {
+    auto res = client_->Post(url.c_str(), body.dump(), "application/json");
+    EXPECT_TRUE(res) << url;
+    if (!res) return {};
+    EXPECT_EQ(res->status, expect) << url << ": " << res->body;
+    return json::parse(res->body);
+  }
+  static std::string query(const std::string& path) {
+    return httplib::detail::encode_query_param(fs::canonical(path).string());
+  }
+  // Starts a run and waits for its end.
+  json run_lod(const std::string& path, const json& options) {
+    json started = post("/api/lod", {{"path", path}, {"options", options}});
+    EXPECT_EQ(started["state"], "running");
+    for (int i = 0; i < 1200; ++i) {
+      json status = get("/api/lod?path=" + query(path));
+      if (status["state"] != "running") return status;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ADD_FAILURE() << "the run did not end";
+    return {};
+  }
+
+  fs::path dir_;
+  std::unique_ptr<StudioServer> server_;
+  int port_ = 0;
+  std::thread thread_;
+  std::unique_ptr<httplib::Client> client_;
+};
+
+TEST_F(StudioServerTest, FilesListSizesShapeCountsAndParseErrors) {
+  json files = get("/api/files")["files"];
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_EQ(files[0]["path"], fs::canonical(kRocket).string());
+  EXPECT_EQ(files[0]["size"], fs::file_size(kRocket));
+  EXPECT_EQ(files[0]["shapes"]["IndexedFaceSet"], 2);
+  EXPECT_GT(files[0]["triangles"].get<int>(), 0);
+  EXPECT_FALSE(files[1].contains("error"));
+  EXPECT_GT(files[1]["shapes"]["IndexedFaceSet"].get<int>(), 0);
+  // The broken scene is listed with the reader's file:line:column.
+  ASSERT_TRUE(files[2].contains("error"));
+  EXPECT_NE(files[2]["error"].get<std::string>().find("broken.wrl:3:"), std::string::npos)
+      << files[2]["error"];
+}
+
+TEST_F(StudioServerTest, TreeHasTheExampleDefNamesAndFields) {
+  json tree = get("/api/tree?path=" + query((dir_ / "scene.wrl").string()));
+  std::vector<std::string> names;
+  std::function<void(const json&)> walk = [&](const json& n) {
+    if (n.contains("name")) names.push_back(n["name"]);
+    for (const auto& c : n.value("children", json::array())) walk(c);
+  };
+  for (const auto& r : tree) walk(r);
+  for (const char* name : {"Terrain", "House", "Tree", "Link"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST_F(StudioServerTest, LodRunEqualsThePipelineAndSaves) {
+  json status = run_lod(kRocket, {{"error-range", 10}, {"method", "qem"}});
+  ASSERT_EQ(status["state"], "done") << status.dump();
+  EXPECT_NE(status["command_line"].get<std::string>().find("--error-range 10 --method qem"),
+            std::string::npos)
+      << status["command_line"];
+  const json& result = status["result"];
+  // The same run through the library, as `lodforge lod --error-range 10` does it.
+  LodOptions options;
+  options.range.error_range = 0.1f;
+  const LodResult direct = generate_lod(vrml1::read_vrml1_file(kRocket).scene, options);
+  ASSERT_EQ(result["shapes"].size(), direct.shapes.size());
+  for (std::size_t i = 0; i < direct.shapes.size(); ++i) {
+    ASSERT_EQ(result["shapes"][i]["levels"].size(), direct.shapes[i].levels.size());
+    for (std::size_t l = 0; l < direct.shapes[i].levels.size(); ++l)
+      EXPECT_EQ(result["shapes"][i]["levels"][l]["triangles"],
+                direct.shapes[i].levels[l].triangles);
+    EXPECT_EQ(result["shapes"][i]["ranges"].get<std::vector<float>>(), direct.shapes[i].ranges);
+  }
+  ASSERT_EQ(result["triangles_by_distance"].size(), direct.triangles_by_distance.size());
+  std::size_t levels = 0;
+  for (const auto& shape : direct.shapes) levels += shape.levels.size();
+  ASSERT_GT(levels, direct.shapes.size()) << "the rocket should get simplified levels";
+  // The geometry of the result: one LOD instance per LOD node drawn, each
+  // level's triangles as the statistics count them.
+  auto geo = client_->Get(("/api/geometry?which=output&path=" + query(kRocket)).c_str());
+  ASSERT_TRUE(geo);
+  ASSERT_EQ(geo->status, 200) << geo->body;
+  const json g = json::parse(geo->body);
+  ASSERT_EQ(g["lods"].size(), direct.shapes.size());
+  std::size_t level0 = 0;
+  for (const auto& lod : g["lods"])
+    for (const auto& m : lod["levels"][0]) level0 += m["indices"].size() / 3;
+  EXPECT_EQ(level0, result["triangles"].get<std::size_t>());
+
+  // Save into the allowed scratch folder; the written file is the LOD scene.
+  const fs::path out = dir_ / "rocket_lod.wrl";
+  json saved = post("/api/save", {{"path", kRocket}, {"output", out.string()}});
+  EXPECT_EQ(saved["written"], out.string());
+  ASSERT_TRUE(fs::exists(out));
+  std::size_t lods = 0;
+  scene::traverse(vrml1::read_vrml1_file(out.string()).scene, [&](const scene::ShapeVisit& v) {
+    lods += std::count_if(v.path.begin(), v.path.end(), [](auto* n) { return n->type == "LOD"; });
+  });
+  EXPECT_EQ(lods, direct.shapes.size());
+}
+
+TEST_F(StudioServerTest, BadOptionsAreRefusedWithTheOptionNamed) {
+  json e = post("/api/lod", {{"path", kRocket}, {"options", {{"error-range", "ten"}}}}, 400);
+  EXPECT_NE(e["error"].get<std::string>().find("error-range"), std::string::npos) << e;
+  e = post("/api/lod", {{"path", kRocket}, {"options", {{"no-such-option", 1}}}}, 400);
+  EXPECT_NE(e["error"].get<std::string>().find("no-such-option"), std::string::npos) << e;
+}
+
+TEST_F(StudioServerTest, PathsOutsideTheGivenFoldersAreRefused) {
+  json e = post("/api/open", {{"path", "/etc/passwd"}}, 403);
+  EXPECT_NE(e["error"].get<std::string>().find("refused"), std::string::npos) << e;
+  // Leaving an allowed folder with .. is the same path outside it.
+  post("/api/open", {{"path", (dir_ / "../../etc/passwd").string()}}, 403);
+  get("/api/tree?path=%2Fetc%2Fpasswd", 403);
+  ASSERT_EQ(run_lod((dir_ / "scene.wrl").string(), {{"levels", 3}})["state"], "done");
+  const fs::path outside = fs::temp_directory_path() / "studio_test_outside.wrl";
+  post("/api/save", {{"path", (dir_ / "scene.wrl").string()}, {"output", outside.string()}}, 403);
+  EXPECT_FALSE(fs::exists(outside));
+  // The page's files: no request leaves the page's folder.
+  for (const char* url : {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/%2e%2e/etc/passwd",
+                          "/..%2f..%2f..%2f..%2fetc%2fpasswd", "/three/../../../etc/passwd"}) {
+    auto res = client_->Get(url);
+    if (!res) continue;  // a refused connection serves nothing either
+    EXPECT_NE(res->status, 200) << url;
+    EXPECT_EQ(res->body.find("root:"), std::string::npos) << url;
+  }
+  auto page = client_->Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("lodforge studio"), std::string::npos);
+}
+
+TEST(StudioServer, ListensOnLoopbackByDefault) {
+  EXPECT_EQ(StudioOptions{}.host, "127.0.0.1");
+  EXPECT_THROW(StudioServer(StudioOptions{.scenes = {"/nonexistent/x.wrl"}}), DataError);
+}
+
+}  // namespace
+}  // namespace lodforge::studio

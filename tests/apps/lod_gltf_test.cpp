@@ -110,6 +110,47 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(LodGltf);
 
 // The torus (one mesh, no skin): levels exist, and a JSON .gltf is written
 // for a .gltf name or --format gltf.
+// VRML 1.0 scenes written as glTF: valid for the validator, each LOD node an
+// MSFT_lod node with its screen coverages, level 0 drawing what the input
+// draws. The example, and corpus scenes with textures, inline images and
+// primitives.
+using LodVrml1ToGltf = LodGltf;
+TEST_F(LodVrml1ToGltf, ScenesBecomeValidGltfWithMsftLod) {
+  const fs::path data = fs::path(LODFORGE_SHARED_DATA) / "vrml1";
+  std::vector<std::string> inputs = {(kRepository / "examples/scene.wrl").string(),
+                                     (kRepository / "examples/primitives.wrl").string()};
+  for (const char* f : {"castle-engine__demo-models/shadow_maps/spider_stand_without_shadow.wrl",
+                        "coin3d__coin/models/vrml1.0/shapes/cone.wrl",
+                        "michal-josef-spacek__VRML/examples/std1coo3.wrl"})
+    if (fs::exists(data / f)) inputs.push_back((data / f).string());
+  for (const std::string& input : inputs) {
+    const std::string output = path("out.glb");
+    const CommandResult r = run_lodforge("lod '" + input + "' -o " + output + " -q");
+    ASSERT_EQ(r.exit_code, 0) << input << ": " << r.err;
+    const nlohmann::json report = validate(output);
+    EXPECT_EQ(report["errors"], 0) << input << ": " << report.dump(1);
+    const auto model = gltf::read_gltf_file(output).scene.model;
+    // Every LOD node switches: coverages in extras, one per MSFT_lod level
+    // and one where its empty last level begins.
+    std::size_t switching = 0;
+    for (const auto& node : model.nodes) {
+      if (!node.extras.Has("MSFT_screencoverage")) continue;
+      ++switching;
+      const std::size_t levels = node.extensions.count("MSFT_lod")
+                                     ? node.extensions.at("MSFT_lod").Get("ids").ArrayLen()
+                                     : 0;
+      EXPECT_EQ(node.extras.Get("MSFT_screencoverage").ArrayLen(), levels + 1) << input;
+    }
+    EXPECT_GT(switching, 0u) << input;
+    // Level 0 draws what the VRML output's level 0 draws.
+    const std::string vrml = path("out.wrl");
+    ASSERT_EQ(run_lodforge("lod '" + input + "' -o " + vrml + " -q").exit_code, 0);
+    const auto in = nlohmann::json::parse(run_lodforge("info --json " + vrml).out);
+    const auto out = nlohmann::json::parse(run_lodforge("info --json " + output).out);
+    EXPECT_EQ(in["triangles"], out["triangles"]) << input;
+  }
+}
+
 TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
   const std::string input = std::string(LODFORGE_SHARED_DATA) +
                             "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";

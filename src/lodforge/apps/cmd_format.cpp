@@ -23,8 +23,8 @@ void add_format_command(CLI::App& app, Runner& run) {
     vrml1::WriteOptions write;
   };
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd =
-      app.add_subcommand("format", "Read a VRML 1.0 or Inventor scene and write it back formatted");
+  CLI::App* cmd = app.add_subcommand(
+      "format", "Read a VRML 1.0 or Inventor scene and write it back formatted, or as glTF");
   cmd->add_option("SCENE", s->input,
                   "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
       ->required();

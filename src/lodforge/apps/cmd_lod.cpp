@@ -374,8 +374,9 @@ int run_lod(const Settings& s) {
 
 void add_lod_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
-  CLI::App* cmd =
-      app.add_subcommand("lod", "Replace every shape of VRML 1.0 or Inventor scenes by LOD nodes");
+  CLI::App* cmd = app.add_subcommand(
+      "lod",
+      "Replace every shape of scenes (VRML 1.0, Inventor, VRML97, X3D classic, glTF) by LOD nodes");
   cmd->add_option("SCENE", s->inputs,
                   "VRML 1.0 or Inventor files (- = stdin); Inventor is written as Inventor 2.1");
   auto* out = cmd->add_option("-o,--output", s->output,

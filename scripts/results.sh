@@ -35,7 +35,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-all_sections=(compare clustering octree simplify reader inventor lod outcome scale out_of_core qem batches)
+all_sections=(compare clustering octree simplify reader inventor lod outcome scale out_of_core qem batches formats)
 [ ${#chosen[@]} -gt 0 ] || chosen=("${all_sections[@]}")
 for s in "${chosen[@]}"; do
   case " ${all_sections[*]} " in
@@ -204,6 +204,13 @@ section() {
     batches)  # a sharded batch through GNU parallel equals one process
       targets=(test_apps)
       commands=("$B/tests/test_apps --gtest_filter='Batch.*:SlurmExample.*'") ;;
+    formats)  # VRML97 / X3D and glTF through lod, judged by their readers
+      targets=(test_apps test_vrml97 test_gltf lodforge_cli)
+      commands=(
+        "$B/tests/test_apps --gtest_filter='Corpus/LodGltf.*:LodVrml1ToGltf.*:LodVrml97Corpus.*'"
+        "$B/tests/test_vrml97"
+        "$B/tests/test_gltf"
+      ) ;;
   esac
 }
 

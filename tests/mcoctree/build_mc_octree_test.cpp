@@ -121,8 +121,7 @@ TEST(BuildMcOctree, BadInput) {
   for (auto& p : point.positions) p = {1, 2, 3};
   EXPECT_THROW(build_mc_octree(point), DataError);
   EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1}), DataError);
-  EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1001}),
-               DataError);
+  EXPECT_THROW(build_mc_octree(test::make_tetrahedron(), {.resolution = 1001}), DataError);
 }
 
 // Data the build cannot use is a DataError that says what is wrong.

@@ -45,8 +45,7 @@ std::array<float, 4> quaternion(const Vec3& u, const Vec3& v, const Vec3& w) {
 }  // namespace
 
 std::vector<RangeScan> scan_mesh(const TriangleMesh& mesh, const ScanOptions& options) {
-  if (options.views < 1 || options.views > 1000)
-    throw DataError("scan: views must be in 1..1000");
+  if (options.views < 1 || options.views > 1000) throw DataError("scan: views must be in 1..1000");
   if (options.resolution < 4 || options.resolution > 4096)
     throw DataError("scan: resolution must be in 4..4096");
   if (mesh.triangles.empty()) throw DataError("scan: the mesh has no triangles");

@@ -186,11 +186,11 @@ std::vector<std::string> split_lines(const std::string& text) {
 tinygltf::FsCallbacks no_files() {
   return {.FileExists = [](const std::string&, void*) { return false; },
           .ExpandFilePath = [](const std::string& path, void*) { return path; },
-          .ReadWholeFile = [](std::vector<unsigned char>*, std::string* err,
-                              const std::string& path, void*) {
-            if (err) *err += "external file " + path + " refused: no folder to read it from\n";
-            return false;
-          },
+          .ReadWholeFile =
+              [](std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+                if (err) *err += "external file " + path + " refused: no folder to read it from\n";
+                return false;
+              },
           .WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&,
                                void*) { return false; },
           .user_data = nullptr};

@@ -194,7 +194,7 @@ int sheet_columns(std::size_t n) {
 int render_levels(const std::string& input, const std::string& output, const RenderOptions& options,
                   const SceneReadSettings& read, TextureLoader& loader) {
   const scene::Scene scene = read_lod_scene(input, "--levels", read);
-  const std::size_t count = lod_level_count(scene);
+  const std::size_t count = scene::lod_level_count(scene);
   std::vector<Drawing> levels;
   for (std::size_t k = 0; k < count; ++k)
     levels.push_back(

@@ -83,19 +83,4 @@ scene::FlatScene load_drawing(const std::string& path, int lod_level,
   return load(path, lod_level, read, true);
 }
 
-std::size_t lod_level_count(const scene::Scene& scene) {
-  std::size_t count = 1;
-  std::unordered_set<const scene::Node*> seen;
-  std::vector<const scene::Node*> stack;
-  for (const auto& r : scene.roots) stack.push_back(r.get());
-  while (!stack.empty()) {
-    const scene::Node* n = stack.back();
-    stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (n->type == "LOD" || n->type == "LevelOfDetail") count = std::max(count, n->children.size());
-    for (const auto& c : n->children) stack.push_back(c.get());
-  }
-  return count;
-}
-
 }  // namespace lodforge::apps

@@ -35,8 +35,4 @@ TriangleMesh load_geometry(const std::string& path, int lod_level = 0,
 scene::FlatScene load_drawing(const std::string& path, int lod_level = 0,
                               const SceneReadSettings& read = {});
 
-/// The number of LOD levels of a scene: the most children of any LOD (or
-/// Inventor LevelOfDetail) node (1 if there is none).
-std::size_t lod_level_count(const scene::Scene& scene);
-
 }  // namespace lodforge::apps

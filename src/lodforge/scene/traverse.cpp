@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "lodforge/core/error.h"
 #include "lodforge/scene/schema.h"
@@ -375,6 +376,21 @@ void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& 
   TraversalState state;
   state.derived = w.arena();
   for (std::size_t i = 0; i < scene.roots.size(); ++i) w.node(*scene.roots[i], state, i);
+}
+
+std::size_t lod_level_count(const Scene& scene) {
+  std::size_t count = 1;
+  std::unordered_set<const Node*> seen;
+  std::vector<const Node*> stack;
+  for (const auto& r : scene.roots) stack.push_back(r.get());
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (n->type == "LOD" || n->type == "LevelOfDetail") count = std::max(count, n->children.size());
+    for (const auto& c : n->children) stack.push_back(c.get());
+  }
+  return count;
 }
 
 }  // namespace lodforge::scene

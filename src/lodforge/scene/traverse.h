@@ -100,4 +100,8 @@ Mat4 local_transform(const Node& node);
 void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& visit,
               const TraverseOptions& options = {});
 
+/// The number of LOD levels of a scene: the most children of any LOD (or
+/// Inventor LevelOfDetail) node (1 if there is none).
+std::size_t lod_level_count(const Scene& scene);
+
 }  // namespace lodforge::scene

@@ -305,25 +305,9 @@ struct Collected {
   const Node* camera = nullptr;
 };
 
-std::size_t most_lod_children(const scene::Scene& s) {
-  std::size_t most = 1;
-  std::vector<const Node*> stack;
-  for (const auto& r : s.roots) stack.push_back(r.get());
-  std::map<const Node*, bool> seen;
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (seen[n]) continue;
-    seen[n] = true;
-    if (is_lod_node(*n)) most = std::max(most, n->children.size());
-    for (const auto& c : n->children) stack.push_back(c.get());
-  }
-  return most;
-}
-
 Collected collect(const scene::Scene& s, Log& log) {
   Collected out;
-  const std::size_t levels = most_lod_children(s);
+  const std::size_t levels = scene::lod_level_count(s);
   for (std::size_t k = 0; k < levels; ++k) {
     scene::traverse(s,
                     [&](const scene::ShapeVisit& v) {

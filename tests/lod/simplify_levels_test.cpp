@@ -51,7 +51,7 @@ TEST(SimplifyLevels, OnlyTheKeptLevelsAreMeasuredInFull) {
   };
   const auto levels = simplify_levels(mesh, options);
   ASSERT_EQ(levels.size(), all.size());
-  EXPECT_GE(asked, 2);
+  EXPECT_EQ(asked, 1);  // one choice, on the estimates
   const auto kept = options.keep(levels);
   ASSERT_FALSE(kept.empty());
   std::size_t full = 0;
@@ -62,9 +62,9 @@ TEST(SimplifyLevels, OnlyTheKeptLevelsAreMeasuredInFull) {
       EXPECT_EQ(levels[i].error, all[i].error) << i;
     } else {
       EXPECT_GT(levels[i].error, 0.0) << i;  // estimated
-      // Calibrated: of the size of the full measurement.
-      EXPECT_LT(levels[i].error, 3 * all[i].error) << i;
-      EXPECT_GT(levels[i].error, 0.5 * all[i].error) << i;
+      // One direction, thinly: of the size of the full measurement.
+      EXPECT_LT(levels[i].error, 1.25 * all[i].error) << i;
+      EXPECT_GT(levels[i].error, 0.25 * all[i].error) << i;
     }
   }
   for (std::size_t i : kept) EXPECT_TRUE(levels[i].measured_in_full) << i;

@@ -52,6 +52,7 @@ ChosenLevels choose_levels(const TriangleMesh& mesh, double radius, const Choose
   c.threads = o.threads;
   c.progress = o.progress;
   const bool manual = o.quality >= 2;
+  bool limited = false;  // the level limit cut the levels chosen on the estimates
   if (manual) {
     c.max_levels = o.max_simplified;
     c.triangle_targets = halving_targets(mesh, o.quality);
@@ -60,8 +61,12 @@ ChosenLevels choose_levels(const TriangleMesh& mesh, double radius, const Choose
     // Only the candidates worth showing need their error measured in full.
     c.keep = [&](std::span<const MeasuredLevel> candidates) {
       std::vector<std::size_t> kept;
-      for (const SpacedLevel& s : space(candidates, mesh, radius, o).levels)
-        if (!o.max_simplified || kept.size() < o.max_simplified) kept.push_back(s.candidate);
+      for (const SpacedLevel& s : space(candidates, mesh, radius, o).levels) {
+        if (!o.max_simplified || kept.size() < o.max_simplified)
+          kept.push_back(s.candidate);
+        else
+          limited = true;
+      }
       return kept;
     };
   }
@@ -79,12 +84,16 @@ ChosenLevels choose_levels(const TriangleMesh& mesh, double radius, const Choose
     out.stop_reason = end;
     return out;
   }
-  const SpacedLevels spaced = space(levels, mesh, radius, o);
+  // Only levels measured in full are written.
+  std::vector<MeasuredLevel> measured;
+  for (auto& l : levels)
+    if (l.measured_in_full) measured.push_back(std::move(l));
+  const SpacedLevels spaced = space(measured, mesh, radius, o);
   for (const SpacedLevel& s : spaced.levels) {
     if (o.max_simplified && out.levels.size() == o.max_simplified) break;
-    out.levels.push_back({std::move(levels[s.candidate]), s.switch_error});
+    out.levels.push_back({std::move(measured[s.candidate]), s.switch_error});
   }
-  if (out.levels.size() < spaced.levels.size())
+  if (limited || out.levels.size() < spaced.levels.size())
     out.stop_reason = fmt::format("level limit ({} levels)", o.max_simplified + 2);
   else if (spaced.vanished)
     out.stop_reason = fmt::format(

@@ -24,7 +24,7 @@
 namespace lodforge {
 namespace {
 
-// estimate() samples and refines this many times less than distance_to_reference().
+// estimate() samples and refines this many times less than hausdorff().
 constexpr std::size_t kEstimateThinning = 8;
 
 // A surface's samples in Morton order of their positions: consecutive
@@ -186,12 +186,22 @@ double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
 struct DeviationMeter::Impl {
   DeviationOptions options;
   Side reference;
+  // Every kEstimateThinning-th of the reference's samples (still in Morton
+  // order and spread over the whole surface), for estimate().
+  Side thin_reference;
 };
 
 DeviationMeter::DeviationMeter(const TriangleMesh& reference, const DeviationOptions& options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->reference = make_side(reference, options.samples, options.seed);
+  Side& thin = impl_->thin_reference;
+  thin.mesh = &reference;
+  const Samples& all = impl_->reference.samples;
+  for (std::size_t i = 0; i < all.size(); i += kEstimateThinning) {
+    thin.samples.positions.push_back(all.positions[i]);
+    thin.samples.triangles.push_back(all.triangles[i]);
+  }
 }
 
 DeviationMeter::~DeviationMeter() = default;
@@ -237,16 +247,13 @@ double DeviationMeter::distance_to_reference(const TriangleMesh& level,
                    level_to_reference(face_map, level, reference));
 }
 
-double DeviationMeter::estimate(const TriangleMesh& level,
-                                std::span<const std::uint32_t> face_map) const {
-  const TriangleMesh& reference = *impl_->reference.mesh;
-  if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
-  const DeviationOptions& o = impl_->options;
-  const Side other =
-      make_side(level, std::max<std::size_t>(o.samples / kEstimateThinning, 1), o.seed, false);
-  return one_sided(other, *impl_->reference.bvh,
-                   std::max<std::size_t>(o.refine / kEstimateThinning, 1),
-                   level_to_reference(face_map, level, reference));
+double DeviationMeter::estimate(const TriangleMesh& level) const {
+  if (impl_->reference.mesh->triangles.empty() || level.triangles.empty()) return 0.0;
+  // Built in Morton order: several times faster to build than by SAH, for
+  // the few queries an estimate makes.
+  const TriangleBvh to(level, {.build = BvhBuild::kMorton});
+  return one_sided(impl_->thin_reference, to,
+                   std::max<std::size_t>(impl_->options.refine / kEstimateThinning, 1), {});
 }
 
 }  // namespace lodforge

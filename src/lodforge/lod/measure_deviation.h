@@ -46,11 +46,11 @@ class DeviationMeter {
                                std::span<const std::uint32_t> face_map = {}) const;
 
   /// A quick estimate of hausdorff() for choosing among candidate levels:
-  /// distance_to_reference() with an eighth of the samples and of the
-  /// refinement, several times cheaper. Not a bound: it sees one direction,
-  /// more thinly, and is usually below hausdorff() by a factor that varies
-  /// slowly along a chain of levels.
-  double estimate(const TriangleMesh& level, std::span<const std::uint32_t> face_map = {}) const;
+  /// the one-sided distance from every eighth of the reference's samples to
+  /// `level`, refined an eighth as much. Not a bound: it sees one direction,
+  /// thinly; it is the direction that holds the maximum on coarse levels (a
+  /// cut-off ear, a flattened ridge), and costs no sampling of `level`.
+  double estimate(const TriangleMesh& level) const;
 
  private:
   struct Impl;

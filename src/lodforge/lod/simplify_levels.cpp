@@ -26,50 +26,10 @@ void measure(std::vector<MeasuredLevel>& levels, std::span<const std::size_t> wh
   tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) {
     MeasuredLevel& m = levels[which[k]];
     m.error = kErrorMargin * (in_full ? meter.hausdorff(m.level.mesh, m.level.face_map)
-                                      : meter.estimate(m.level.mesh, m.level.face_map));
+                                      : meter.estimate(m.level.mesh));
     m.measured_in_full = in_full;
     progress.add(units);
   });
-}
-
-// A level not measured in full is compared with those that are at this
-// factor above its calibrated estimate: a level measured in full is kept
-// unless one not measured looks clearly better, so the search settles after
-// few full measurements.
-constexpr double kUnmeasuredPenalty = 1.1;
-
-// How far an estimate is taken to fall short at most: errors near float
-// noise (a level that only removed coplanar triangles) give ratios that say
-// nothing about the levels beside them.
-const double kMaxLogShortfall = std::log(2.0);
-
-// The estimate falls short of the full measurement by a factor that changes
-// slowly along the chain. Each level not measured in full takes its estimate
-// times that factor at the nearest levels measured in full on either side
-// (interpolated in log by position, at most 2), and the penalty.
-void calibrate(std::vector<MeasuredLevel>& levels, std::span<const std::size_t> pending,
-               std::span<const double> estimated) {
-  std::vector<std::size_t> full;
-  for (std::size_t i : pending)
-    if (levels[i].measured_in_full && estimated[i] > 0 && levels[i].error > 0) full.push_back(i);
-  if (full.empty()) return;
-  auto log_ratio = [&](std::size_t i) { return std::log(levels[i].error / estimated[i]); };
-  for (std::size_t i : pending) {
-    if (levels[i].measured_in_full) continue;
-    const auto above = std::lower_bound(full.begin(), full.end(), i);
-    double r = 0;
-    if (above == full.begin()) {
-      r = log_ratio(*above);
-    } else if (above == full.end()) {
-      r = log_ratio(full.back());
-    } else {
-      const std::size_t lo = *(above - 1), hi = *above;
-      const double t = double(i - lo) / double(hi - lo);
-      r = (1 - t) * log_ratio(lo) + t * log_ratio(hi);
-    }
-    levels[i].error =
-        estimated[i] * std::exp(std::clamp(r, 0.0, kMaxLogShortfall)) * kUnmeasuredPenalty;
-  }
 }
 
 }  // namespace
@@ -106,22 +66,17 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
     measure(out, pending, full, true, progress, kFull);
     return out;
   }
+  // The choice is made once, on the estimates, and only its levels are
+  // measured in full: choosing again on the full figures would measure
+  // further levels, each as dear as the first ones, for little gain.
   measure(out, pending, full, false, progress, 1);
-  std::vector<double> estimated(out.size(), 0.0);
-  for (std::size_t i : pending) estimated[i] = out[i].error;
-  std::uint64_t done = pending.size();
-  for (;;) {
-    calibrate(out, pending, estimated);
-    std::vector<std::size_t> unmeasured;
-    for (std::size_t i : options.keep(out))
-      if (i < out.size() && !out[i].measured_in_full) unmeasured.push_back(i);
-    if (unmeasured.empty()) break;
-    // Each full measurement as its share of what is left of the total.
-    const std::uint64_t units = std::min<std::uint64_t>(kFull, (total - done) / unmeasured.size());
-    measure(out, unmeasured, full, true, progress, units);
-    done += units * unmeasured.size();
-  }
-  progress.add(total - done);
+  std::vector<std::size_t> kept;
+  for (std::size_t i : options.keep(out))
+    if (i < out.size() && !out[i].measured_in_full) kept.push_back(i);
+  const std::uint64_t units =
+      kept.empty() ? 0 : std::min<std::uint64_t>(kFull, (total - pending.size()) / kept.size());
+  measure(out, kept, full, true, progress, units);
+  progress.add(total - pending.size() - units * kept.size());
   return out;
 }
 

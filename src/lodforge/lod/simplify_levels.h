@@ -23,12 +23,11 @@ struct LevelChainOptions {
   std::vector<std::size_t> triangle_targets;
   std::size_t measure_samples = 0;  ///< compare_meshes samples (0: measure_samples_for)
   int threads = 0;                  ///< for the measurements (0: all cores)
-  /// When set, only the levels it keeps need a full measurement: it is given
-  /// every level with its error (measured in full, or a calibrated estimate,
-  /// see MeasuredLevel::measured_in_full) and returns the indices of
-  /// the levels it would keep; those are measured in full and it is asked
-  /// again, until it keeps only levels measured in full. Unset: every level
-  /// is measured in full.
+  /// When set, only the levels it keeps are measured in full: it is given
+  /// every level with its estimated error (DeviationMeter::estimate) and
+  /// returns the indices of the levels it would keep; those are measured in
+  /// full, the others keep their estimate (MeasuredLevel::measured_in_full
+  /// false) and must not be written. Unset: every level is measured in full.
   std::function<std::vector<std::size_t>(std::span<const struct MeasuredLevel> levels)> keep;
   /// Stage "measure": levels measured of the chain's levels, reported once
   /// the chain is made (0 of n) and after each level (from worker threads).
@@ -48,9 +47,7 @@ struct MeasuredLevel {
   /// the simplifier's own bound.
   double error = 0;
   /// false: a level that LevelChainOptions::keep did not keep, whose `error`
-  /// is DeviationMeter::estimate scaled by how far the estimates of the
-  /// nearest levels measured in full fell short of their full measurement
-  /// (and by 1.1, so that levels measured in full are preferred).
+  /// is kErrorMargin x DeviationMeter::estimate, no bound.
   bool measured_in_full = true;
 };
 

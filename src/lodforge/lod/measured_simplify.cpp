@@ -18,7 +18,7 @@
 namespace lodforge {
 namespace {
 
-/// Area samples of one measurement at most (the search makes dozens).
+/// measure_samples_for's `most` here: the search makes dozens of measurements.
 constexpr std::size_t kMaxSamples = 100000;
 
 SimplifyResult run_to_count(const TriangleMesh& mesh, SimplifyMethod method, std::size_t count) {
@@ -63,9 +63,8 @@ class Search {
   Search(const TriangleMesh& mesh, const MeasuredSimplifyOptions& o)
       : mesh_(mesh),
         options_(o),
-        meter_(mesh, {.samples = o.samples ? o.samples
-                                           : std::min(measure_samples_for(mesh.triangle_count(), 0),
-                                                      kMaxSamples)}) {}
+        meter_(mesh, {.samples = measure_samples_for(mesh.triangle_count(), o.samples, o.method,
+                                                     kMaxSamples)}) {}
 
   MeasuredSimplifyResult run() {
     const std::size_t n = mesh_.triangle_count();

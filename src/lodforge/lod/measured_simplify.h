@@ -32,8 +32,8 @@ struct MeasuredSimplifyOptions {
   /// the measured bound); both given: the first limit met ends it. `{}`
   /// keeps the mesh as it is.
   SimplifyTarget target;
-  /// Area samples of each measurement (0: measure_samples_for the input, at
-  /// most 100 000).
+  /// Area samples of each measurement (0: measure_samples_for the input and
+  /// the method, at most 100 000, four times that for decimation).
   std::size_t samples = 0;
   /// Stages as the search runs (core/progress.h): a count target "simplify"
   /// (the run, then its measurement); an error budget "chain" (its levels

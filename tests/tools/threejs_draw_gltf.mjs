@@ -9,8 +9,9 @@
 //   far:    the last step, beyond the farthest switch distance.
 // three.js ignores MSFT_lod, so the page builds a THREE.LOD per node that
 // carries it, as an engine would: level 0 is the node, level k the node
-// MSFT_lod names, level k taking over where the node's world bounding
-// sphere covers MSFT_screencoverage[k - 1] of the screen height
+// MSFT_lod names, level k taking over where the node's bounding sphere (as
+// Babylon.js takes it: the half diagonal of the mesh's box times the node's
+// largest world scale) covers MSFT_screencoverage[k - 1] of the screen height
 // (coverage = r / (d·tan(fov/2)), the rule the glTF writer states); a
 // coverage beyond the last level is where the node vanishes.
 //   node threejs_draw_gltf.mjs [--chromium PATH] FILE...   (JSON line per file)
@@ -71,7 +72,6 @@ async function buildLods(gltf) {
     if (!ext) continue;
     const coverage = (node.extras && node.extras.MSFT_screencoverage) || [];
     const ids = ext.ids || [];
-    const sphere = new THREE.Box3().setFromObject(object).getBoundingSphere(new THREE.Sphere());
     const lod = new THREE.LOD();
     lod.name = (node.name || 'node' + index) + ' (LOD)';
     lod.position.copy(object.position);
@@ -85,7 +85,16 @@ async function buildLods(gltf) {
       const a = parser.associations.get(c);
       if (a && a.nodes !== undefined && json.nodes[index].children?.includes(a.nodes)) lod.add(c);
     }
-    const distances = coverage.map((c) => (c > 0 ? sphere.radius / (c * tanHalf) : Infinity));
+    // The radius Babylon.js gives the mesh: half the diagonal of its
+    // primitives' box, times the node's largest world scale.
+    const box = new THREE.Box3();
+    object.traverse((o) => {
+      if (!o.geometry) return;
+      o.geometry.computeBoundingBox();
+      box.union(o.geometry.boundingBox);
+    });
+    const radius = box.getSize(new THREE.Vector3()).length() / 2 * object.matrixWorld.getMaxScaleOnAxis();
+    const distances = coverage.map((c) => (c > 0 ? radius / (c * tanHalf) : Infinity));
     object.position.set(0, 0, 0); object.quaternion.identity(); object.scale.set(1, 1, 1);
     lod.addLevel(object, 0);
     for (let k = 0; k < ids.length; ++k) {

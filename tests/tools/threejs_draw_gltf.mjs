@@ -21,7 +21,9 @@ import { createServer } from 'node:http';
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import puppeteer from 'puppeteer-core';
+import { ChromiumCannotStart, launchChromium } from './launch_chromium.mjs';
+
+export { ChromiumCannotStart };
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const three = path.join(here, '..', '..', 'node_modules', 'three');
@@ -103,7 +105,13 @@ async function buildLods(gltf) {
       lod.addLevel(level, distances[k] ?? Infinity);
     }
     if (distances.length > ids.length) lod.addLevel(new THREE.Object3D(), distances[ids.length]);
-    lods.push({ lod, name: node.name || 'node ' + index, levels: ids.length + 1, distances });
+    // THREE.LOD sorts its levels by distance: the file's order is checked here.
+    let order = '';
+    if (coverage.length !== ids.length && coverage.length !== ids.length + 1)
+      order = coverage.length + ' coverages for ' + (ids.length + 1) + ' levels';
+    else if (coverage.some((c, k) => k > 0 && !(c < coverage[k - 1])))
+      order = 'coverages not decreasing: ' + coverage;
+    lods.push({ lod, name: node.name || 'node ' + index, levels: ids.length + 1, distances, order });
   }
   return lods;
 }
@@ -127,6 +135,7 @@ window.drawGltf = async (url) => {
   const lods = await buildLods(gltf);
   result.lodNodes = lods.map((l) => l.name);
   result.lodLevels = lods.map((l) => l.levels);
+  result.lodOrderErrors = lods.filter((l) => l.order).map((l) => l.name + ': ' + l.order);
   scene.updateMatrixWorld(true);
   const sphere = new THREE.Box3().setFromObject(gltf.scene).getBoundingSphere(new THREE.Sphere());
   const radius = sphere.radius > 0 && isFinite(sphere.radius) ? sphere.radius : 1;
@@ -184,21 +193,11 @@ function serve() {
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
 }
 
-export class ChromiumCannotStart extends Error {}
-
 // One browser with the page loaded: `draw(file)` gives {file, loaded, error,
 // consoleErrors, warnings, covered, coveredFull, full, framed, steps, far,
-// lodNodes, lodLevels}; `close()` ends it.
-export async function openDrawer({ chromium = '/usr/bin/chromium' } = {}) {
-  let browser;
-  try {
-    browser = await puppeteer.launch({
-      executablePath: chromium, headless: true,
-      args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'],
-    });
-  } catch (e) {
-    throw new ChromiumCannotStart(`chromium (${chromium}) cannot start: ${e.message.split('\n')[0]}`);
-  }
+// lodNodes, lodLevels, lodOrderErrors}; `close()` ends it.
+export async function openDrawer({ chromium } = {}) {
+  const browser = await launchChromium(chromium);
   const server = await serve();
   const close = async () => { await browser.close(); server.close(); };
   try {

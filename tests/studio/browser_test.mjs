@@ -4,7 +4,7 @@
 // moves out. Usage: node browser_test.mjs LODFORGE_EXE SCENE [CHROMIUM]
 // Exit 0 pass, 1 fail, 77 skipped (Chromium cannot start).
 import { spawn } from 'node:child_process';
-import puppeteer from 'puppeteer-core';
+import { launchChromium } from '../tools/launch_chromium.mjs';
 
 const [exe, scenePath, chromium = '/usr/bin/chromium'] = process.argv.slice(2);
 const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
@@ -23,12 +23,9 @@ const url = await new Promise((resolve, reject) => {
 
 let browser;
 try {
-  browser = await puppeteer.launch({
-    executablePath: chromium, headless: true,
-    args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'],
-  });
+  browser = await launchChromium(chromium);
 } catch (e) {
-  console.log(`SKIP: chromium cannot start (${e.message.split('\n')[0]})`);
+  console.log(`SKIP: ${e.message}`);
   server.kill();
   process.exit(77);
 }

@@ -133,6 +133,29 @@ try {
   }
   await page.evaluate(() => window.studio.selectLines([]));
 
+  // Side by side from far out: the left half (level 0) draws the full
+  // scene, the right half what the LODs choose, so the halves differ.
+  await page.evaluate((d) => window.studio.viewFrom(d), max * 0.5);
+  await page.click('#side-by-side');
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const halves = await page.evaluate(() => {
+    const s = window.studio, c = s.renderer.domElement;
+    s.renderSideBySide(c.clientWidth, c.clientHeight);
+    const gl = s.renderer.getContext();
+    const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight, half = Math.floor(w / 2);
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let differ = 0;
+    for (let y = 0; y < h; ++y) for (let x = 0; x < half; ++x) {
+      const a = (y * w + x) * 4, b = (y * w + x + half) * 4;
+      if (Math.abs(px[a] - px[b]) + Math.abs(px[a + 1] - px[b + 1]) + Math.abs(px[a + 2] - px[b + 2]) > 12) ++differ;
+    }
+    return { differ: differ / (half * h), triangles: s.renderer.info.render.triangles };
+  });
+  console.log(`side by side far out: ${(halves.differ * 100).toFixed(2)} % of the pixels differ between the halves`);
+  if (!(halves.differ > 0)) fail('side by side: level 0 and the LOD draw the same pixels far out');
+  await page.click('#side-by-side');
+
   if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
     await page.click('#colour-levels');

@@ -374,13 +374,36 @@ function pick(x, y) {
 }
 state.pick = pick;
 
+// Level 0 on the left (every LOD held at its first child), what the LODs
+// draw from this eye on the right, same camera: popping shows as a
+// difference between the halves. The right half renders last, so the
+// triangles drawn are the LODs'.
+function renderSideBySide(w, h) {
+  const half = Math.floor(w / 2);
+  camera.aspect = half / Math.max(1, h); camera.updateProjectionMatrix();
+  renderer.setScissorTest(true);
+  for (const l of state.lods) {
+    l.lod.autoUpdate = false;
+    l.lod.levels.forEach((level, i) => { level.object.visible = i === 0; });
+  }
+  renderer.setViewport(0, 0, half, h); renderer.setScissor(0, 0, half, h);
+  renderer.render(scene, camera);
+  for (const l of state.lods) l.lod.autoUpdate = true;
+  renderer.setViewport(half, 0, w - half, h); renderer.setScissor(half, 0, w - half, h);
+  renderer.render(scene, camera);
+  renderer.setScissorTest(false); renderer.setViewport(0, 0, w, h);
+  camera.aspect = w / Math.max(1, h); camera.updateProjectionMatrix();
+}
+state.renderSideBySide = renderSideBySide;
+
 function frame() {
   const c = renderer.domElement;
   if (c.width !== c.clientWidth || c.height !== c.clientHeight) {
     renderer.setSize(c.clientWidth, c.clientHeight, false);
     camera.aspect = c.clientWidth / Math.max(1, c.clientHeight); camera.updateProjectionMatrix();
   }
-  renderer.render(scene, camera);
+  if ($('side-by-side').checked) renderSideBySide(c.clientWidth, c.clientHeight);
+  else renderer.render(scene, camera);
   state.trianglesDrawn = renderer.info.render.triangles;
   const d = camera.position.distanceTo(controls.target);
   state.distance = d;

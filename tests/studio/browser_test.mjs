@@ -36,8 +36,8 @@ try {
   const errors = [];
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(e.message));
-  await page.goto(url, { waitUntil: 'load' });
-  await page.waitForFunction(() => window.studio && window.studio.lods && document.querySelector('#files tbody tr'), { timeout: 30000 });
+  await page.goto(url, { waitUntil: 'load', timeout: 180000 });
+  await page.waitForFunction(() => window.studio && window.studio.lods && document.querySelector('#files tbody tr'), { timeout: 180000 });
   const listed = await page.$eval('#files tbody', (t) => t.textContent);
   if (!listed.includes(scenePath.split('/').pop())) fail(`the file list lacks the scene: ${listed}`);
 
@@ -91,6 +91,68 @@ try {
   console.log(`triangles drawn at ${distances.map((d) => d.toPrecision(4)).join(', ')}: ${counts.join(', ')}`);
   for (let i = 1; i < counts.length; ++i) if (counts[i] > counts[i - 1]) fail(`more triangles farther out: ${counts}`);
   if (!(counts.at(-1) < counts[0])) fail(`the drawn triangles do not fall: ${counts}`);
+  // Selecting a shape in the tree marks its meshes (every level) and its
+  // statistics rows; clicking a drawn mesh selects its node in the tree.
+  const shapeLine = await page.evaluate(() => window.studio.result.shapes[0].line);
+  await page.click(`#tree .node[data-line="${shapeLine}"]`);
+  const marked = await page.evaluate(() => window.studio.meshes.filter((m) => m.userData.selected && m.material.emissive.getHex() !== 0).length);
+  const markedRows = await page.$$eval('#stats tbody tr.selected', (r) => r.length);
+  const levelCount = await page.evaluate(() => window.studio.result.shapes[0].levels.length);
+  console.log(`selecting line ${shapeLine}: ${marked} meshes marked, ${markedRows} statistics rows`);
+  if (marked < 2) fail(`selecting a shape in the tree marks ${marked} meshes, not those of its levels`);
+  if (markedRows !== levelCount) fail(`selected shape: ${markedRows} statistics rows marked, it has ${levelCount} levels`);
+  if (!(await page.$eval('#selection', (e) => e.textContent)).includes(`line ${shapeLine}`)) fail('the selection is not described');
+  await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const target = await page.evaluate(() => {
+    // The screen point of a drawn mesh's first vertex that the ray from
+    // the eye meets first on that mesh.
+    const s = window.studio, c = s.renderer.domElement.getBoundingClientRect();
+    for (const m of s.meshes) {
+      let o = m, shown = true;
+      for (; o; o = o.parent) shown &&= o.visible;
+      if (!shown) continue;
+      const box = new s.camera.position.constructor();
+      m.geometry.computeBoundingBox(); m.geometry.boundingBox.getCenter(box);
+      const p = box.applyMatrix4(m.matrixWorld).project(s.camera);
+      if (Math.abs(p.x) > 0.95 || Math.abs(p.y) > 0.95) continue;
+      const hit = s.pick(p.x, p.y);
+      if (hit && hit.userData.line > 0) return { x: c.left + (p.x + 1) / 2 * c.width, y: c.top + (1 - p.y) / 2 * c.height, line: hit.userData.line };
+    }
+    return null;
+  });
+  if (!target) fail('no drawn mesh to click');
+  else {
+    await page.mouse.click(target.x, target.y);
+    const picked = await page.$eval('#tree .node.selected', (e) => Number(e.dataset.line)).catch(() => null);
+    console.log(`clicked the view at ${target.x.toFixed(0)},${target.y.toFixed(0)}: tree node of line ${picked} selected`);
+    if (picked !== target.line) fail(`clicking a mesh of line ${target.line} selects tree line ${picked}`);
+  }
+  await page.evaluate(() => window.studio.selectLines([]));
+
+  // Side by side from far out: the left half (level 0) draws the full
+  // scene, the right half what the LODs choose, so the halves differ.
+  await page.evaluate((d) => window.studio.viewFrom(d), max * 0.5);
+  await page.click('#side-by-side');
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const halves = await page.evaluate(() => {
+    const s = window.studio, c = s.renderer.domElement;
+    s.renderSideBySide(c.clientWidth, c.clientHeight);
+    const gl = s.renderer.getContext();
+    const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight, half = Math.floor(w / 2);
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let differ = 0;
+    for (let y = 0; y < h; ++y) for (let x = 0; x < half; ++x) {
+      const a = (y * w + x) * 4, b = (y * w + x + half) * 4;
+      if (Math.abs(px[a] - px[b]) + Math.abs(px[a + 1] - px[b + 1]) + Math.abs(px[a + 2] - px[b + 2]) > 12) ++differ;
+    }
+    return { differ: differ / (half * h), triangles: s.renderer.info.render.triangles };
+  });
+  console.log(`side by side far out: ${(halves.differ * 100).toFixed(2)} % of the pixels differ between the halves`);
+  if (!(halves.differ > 0)) fail('side by side: level 0 and the LOD draw the same pixels far out');
+  await page.click('#side-by-side');
+
   if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
     await page.click('#colour-levels');

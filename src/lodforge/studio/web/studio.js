@@ -64,13 +64,54 @@ async function select(path) {
   await loadGeometry();
 }
 
+// The lines of a node and of everything under it: selecting a group selects
+// the shapes in it (meshes carry the line of the shape they come from).
+function linesUnder(n, out = []) {
+  out.push(n.line);
+  for (const c of n.children || []) linesUnder(c, out);
+  return out;
+}
+
 function treeNode(n) {
   const label = `${n.name ? `DEF ${n.name} ` : ''}${n.use ? 'USE ' : ''}${n.type}  (line ${n.line})`;
   const fields = Object.entries(n.fields || {}).map(([k, v]) => element('div', { class: 'fields' }, `${k} ${v}`));
-  if (!n.children || (n.children.length === 0 && fields.length === 0)) return element('div', { class: 'leaf' }, label);
-  const d = element('details', {}, element('summary', {}, label), ...fields, ...n.children.map(treeNode));
+  const pick = (e) => { e.preventDefault(); e.stopPropagation(); selectLines(linesUnder(n), n.line); };
+  const head = element('span', { class: 'node', 'data-line': n.line, onclick: pick }, label);
+  if (!n.children || (n.children.length === 0 && fields.length === 0)) return element('div', { class: 'leaf' }, head);
+  const d = element('details', {}, element('summary', {}, head), ...fields, ...n.children.map(treeNode));
   d.open = n.children.length > 0 && n.children.length < 20;
   return d;
+}
+
+// ---- selection: tree node, meshes and statistics rows of the same lines ----
+const SELECTED_GLOW = new THREE.Color(0x906000), NO_GLOW = new THREE.Color(0);
+function selectLines(lines, line) {
+  const set = new Set(lines);
+  state.selected = line === undefined ? null : { line, lines: [...set] };
+  for (const m of state.meshes) {
+    const on = set.has(m.userData.line);
+    m.userData.selected = on;
+    for (const mat of [m.userData.own, m.userData.byLevel, m.userData.byDeviation]) mat?.emissive.copy(on ? SELECTED_GLOW : NO_GLOW);
+  }
+  for (const e of document.querySelectorAll('#tree .node.selected')) e.classList.remove('selected');
+  const node = document.querySelector(`#tree .node[data-line="${line}"]`);
+  if (node) {
+    node.classList.add('selected');
+    for (let p = node.parentElement; p && p.id !== 'tree'; p = p.parentElement) if (p.tagName === 'DETAILS') p.open = true;
+    node.scrollIntoView({ block: 'nearest' });
+  }
+  for (const tr of $('stats').tBodies[0].rows) tr.classList.toggle('selected', set.has(Number(tr.dataset.line)));
+  $('selection').textContent = selectionText(set);
+}
+state.selectLines = selectLines;
+
+function selectionText(set) {
+  if (!state.selected) return '';
+  const n = state.meshes.filter((m) => m.userData.selected).length;
+  const shapes = (state.result ? state.result.shapes : []).filter((s) => set.has(s.line));
+  const levels = shapes.map((s) => `${s.type} (line ${s.line}): ` + s.levels.map((l, i) =>
+    `L${i} ${l.triangles} tri, ${l.vertices} vert, error ${l.error.toPrecision(3)}${i ? `, from ${l.from_distance.toPrecision(4)}` : ''}`).join('; '));
+  return `selected line ${state.selected.line}: ${n} meshes${levels.length ? ' · ' + levels.join(' · ') : ' (no LOD statistics: Make LOD)'}`;
 }
 
 $('open-form').addEventListener('submit', async (e) => {
@@ -177,7 +218,7 @@ function showStatistics() {
   drawPlot(r ? r.triangles_by_distance : []);
   if (!r) return;
   for (const s of r.shapes) {
-    s.levels.forEach((l, i) => body.append(element('tr', {},
+    s.levels.forEach((l, i) => body.append(element('tr', { 'data-line': s.line, onclick: () => selectLines([s.line], s.line) },
       element('td', {}, i ? '' : `${s.type}${s.name ? ' ' + s.name : ''} (line ${s.line})`), element('td', {}, String(i)),
       element('td', {}, String(l.triangles)), element('td', {}, String(l.vertices)),
       element('td', {}, l.error.toPrecision(3)), element('td', {}, l.from_distance < 0 ? '' : l.from_distance.toPrecision(4)))));
@@ -248,7 +289,7 @@ function meshOf(m, offset, level) {
     const mesh = new THREE.Mesh(g, $('colour-levels').checked ? byLevel : own);
     // "Triangles drawn" counts what the LODs choose, in view or not.
     mesh.frustumCulled = false;
-    mesh.userData = { own, byLevel };
+    mesh.userData = { own, byLevel, line: m.line };
     state.meshes.push(mesh);
     group.add(mesh);
   }
@@ -277,7 +318,9 @@ async function loadGeometry() {
     // one are never drawn.
     l.levels.slice(0, l.ranges.length + 1).forEach((meshes, i) => {
       const level = new THREE.Group();
-      for (const m of meshes) level.add(meshOf(m, offset, i));
+      // A generated level's shapes carry no line of their own: they are
+      // the level-0 shapes at the same places, and select with them.
+      meshes.forEach((m, j) => level.add(meshOf(m.line ? m : { ...m, line: l.levels[0][j]?.line || 0 }, offset, i)));
       lod.addLevel(level, i === 0 ? 0 : l.ranges[i - 1]);
     });
     root.add(lod);
@@ -292,6 +335,7 @@ async function loadGeometry() {
   camera.near = size / 1000; camera.far = farthest * 4 + size * 4; camera.updateProjectionMatrix();
   $('distance-slider').max = String(farthest);
   if (!state.viewSet) { viewFrom(size * 1.2); state.viewSet = true; }
+  if (state.selected) selectLines(state.selected.lines, state.selected.line);
 }
 $('which').addEventListener('change', () => loadGeometry().catch((e) => { $('lod-error').textContent = e.message; }));
 
@@ -309,13 +353,57 @@ $('colour-levels').addEventListener('change', () => {
   for (const m of state.meshes) m.material = $('colour-levels').checked ? m.userData.byLevel : m.userData.own;
 });
 
+// A click (not a drag) on the view selects the nearest drawn mesh.
+const raycaster = new THREE.Raycaster();
+let pressedAt = null;
+renderer.domElement.addEventListener('pointerdown', (e) => { pressedAt = [e.clientX, e.clientY]; });
+renderer.domElement.addEventListener('pointerup', (e) => {
+  if (!pressedAt || Math.hypot(e.clientX - pressedAt[0], e.clientY - pressedAt[1]) > 4) return;
+  const r = renderer.domElement.getBoundingClientRect();
+  const hit = pick((e.clientX - r.left) / r.width * 2 - 1, -(e.clientY - r.top) / r.height * 2 + 1);
+  if (hit) selectLines([hit.userData.line], hit.userData.line); else selectLines([]);
+});
+function drawn(o) {
+  for (; o; o = o.parent) if (!o.visible) return false;
+  return true;
+}
+function pick(x, y) {
+  raycaster.setFromCamera(new THREE.Vector2(x, y), camera);
+  const hit = raycaster.intersectObjects(state.meshes.filter(drawn), false)[0];
+  return hit ? hit.object : null;
+}
+state.pick = pick;
+
+// Level 0 on the left (every LOD held at its first child), what the LODs
+// draw from this eye on the right, same camera: popping shows as a
+// difference between the halves. The right half renders last, so the
+// triangles drawn are the LODs'.
+function renderSideBySide(w, h) {
+  const half = Math.floor(w / 2);
+  camera.aspect = half / Math.max(1, h); camera.updateProjectionMatrix();
+  renderer.setScissorTest(true);
+  for (const l of state.lods) {
+    l.lod.autoUpdate = false;
+    l.lod.levels.forEach((level, i) => { level.object.visible = i === 0; });
+  }
+  renderer.setViewport(0, 0, half, h); renderer.setScissor(0, 0, half, h);
+  renderer.render(scene, camera);
+  for (const l of state.lods) l.lod.autoUpdate = true;
+  renderer.setViewport(half, 0, w - half, h); renderer.setScissor(half, 0, w - half, h);
+  renderer.render(scene, camera);
+  renderer.setScissorTest(false); renderer.setViewport(0, 0, w, h);
+  camera.aspect = w / Math.max(1, h); camera.updateProjectionMatrix();
+}
+state.renderSideBySide = renderSideBySide;
+
 function frame() {
   const c = renderer.domElement;
   if (c.width !== c.clientWidth || c.height !== c.clientHeight) {
     renderer.setSize(c.clientWidth, c.clientHeight, false);
     camera.aspect = c.clientWidth / Math.max(1, c.clientHeight); camera.updateProjectionMatrix();
   }
-  renderer.render(scene, camera);
+  if ($('side-by-side').checked) renderSideBySide(c.clientWidth, c.clientHeight);
+  else renderer.render(scene, camera);
   state.trianglesDrawn = renderer.info.render.triangles;
   const d = camera.position.distanceTo(controls.target);
   state.distance = d;

@@ -137,6 +137,16 @@ class Converter {
     return textures_[texture2] = t;
   }
 
+  // A Color node on `geometry` when the shape has several colours; true when
+  // it has one (or none), which its Material then holds.
+  static bool colours(Node& geometry, const scene::ShapeSurface& s) {
+    if (!s.mesh.has_colors() || uniform(s)) return true;
+    auto c = scene::make_node("Color");
+    c->set("color", vec3s(s.mesh.colors, FieldKind::kColor));
+    geometry.set("color", node_value(std::move(c)));
+    return false;
+  }
+
   NodePtr shape(NodePtr geometry, NodePtr appearance) {
     auto shape = scene::make_node("Shape");
     shape->set("appearance", node_value(std::move(appearance)));
@@ -159,12 +169,7 @@ class Converter {
     for (const auto& t : s.mesh.triangles)
       index.insert(index.end(), {std::int32_t(t[0]), std::int32_t(t[1]), std::int32_t(t[2]), -1});
     ifs->set("coordIndex", scene::make_longs(std::move(index)));
-    const bool one_colour = !s.mesh.has_colors() || uniform(s);
-    if (!one_colour) {
-      auto c = scene::make_node("Color");
-      c->set("color", vec3s(s.mesh.colors, FieldKind::kColor));
-      ifs->set("color", node_value(std::move(c)));
-    }
+    const bool one_colour = colours(*ifs, s);
     if (s.mesh.has_normals()) {
       auto n = scene::make_node("Normal");
       n->set("vector", vec3s(s.mesh.normals, FieldKind::kVec3f));
@@ -190,24 +195,14 @@ class Converter {
     for (const auto& l : s.mesh.lines)
       index.insert(index.end(), {std::int32_t(l[0]), std::int32_t(l[1]), -1});
     ils->set("coordIndex", scene::make_longs(std::move(index)));
-    const bool one_colour = !s.mesh.has_colors() || uniform(s);
-    if (!one_colour) {
-      auto c = scene::make_node("Color");
-      c->set("color", vec3s(s.mesh.colors, FieldKind::kColor));
-      ils->set("color", node_value(std::move(c)));
-    }
+    const bool one_colour = colours(*ils, s);
     return shape(ils, appearance(s, false, one_colour, nullptr));
   }
 
   NodePtr points(const scene::ShapeSurface& s) {
     auto ps = scene::make_node("PointSet");
     ps->set("coord", node_value(coordinate(s)));
-    const bool one_colour = !s.mesh.has_colors() || uniform(s);
-    if (!one_colour) {
-      auto c = scene::make_node("Color");
-      c->set("color", vec3s(s.mesh.colors, FieldKind::kColor));
-      ps->set("color", node_value(std::move(c)));
-    }
+    const bool one_colour = colours(*ps, s);
     return shape(ps, appearance(s, false, one_colour, nullptr));
   }
 

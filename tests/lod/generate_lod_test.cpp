@@ -29,24 +29,13 @@ scene::Scene read(const std::string& text) {
   return vrml1::read_vrml1(text).scene;
 }
 
-// Errors measured again with another seed and twice the samples stay within
-// the error the ranges used; on screen, at the switch distance, the level's
-// deviation is at most the error range.
+// The levels of the VRML 1.0 output, flattened, within their errors.
 void expect_errors_bounded(const LodResult& r, const scene::Scene& out, double error_range,
                            double camera_angle, std::size_t samples) {
   ASSERT_EQ(r.shapes.size(), 1u);
-  const ShapeStatistics& s = r.shapes[0];
-  TriangleMesh level0 = scene::flatten_scene(out, {.lod_level = 0});
-  for (std::size_t k = 1; k < s.levels.size(); ++k) {
-    TriangleMesh level = scene::flatten_scene(out, {.lod_level = int(k)});
-    CompareResult c = compare_meshes(level0, level, {.samples = 2 * samples, .seed = 77});
-    // The flattened levels are in world space: errors scale with the transform.
-    EXPECT_LE(c.hausdorff, s.levels[k].error * s.scale) << "level " << k;
-    // Screen fraction of the deviation seen from the switch distance (beyond r).
-    double d = s.ranges[k - 1] - s.radius * s.scale;
-    double screen = c.hausdorff / (2 * d * std::tan(camera_angle / 2));
-    EXPECT_LE(screen, error_range * (1 + 1e-6)) << "level " << k;
-  }
+  testing::expect_level_errors_bounded(
+      r, [&](int k) { return scene::flatten_scene(out, {.lod_level = k}); }, r.shapes[0].ranges,
+      error_range, camera_angle, samples);
 }
 
 TEST(GenerateLod, SphereGetsLevelsWithBoundedErrors) {

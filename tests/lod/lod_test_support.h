@@ -5,7 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <functional>
 #include <string>
+
+#include "lodforge/lod/generate_lod.h"
+#include "lodforge/metrics/compare_meshes.h"
 
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
@@ -29,6 +34,30 @@ inline std::string scene_of(const TriangleMesh& mesh, const std::string& prefix 
   for (const auto& t : mesh.triangles) s += fmt::format("{}, {}, {}, -1,\n", t[0], t[1], t[2]);
   s += "] }\n}\n";
   return s;
+}
+
+/// Errors measured again with another seed and twice the samples stay within
+/// the error the ranges used; on screen, at the switch distance, the level's
+/// deviation is at most the error range. `level(k)` is the written scene's
+/// level k in world space (errors scale with the transform), `ranges` the
+/// ranges of its LOD node.
+inline void expect_level_errors_bounded(const LodResult& r,
+                                        const std::function<TriangleMesh(int)>& level,
+                                        const std::vector<float>& ranges, double error_range,
+                                        double camera_angle, std::size_t samples) {
+  ASSERT_EQ(r.shapes.size(), 1u);
+  const ShapeStatistics& s = r.shapes[0];
+  ASSERT_GE(ranges.size() + 1, s.levels.size());
+  const TriangleMesh level0 = level(0);
+  for (std::size_t k = 1; k < s.levels.size(); ++k) {
+    const CompareResult c =
+        compare_meshes(level0, level(int(k)), {.samples = 2 * samples, .seed = 77});
+    EXPECT_LE(c.hausdorff, s.levels[k].error * s.scale) << "level " << k;
+    // Screen fraction of the deviation seen from the switch distance (beyond r).
+    const double d = ranges[k - 1] - s.radius * s.scale;
+    const double screen = c.hausdorff / (2 * d * std::tan(camera_angle / 2));
+    EXPECT_LE(screen, error_range * (1 + 1e-6)) << "level " << k;
+  }
 }
 
 /// Index fields in range for what they index, under each shape's state.

@@ -8,6 +8,7 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/write_scene_gltf.h"
+#include "lodforge/apps/write_scene_vrml97.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
@@ -21,16 +22,24 @@ void add_format_command(CLI::App& app, Runner& run) {
     std::string output;
     SceneReadSettings read;
     vrml1::WriteOptions write;
+    std::string format;
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand(
-      "format", "Read a VRML 1.0 or Inventor scene and write it back formatted, or as glTF");
+      "format",
+      "Read a VRML 1.0 or Inventor scene and write it back formatted, or as VRML97, X3D classic "
+      "or glTF");
   cmd->add_option("SCENE", s->input,
                   "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
       ->required();
   cmd->add_option("-o,--output", s->output,
-                  "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF)")
+                  "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF; "
+                  ".x3dv: to X3D classic)")
       ->required();
+  cmd->add_option("--format", s->format,
+                  "Convert to vrml97 (VRML97) or x3dv (X3D classic encoding) (default: from the "
+                  "output name, else VRML 1.0 / Inventor as read)")
+      ->check(CLI::IsMember({"vrml97", "x3dv"}));
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {
@@ -38,7 +47,10 @@ void add_format_command(CLI::App& app, Runner& run) {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
       vrml1::ReadResult r = read_scene(s->input, s->read);
-      if (gltf::is_gltf_path(s->output)) {
+      const std::string as_vrml97 = vrml97_format_of(s->format, s->output);
+      if (!as_vrml97.empty()) {
+        write_scene_vrml97(r.scene, s->output, as_vrml97 == "x3dv", s->read.quiet);
+      } else if (gltf::is_gltf_path(s->output)) {
         const std::filesystem::path in(s->input);
         write_scene_gltf(r.scene, s->output,
                          s->input == "-" || !in.has_parent_path() ? "." : in.parent_path().string(),

@@ -14,6 +14,7 @@
 #include "lodforge/apps/lod_gltf.h"
 #include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/apps/write_scene_gltf.h"
+#include "lodforge/apps/write_scene_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/core/output_path.h"
@@ -228,11 +229,9 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     const bool vrml97 = !gltf && is_vrml97_input(input);
     const bool as_gltf = s.format == "gltf" || s.format == "glb" ||
                          (s.format.empty() && gltf::is_gltf_path(out.output));
-    if (!vrml97 && !gltf && !s.format.empty() && !as_gltf)
-      throw DataError(fmt::format(
-          "--format {}: a VRML 1.0 or Inventor input is written as VRML 1.0 / Inventor or as glTF "
-          "(gltf, glb); {} is for VRML97 / X3D inputs",
-          s.format, s.format));
+    // A VRML 1.0 / Inventor scene may be written as VRML97 or X3D classic.
+    const std::string as_vrml97 =
+        !vrml97 && !gltf && !as_gltf ? vrml97_format_of(s.format, out.output) : "";
     if (gltf) make_output_folder(out.output);
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
                        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
@@ -274,6 +273,8 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
         write_scene_gltf(result.scene, target, to.string(), result.camera_angle,
                          s.format.empty() ? gltf_binary_name(target) : s.format == "glb",
                          s.read.quiet);
+      else if (!as_vrml97.empty())
+        write_scene_vrml97(result.scene, target, as_vrml97 == "x3dv", s.read.quiet);
       else
         vrml1::write_vrml1_file(result.scene, target, s.write);
     }
@@ -406,7 +407,9 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--format", s->format,
                   "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
                   "X3D classic, else the input's), or of a glTF scene: gltf or glb (default: "
-                  "from the output name, else the input's)")
+                  "from the output name, else the input's); a VRML 1.0 / Inventor scene is "
+                  "converted to vrml97, x3dv, gltf or glb (default: from the output name, .x3dv, "
+                  ".glb, .gltf, else VRML 1.0)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()

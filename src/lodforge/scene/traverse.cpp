@@ -160,10 +160,10 @@ class Walker {
         // the state around it).
         TraversalState with = state;
         apply(derived_of(*vp), with);
-        visit_(ShapeVisit{n, with, camera_, path_, index, path_index_});
+        visit_(ShapeVisit{n, with, camera_, path_, index, path_index_, path_transform_});
         return;
       }
-      visit_(ShapeVisit{n, state, camera_, path_, index, path_index_});
+      visit_(ShapeVisit{n, state, camera_, path_, index, path_index_, path_transform_});
       return;
     }
     if (n.children.empty() && all_ignored(n)) return;
@@ -214,6 +214,7 @@ class Walker {
     }
     path_.push_back(&n);
     path_index_.push_back(index);
+    path_transform_.push_back(state.transform);
     auto all = [&](TraversalState& s) {
       for (std::size_t i = 0; i < n.children.size(); ++i) node(*n.children[i], s, i);
     };
@@ -262,6 +263,7 @@ class Walker {
     }
     path_.pop_back();
     path_index_.pop_back();
+    path_transform_.pop_back();
   }
 
   // Inventor's Array: numElements1 x 2 x 3 instances, instance (i, j, k) at
@@ -323,6 +325,7 @@ class Walker {
   const Node* camera_ = nullptr;
   std::vector<const Node*> path_;
   std::vector<std::size_t> path_index_;
+  std::vector<Mat4> path_transform_;
 };
 
 }  // namespace

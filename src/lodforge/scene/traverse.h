@@ -75,6 +75,9 @@ struct ShapeVisit {
   /// path[i-1]->children (path_index[0]: in Scene::roots). Tells apart two
   /// uses of one shared node by the same parent.
   std::span<const std::size_t> path_index = {};
+  /// The transform in effect where each path node was entered (the one a
+  /// LOD node's `center` is in): path_transform[i] belongs to path[i].
+  std::span<const Mat4> path_transform = {};
 };
 
 struct TraverseOptions {

@@ -1,8 +1,6 @@
-// A VRML 1.0 / Inventor scene graph to glTF: the scene is traversed once per
-// LOD level (scene::traverse shows one child of every LOD node), each shape
-// drawn is turned into a world-space primitive with its appearance
-// (scene::shape_surface), and the primitives are grouped by the LOD node and
-// child they were drawn under.
+// A VRML 1.0 / Inventor scene graph to glTF: the world-space shapes each LOD
+// node's children draw (scene::collect_lod_shapes), with their appearance,
+// become a node per child, the first one carrying MSFT_lod.
 #include "lodforge/io/gltf/scene_to_gltf.h"
 
 #include <fmt/core.h>
@@ -13,54 +11,24 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <optional>
 
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/vertex_normals.h"
 #include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/lod_shapes.h"
 #include "lodforge/scene/schema.h"
 #include "lodforge/scene/shape_mesh.h"
-#include "lodforge/scene/traverse.h"
 
 namespace lodforge::gltf {
 namespace {
 
+using scene::DrawnShape;
+using scene::LodGroup;
 using scene::Node;
 using scene::ShapeSurface;
 using tinygltf::Value;
 
 constexpr double kDefaultCameraAngle = 0.7853981633974483;  // VRML's pi/4
-
-bool is_lod_node(const Node& n) {
-  return n.type == "LOD" || n.type == "LevelOfDetail";
-}
-
-// Where a shape is drawn: the innermost LOD node on its path (identified by
-// the child indices leading to it, so each use of a shared LOD is its own)
-// and the child of it the shape is under.
-struct LodPlace {
-  std::vector<std::size_t> key;
-  const Node* lod = nullptr;
-  std::size_t child = 0;
-};
-
-std::optional<LodPlace> lod_place(const scene::ShapeVisit& v) {
-  for (std::size_t i = v.path.size(); i-- > 0;) {
-    if (!is_lod_node(*v.path[i])) continue;
-    LodPlace p;
-    p.lod = v.path[i];
-    p.key.assign(v.path_index.begin(), v.path_index.begin() + std::ptrdiff_t(i + 1));
-    p.child = i + 1 < v.path.size() ? v.path_index[i + 1] : v.child_index;
-    return p;
-  }
-  return std::nullopt;
-}
-
-// The shapes drawn under one LOD node, per child.
-struct LodGroup {
-  const Node* lod = nullptr;
-  std::vector<std::vector<ShapeSurface>> levels;
-};
 
 // Smooth vertex normals; glTF wants unit length for every vertex, also one
 // that only degenerate triangles (or none) use: it gets +z.
@@ -84,9 +52,9 @@ class ModelBuilder {
 
   // A node drawing `shapes` (nullptr mesh when they draw nothing); -1 when
   // there is nothing to draw.
-  int add_node(const std::vector<ShapeSurface>& shapes, const std::string& name) {
+  int add_node(const std::vector<DrawnShape>& shapes, const std::string& name) {
     tinygltf::Mesh mesh;
-    for (const ShapeSurface& s : shapes) add_primitives(mesh, s);
+    for (const DrawnShape& s : shapes) add_primitives(mesh, s.surface);
     if (mesh.primitives.empty()) return -1;
     mesh.name = name;
     tinygltf::Node node;
@@ -297,39 +265,6 @@ class ModelBuilder {
   }
 };
 
-// What the traversals find: shapes outside any LOD, and per LOD occurrence
-// the shapes under each of its children.
-struct Collected {
-  std::vector<ShapeSurface> plain;
-  std::map<std::vector<std::size_t>, LodGroup> lods;
-  const Node* camera = nullptr;
-};
-
-Collected collect(const scene::Scene& s, Log& log) {
-  Collected out;
-  const std::size_t levels = scene::lod_level_count(s);
-  for (std::size_t k = 0; k < levels; ++k) {
-    scene::traverse(s,
-                    [&](const scene::ShapeVisit& v) {
-                      if (!out.camera && v.camera) out.camera = v.camera;
-                      const std::optional<LodPlace> place = lod_place(v);
-                      // Each shape once: at the traversal that shows its LOD child.
-                      if (place ? place->child != k : k != 0) return;
-                      ShapeSurface surface = scene::shape_surface(v, {.world_space = true}, &log);
-                      if (!place) {
-                        out.plain.push_back(std::move(surface));
-                        return;
-                      }
-                      LodGroup& g = out.lods[place->key];
-                      g.lod = place->lod;
-                      g.levels.resize(place->lod->children.size());
-                      g.levels[place->child].push_back(std::move(surface));
-                    },
-                    {.lod_level = int(k)});
-  }
-  return out;
-}
-
 double camera_angle(const SceneToGltfOptions& options, const Node* camera) {
   if (options.camera_angle > 0) return options.camera_angle;
   if (camera)
@@ -339,14 +274,15 @@ double camera_angle(const SceneToGltfOptions& options, const Node* camera) {
 }
 
 // The bounding sphere of a LOD's first child (about its box centre).
-double radius_of(const std::vector<ShapeSurface>& shapes) {
+double radius_of(const std::vector<DrawnShape>& shapes) {
   Box3 box;
   for (const auto& s : shapes)
-    for (const Vec3& p : s.mesh.positions) box.add(p);
+    for (const Vec3& p : s.surface.mesh.positions) box.add(p);
   if (box.empty()) return 0;
   double r = 0;
   for (const auto& s : shapes)
-    for (const Vec3& p : s.mesh.positions) r = std::max(r, double(length(p - box.center())));
+    for (const Vec3& p : s.surface.mesh.positions)
+      r = std::max(r, double(length(p - box.center())));
   return r;
 }
 
@@ -386,7 +322,7 @@ void add_lod(ModelBuilder& b, const LodGroup& g, double angle, std::size_t numbe
 }  // namespace
 
 GltfScene scene_to_gltf(const scene::Scene& s, const SceneToGltfOptions& options, Log& log) {
-  Collected c = collect(s, log);
+  scene::LodShapes c = scene::collect_lod_shapes(s, log);
   const double angle = camera_angle(options, c.camera);
   ModelBuilder b(options.base_dir.empty() ? "." : options.base_dir);
   for (std::size_t i = 0; i < c.plain.size(); ++i) {

@@ -1,0 +1,125 @@
+// VRML 1.0 / Inventor scenes written as VRML97 and X3D classic by `lod` and
+// `format`, judged by their readers as child processes: Castle Model Viewer
+// (view3dscene, drawing under xvfb) adds no complaint to what it says of the
+// input, and Coin3D draws at level 0 of the VRML97 output the triangles
+// `lodforge info` counts in the input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "apps/castle_viewer.h"
+#include "apps/run_command.h"
+#include "lodforge/io/vrml97/read_vrml97.h"
+#include "tools/coin_probe_runner.h"
+
+namespace lodforge::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRepository = fs::path(LODFORGE_EXAMPLES).parent_path();
+
+std::vector<std::string> vrml1_corpus() {
+  std::vector<std::string> out;
+  const fs::path root = fs::path(LODFORGE_SHARED_DATA) / "vrml1";
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_regular_file() && (name.ends_with(".wrl") || name.ends_with(".iv") ||
+                                name.ends_with(".wrl.gz") || name.ends_with(".iv.gz")))
+      out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::size_t info_triangles(const std::string& file) {
+  const CommandResult r = run_lodforge("info --json '" + file + "'");
+  if (r.exit_code != 0) return SIZE_MAX;
+  return nlohmann::json::parse(r.out)["triangles"].get<std::size_t>();
+}
+
+using WriteSceneVrml97 = TempDirTest;
+
+TEST_F(WriteSceneVrml97, FormatAndNameChooseTheEncoding) {
+  const std::string in = (kRepository / "examples/scene.wrl").string();
+  ASSERT_EQ(run_lodforge("lod -q " + in + " --format vrml97 -o " + path("a.wrl")).exit_code, 0);
+  EXPECT_TRUE(read_text(path("a.wrl")).starts_with("#VRML V2.0 utf8"));
+  ASSERT_EQ(run_lodforge("lod -q " + in + " -o " + path("b.x3dv")).exit_code, 0);
+  EXPECT_TRUE(read_text(path("b.x3dv")).starts_with("#X3D V3.0 utf8"));
+  ASSERT_EQ(run_lodforge("format -q " + in + " --format x3dv -o " + path("c.out")).exit_code, 0);
+  const scene::Scene c = vrml97::read_vrml97_file(path("c.out")).scene;
+  EXPECT_TRUE(vrml97::is_x3d_header(c.header));
+  // A plain VRML 1.0 output stays VRML 1.0.
+  ASSERT_EQ(run_lodforge("lod -q " + in + " -o " + path("d.wrl")).exit_code, 0);
+  EXPECT_TRUE(read_text(path("d.wrl")).starts_with("#VRML V1.0 ascii"));
+  // The XML encoding is not written from VRML 1.0: exit 1, nothing written.
+  const CommandResult x = run_lodforge("lod -q " + in + " --format x3d -o " + path("e.x3d"));
+  EXPECT_EQ(x.exit_code, 1);
+  EXPECT_NE(x.err.find("--format x3dv"), std::string::npos) << x.err;
+  EXPECT_FALSE(fs::exists(path("e.x3d")));
+}
+
+TEST_F(WriteSceneVrml97, EveryVrml1CorpusFileIsReadByCastleAndCoin) {
+  const auto files = vrml1_corpus();
+  if (files.empty()) GTEST_SKIP() << "no corpus at " << LODFORGE_SHARED_DATA << "/vrml1";
+  const bool castle = have_view3dscene() && std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+  std::size_t written = 0;
+  for (const std::string& in : files) {
+    const std::string x3dv = path("out/o.x3dv"), wrl = path("out/o.wrl");
+    fs::remove_all(path("out"));
+    const CommandResult r = run_lodforge("lod -q '" + in + "' -o " + x3dv);
+    if (r.exit_code != 0) {
+      // An unsupported construct: exit 1, a message, no output.
+      EXPECT_EQ(r.exit_code, 1) << in << "\n" << r.err;
+      EXPECT_NE(r.err.find("error:"), std::string::npos) << in;
+      EXPECT_FALSE(fs::exists(x3dv)) << in;
+      continue;
+    }
+    ++written;
+    EXPECT_TRUE(vrml97::is_x3d_header(vrml97::read_vrml97_file(x3dv).scene.header)) << in;
+    if (castle) {
+      // A texture the input names that is not in its corpus project at all
+      // (Castle does not always say so of a VRML 1.0 input) is the input's
+      // problem; nothing else may be reported.
+      const fs::path project = fs::path(LODFORGE_SHARED_DATA) / "vrml1" /
+                               *fs::relative(in, fs::path(LODFORGE_SHARED_DATA) / "vrml1").begin();
+      for (const std::string& e : castle_errors(x3dv, dir_ / "home", true)) {
+        const auto url = e.find("texture from URL \"");
+        bool absent = false;
+        if (url != std::string::npos) {
+          const std::string name =
+              fs::path(e.substr(url + 18, e.find('"', url + 18) - url - 18)).filename().string();
+          absent = std::none_of(fs::recursive_directory_iterator(project),
+                                fs::recursive_directory_iterator(),
+                                [&](const auto& f) { return f.path().filename() == name; });
+        }
+        EXPECT_TRUE(absent) << in << " -> .x3dv: " << e;
+      }
+    }
+    ASSERT_EQ(run_lodforge("lod -q '" + in + "' --format vrml97 -o " + wrl).exit_code, 0) << in;
+    const CoinResult out = run_coin_probe(wrl, std::chrono::seconds(300), 0);
+    if (!run_coin_probe(in).accepted() && !out.accepted()) continue;  // Coin's own limits
+#ifdef LODFORGE_COIN_PROBE
+    ASSERT_TRUE(out.accepted()) << in << ": " << out.why_rejected();
+    // Level 0 draws the input's triangles; Coin's VRML97 IndexedFaceSet
+    // leaves out zero-area triangles (two corners at one index), as Coin
+    // counts them in the input.
+    const std::size_t expected = info_triangles(in);
+    if (out.triangles() != expected) {
+      const CoinResult coin_in = run_coin_probe(in);
+      EXPECT_EQ(coin_in.triangles(), expected) << in;
+      std::size_t distinct = 0;
+      for (const auto& [type, n] : coin_in.distinct_triangles) distinct += n;
+      EXPECT_EQ(out.triangles(), distinct) << in;
+    }
+#endif
+  }
+  EXPECT_GE(written * 10, files.size() * 9) << written << " of " << files.size();
+}
+
+}  // namespace
+}  // namespace lodforge::testing

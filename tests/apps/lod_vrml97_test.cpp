@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 
+#include "apps/castle_viewer.h"
 #include "apps/run_command.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "tools/coin_probe_runner.h"
@@ -32,35 +33,6 @@ std::vector<std::string> vrml97_corpus() {
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-bool have_view3dscene() {
-  return std::system("command -v view3dscene >/dev/null 2>&1") == 0;
-}
-
-// Castle Model Viewer loads `path` (--write: load and write back, no window);
-// returns its log's errors and warnings about the scene, one per line, without
-// their positions and with the file's folder as DIR. Its log goes to
-// $HOME/.config/view3dscene, so each run gets a HOME of its own.
-std::set<std::string> castle_errors(const std::string& path, const fs::path& home) {
-  fs::create_directories(home);
-  const std::string cmd =
-      "HOME=" + home.string() + " timeout 120 view3dscene '" + path + "' --write >/dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  const std::string log = read_text((home / ".config/view3dscene/view3dscene.log").string());
-  std::set<std::string> found;
-  std::istringstream lines(log);
-  const std::regex position("line [0-9]+ column [0-9]+");
-  const std::string folder = fs::path(path).parent_path().string();
-  for (std::string line; std::getline(lines, line);) {
-    if (line.find("X3D") == std::string::npos && line.find("Error") == std::string::npos) continue;
-    line = std::regex_replace(line, position, "POSITION");
-    for (std::size_t at; (at = line.find(folder)) != std::string::npos;)
-      line.replace(at, folder.size(), "DIR");
-    found.insert(line);
-  }
-  if (status != 0) found.insert("view3dscene exit status " + std::to_string(status));
-  return found;
 }
 
 class LodVrml97Corpus : public TempDirTest {};

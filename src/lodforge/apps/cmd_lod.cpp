@@ -403,11 +403,10 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--report", s->report,
                   "Write the batch report (JSON: every scene's outcome, sizes, triangles, time) "
                   "to this file; `lodforge report` merges the reports of shards");
-  cmd->add_option(
-         "--format", s->format,
-         "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
-         "X3D classic, .x3d X3D XML, else the input's), or of a glTF scene: gltf or glb (default: "
-         "from the output name, else the input's)")
+  cmd->add_option("--format", s->format,
+                  "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
+                  "X3D classic, .x3d X3D XML, else the input's), or of a glTF scene: gltf or glb "
+                  "(default: from the output name, else the input's)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()

@@ -26,8 +26,8 @@ std::vector<std::string> corpus(const std::vector<std::string>& extensions) {
     std::error_code ec;
     if (!fs::is_directory(root, ec)) continue;
     for (const auto& e : fs::recursive_directory_iterator(root))
-      if (e.is_regular_file() && std::count(extensions.begin(), extensions.end(),
-                                            e.path().extension().string()))
+      if (e.is_regular_file() &&
+          std::count(extensions.begin(), extensions.end(), e.path().extension().string()))
         out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());
@@ -127,8 +127,9 @@ TEST_F(LodX3dXml, BadXmlExitsOneWithLineAndColumnAndNoOutput) {
   };
   check("<X3D><Scene>\n<Transform>\n  <Shape><Box/></Shape>\n</Scene></X3D>\n",
         "4:1: malformed XML: Start-end tags mismatch");
-  check("<X3D><Scene>\n<Transform>\n  <Shape><Box size='1 2'/></Shape>\n</Transform></Scene></X3D>\n",
-        "3:10: expected a number for SFVec3f field 'size'");
+  check(
+      "<X3D><Scene>\n<Transform>\n  <Shape><Box size='1 2'/></Shape>\n</Transform></Scene></X3D>\n",
+      "3:10: expected a number for SFVec3f field 'size'");
   check("<X3D><Scene>\n<Transform translation='1 2 3\n</Scene></X3D>\n", "");
 }
 

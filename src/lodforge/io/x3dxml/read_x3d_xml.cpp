@@ -143,7 +143,8 @@ bool skipped_attribute(std::string_view name) {
 
 class Converter {
  public:
-  Converter(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
+  Converter(std::string_view text, std::string source, int max_depth)
+      : text_(text), source_(std::move(source)), max_depth_(max_depth) {}
 
   std::string convert() {
     pugi::xml_document doc;
@@ -337,7 +338,8 @@ class Converter {
   // A node or statement element (`parent` is the type holding it, "" at top level).
   void element(pugi::xml_node e, std::string_view parent, int depth) {
     if (e.type() != pugi::node_element) return;
-    if (depth > 512) fail(e, "elements nested deeper than 512 levels");
+    if (depth >= max_depth_)
+      fail(e, fmt::format("elements nested deeper than {} levels", max_depth_));
     if (statement(e, depth)) return;
     const std::string_view n = e.name();
     if (n == "IS" || n == "field" || n == "fieldValue" || n == "connect" || n == "head" ||
@@ -439,6 +441,7 @@ class Converter {
 
   std::string_view text_;
   std::string source_;
+  int max_depth_;
   std::string out_;
   std::vector<std::size_t> lines_;  // XML offset of each classic line after the header
   std::map<std::string, std::map<std::string, std::string>> protos_;  // name -> field -> type
@@ -467,11 +470,11 @@ bool is_xml_start(std::string_view head) {
 }
 
 std::string x3d_xml_to_classic(std::string_view text, const std::string& source_name) {
-  return Converter(text, source_name).convert();
+  return Converter(text, source_name, vrml97::ReadOptions{}.max_depth).convert();
 }
 
 vrml97::ReadResult read_x3d_xml(std::string_view text, const vrml97::ReadOptions& options) {
-  Converter c(text, options.source_name);
+  Converter c(text, options.source_name, options.max_depth);
   const std::string classic = c.convert();
   vrml97::ReadOptions o = options;
   try {

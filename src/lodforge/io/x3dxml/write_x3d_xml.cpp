@@ -270,38 +270,41 @@ class Writer {
     }
   }
 
+  // Names for DEF / USE: a shared node without a name gets "lf_N", and a
+  // shared node whose name another node also has gets "NAME_N" (a USE of it
+  // could otherwise reach the other node), as the classic writer does.
   void count_uses() {
-    std::unordered_set<std::string> names;
+    std::unordered_map<std::string, int> names;
     std::vector<const Node*> order;
     std::vector<const Node*> stack;
     auto visit = [&](const NodePtr& n) {
       if (!n) return;
       if (uses_[n.get()]++ == 0) stack.push_back(n.get());
     };
-    for (const auto& r : scene_.roots) visit(r);
+    for (auto it = scene_.roots.rbegin(); it != scene_.roots.rend(); ++it) visit(*it);
     while (!stack.empty()) {
       const Node* n = stack.back();
       stack.pop_back();
       order.push_back(n);
-      if (!n->name.empty()) names.insert(n->name);
+      if (!n->name.empty()) ++names[n->name];
       for (const auto& f : n->fields)
-        for (const auto& k : f.value.nodes) visit(k);
+        for (auto k = f.value.nodes.rbegin(); k != f.value.nodes.rend(); ++k) visit(*k);
     }
-    int next = 0;
+    std::unordered_map<std::string, int> next;
     for (const Node* n : order) {
-      if (uses_[n] < 2 || !n->name.empty()) continue;
+      if (uses_[n] < 2 || (!n->name.empty() && names[n->name] < 2)) continue;
+      const std::string base = n->name.empty() ? "lf" : n->name;
       std::string name;
-      do name = fmt::format("_{}", next++);
+      do name = fmt::format("{}_{}", base, ++next[base]);
       while (names.count(name));
-      names.insert(name);
+      names[name] = 1;
       generated_[n] = name;
     }
   }
 
   std::string name_of(const Node* n) const {
-    if (!n->name.empty()) return n->name;
     const auto it = generated_.find(n);
-    return it == generated_.end() ? "" : it->second;
+    return it != generated_.end() ? it->second : n->name;
   }
 
   void indent(int depth) { out_.append(static_cast<std::size_t>(depth), '\t'); }

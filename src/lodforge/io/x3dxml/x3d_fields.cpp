@@ -69,24 +69,18 @@ std::string_view default_container(std::string_view child, std::string_view pare
 }
 
 bool single_node_field(std::string_view parent, std::string_view field) {
+  // A list field keeps its brackets; any other node field (appearance,
+  // normalMap, Castle's and X3D 4's texture slots, ...) holds one node.
   if (field == "texture") return parent != "MultiTexture" && parent != "ComposedTexture3D";
-  if (field == "textureTransform") return parent != "MultiTextureTransform";
-  if (field == "texCoord") return parent != "MultiTextureCoordinate";
-  return in_list(field,
-                 "appearance geometry material coord normal color fontStyle metadata fogCoord "
-                 "proxy textureProperties backTexture frontTexture leftTexture rightTexture "
-                 "topTexture bottomTexture back front left right top bottom backMaterial "
-                 "normalTexture emissiveTexture diffuseTexture specularTexture shininessTexture "
-                 "ambientTexture occlusionTexture metallicRoughnessTexture baseTexture "
-                 "alphaTexture heightTexture reflectionTexture transmissionTexture "
-                 "multiDiffuseAlphaTexture multiEmmisiveAmbientIntensityTexture "
-                 "multiSpecularShininessTexture multiVisibilityTexture viewpoint fog "
-                 "environmentFilter");
+  return !in_list(field,
+                  "children level choice shaders programs parts attrib value layers viewports "
+                  "joints segments sites skin skinCoord displacers effects watchList "
+                  "trimmingContour");
 }
 
 bool single_vector_field(std::string_view parent, std::string_view field) {
-  if (field == "color")  // a light's colour; Color / ColorRGBA hold lists
-    return parent != "Color" && parent != "ColorRGBA" && parent != "MultiTexture";
+  if (field == "color")  // a light's or MultiTexture's colour; Color / ColorRGBA hold lists
+    return parent != "Color" && parent != "ColorRGBA";
   if (field == "size") return parent != "Text";
   return in_list(field,
                  "translation rotation scale scaleOrientation center bboxCenter bboxSize "

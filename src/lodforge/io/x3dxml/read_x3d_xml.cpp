@@ -227,6 +227,15 @@ class Converter {
                           quoted(h.attribute("content").value())));
   }
 
+  // Field and node type names are identifiers in both encodings.
+  void check_name(pugi::xml_node e, std::string_view name) {
+    const bool ok = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok) fail(e, fmt::format("'{}' is not an X3D node or field name", name));
+  }
+
   std::string_view need(pugi::xml_node e, const char* attribute) {
     const pugi::xml_attribute a = e.attribute(attribute);
     if (!a || !*a.value())
@@ -350,6 +359,7 @@ class Converter {
       line(e, fmt::format("USE {}", use.value()));
       return;
     }
+    check_name(e, n);
     std::string type(n);
     const bool instance = n == "ProtoInstance";
     if (instance) type = need(e, "name");
@@ -376,6 +386,7 @@ class Converter {
       if (skipped_attribute(an) || (instance && an == "name")) continue;
       if (is.count(std::string(an))) continue;
       if (has_source && an == "url") continue;
+      check_name(e, an);
       line(e, fmt::format("{} {}", an, classic_value(type, an, a.value())));
     }
     // Child elements by the field they go to, in order of first appearance.

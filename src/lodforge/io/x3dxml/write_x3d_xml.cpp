@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -157,6 +159,22 @@ bool is_statement(std::string_view field) {
   return field == "ROUTE" || field == "IMPORT" || field == "EXPORT" || field == "PROTO" ||
          field == "EXTERNPROTO" || field == "PROFILE" || field == "COMPONENT" || field == "META" ||
          field == "UNIT";
+}
+
+// The program of a Script or shader node with interface declarations whose url
+// is one string (as the X3D XML reader reads a CDATA section): written as
+// CDATA, where X3D XML keeps it.
+std::optional<std::string> source_text(const Node& n, const scene::Field& url) {
+  const bool declares = std::any_of(n.fields.begin(), n.fields.end(), [](const scene::Field& f) {
+    return f.name.find(' ') != std::string::npos;
+  });
+  if (!declares) return std::nullopt;
+  const std::string v = raw_value(url.raw, false);
+  if (v.size() < 2 || v.front() != '"' || v.back() != '"') return std::nullopt;
+  const std::string text = vrml1::detail::unquote(v);
+  if (string_literal(text) != v || text.find("]]>") != std::string::npos) return std::nullopt;
+  if (url.raw != "[  " + v + " ]") return std::nullopt;  // the form the reader gives
+  return text;
 }
 
 class Writer {
@@ -333,6 +351,10 @@ class Writer {
         elements.push_back(&f);
         continue;
       }
+      if (f.name == "url" && f.is_raw && source_text(*n, f)) {
+        elements.push_back(&f);  // the program as CDATA, after the declarations
+        continue;
+      }
       const std::string v = f.is_raw
                                 ? raw_value(f.raw, detail::single_string_field(n->type, f.name))
                                 : typed_value(f.value);
@@ -352,6 +374,11 @@ class Writer {
       }
       if (is_statement(f->name)) {
         statement(f->name, f->raw, depth + 1);
+        continue;
+      }
+      if (f->name == "url" && f->is_raw) {
+        indent(depth + 1);
+        out_ += "<![CDATA[" + *source_text(*n, *f) + "]]>\n";
         continue;
       }
       std::string fname = f->name;

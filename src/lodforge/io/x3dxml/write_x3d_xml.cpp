@@ -161,14 +161,10 @@ bool is_statement(std::string_view field) {
          field == "UNIT";
 }
 
-// The program of a Script or shader node with interface declarations whose url
-// is one string (as the X3D XML reader reads a CDATA section): written as
-// CDATA, where X3D XML keeps it.
-std::optional<std::string> source_text(const Node& n, const scene::Field& url) {
-  const bool declares = std::any_of(n.fields.begin(), n.fields.end(), [](const scene::Field& f) {
-    return f.name.find(' ') != std::string::npos;
-  });
-  if (!declares) return std::nullopt;
+// The program of a Script or shader node read from a CDATA section (a url of
+// one string in the form the X3D XML reader gives it): written back as CDATA,
+// after the declarations, where X3D XML keeps it.
+std::optional<std::string> source_text(const scene::Field& url) {
   const std::string v = raw_value(url.raw, false);
   if (v.size() < 2 || v.front() != '"' || v.back() != '"') return std::nullopt;
   const std::string text = vrml1::detail::unquote(v);
@@ -351,7 +347,7 @@ class Writer {
         elements.push_back(&f);
         continue;
       }
-      if (f.name == "url" && f.is_raw && source_text(*n, f)) {
+      if (f.name == "url" && f.is_raw && source_text(f)) {
         elements.push_back(&f);  // the program as CDATA, after the declarations
         continue;
       }
@@ -378,7 +374,7 @@ class Writer {
       }
       if (f->name == "url" && f->is_raw) {
         indent(depth + 1);
-        out_ += "<![CDATA[" + *source_text(*n, *f) + "]]>\n";
+        out_ += "<![CDATA[" + *source_text(*f) + "]]>\n";
         continue;
       }
       std::string fname = f->name;

@@ -188,7 +188,7 @@ class Writer {
       version = rest.substr(0, rest.find_first_of(" \t"));
     }
     count_uses();
-    std::string profile = "Immersive";
+    std::string profile;  // none if the scene names none (a VRML97 scene gets one on conversion)
     std::string head;
     for (const auto& r : scene_.roots) {
       if (!r->statement) continue;
@@ -218,11 +218,11 @@ class Writer {
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
         "<!DOCTYPE X3D PUBLIC \"ISO//Web3D//DTD X3D {0}//EN\" "
         "\"https://www.web3d.org/specifications/x3d-{0}.dtd\">\n"
-        "<X3D profile={1} version={2}\n"
+        "<X3D{1} version={2}\n"
         "     xmlns:xsd=\"http://www.w3.org/2001/XMLSchema-instance\"\n"
         "     "
         "xsd:noNamespaceSchemaLocation=\"https://www.web3d.org/specifications/x3d-{0}.xsd\">\n",
-        version, attribute(profile), attribute(version));
+        version, profile.empty() ? "" : " profile=" + attribute(profile), attribute(version));
     if (!head.empty()) out += "<head>\n" + head + "</head>\n";
     out += "<Scene>\n" + out_ + "</Scene>\n</X3D>\n";
     return out;

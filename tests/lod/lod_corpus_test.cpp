@@ -37,13 +37,13 @@ std::size_t drawable_ifs_triangles(const scene::Scene& s) {
         if (pts->floats[3 * a + k] != pts->floats[3 * b + k]) return false;
       return true;
     };
-    for (auto [b, e] : scene::split_index_runs(ci)) {
+    scene::for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
       std::vector<std::int32_t> poly;
       for (std::size_t i = b; i < e; ++i)
         if (poly.empty() || !same(poly.back(), ci[i])) poly.push_back(ci[i]);
       while (poly.size() > 1 && same(poly.front(), poly.back())) poly.pop_back();
       if (poly.size() >= 3) total += poly.size() - 2;
-    }
+    });
   });
   return total;
 }

@@ -7,20 +7,9 @@
 namespace lodforge {
 namespace {
 
-/// Every triangle with its own three corners (like STL).
-TriangleMesh soup(const TriangleMesh& m) {
-  TriangleMesh s;
-  for (const Triangle& t : m.triangles) {
-    auto base = static_cast<std::uint32_t>(s.positions.size());
-    for (std::uint32_t v : t) s.positions.push_back(m.positions[v]);
-    s.triangles.push_back({base, base + 1, base + 2});
-  }
-  return s;
-}
-
 TEST(Weld, CubeSoupBecomesTheCube) {
   TriangleMesh cube = test::make_cube();
-  WeldResult r = weld(soup(cube));
+  WeldResult r = weld(test::as_soup(cube));
   EXPECT_EQ(r.mesh.vertex_count(), 8u);
   EXPECT_EQ(r.mesh.triangle_count(), 12u);
   EXPECT_EQ(r.merged_vertices, 36u - 8u);
@@ -118,7 +107,7 @@ TEST(Weld, EmptyMesh) {
 }
 
 TEST(Weld, LargeSoupIsLinear) {
-  TriangleMesh big = soup(test::make_icosphere(6));  // 81920 triangles
+  TriangleMesh big = test::as_soup(test::make_icosphere(6));  // 81920 triangles
   WeldResult r = weld(big);
   EXPECT_EQ(r.mesh.vertex_count(), 40962u);
   EXPECT_EQ(r.mesh.triangle_count(), 81920u);

@@ -19,15 +19,6 @@ void for_each_shape(const std::string& body, F f) {
   traverse(s, [&](const ShapeVisit& v) { f(v); });
 }
 
-TEST(ForEachIndexRun, RunsBetweenSeparatorsWithOrWithoutAFinalOne) {
-  std::vector<std::pair<std::size_t, std::size_t>> runs;
-  for_each_index_run({0, 1, 2, -1, -1, 3, 4, 5, 6, -1, 7, 8},
-                     [&](std::size_t b, std::size_t e) { runs.emplace_back(b, e); });
-  EXPECT_EQ(runs, (std::vector<std::pair<std::size_t, std::size_t>>{{0, 3}, {5, 9}, {10, 12}}));
-  EXPECT_EQ(split_index_runs({0, 1, 2, -1, -1, 3, 4, 5, 6, -1, 7, 8}), runs);
-  EXPECT_TRUE(split_index_runs({-1, -1}).empty());
-}
-
 TEST(ShapeMesh, TrianglesPassThroughAndPolygonsAreTriangulated) {
   for_each_shape(
       "Coordinate3 { point [0 0 0, 1 0 0, 1 1 0, 0 1 0, 2 0 0] }\n"

@@ -20,17 +20,6 @@
 namespace lodforge {
 namespace {
 
-/// Every triangle with its own three corners (like STL).
-TriangleMesh soup(const TriangleMesh& m) {
-  TriangleMesh s;
-  for (const Triangle& t : m.triangles) {
-    auto base = static_cast<std::uint32_t>(s.positions.size());
-    for (std::uint32_t v : t) s.positions.push_back(m.positions[v]);
-    s.triangles.push_back({base, base + 1, base + 2});
-  }
-  return s;
-}
-
 /// A "book": `pages` triangles sharing the edge (0,0,0)-(0,0,1) (a
 /// non-manifold edge), plus a second fan touching the first only at the
 /// origin (a non-manifold vertex).
@@ -163,7 +152,7 @@ TEST(VertexClustering, ChainFollowsTheMinDiffRule) {
 
 TEST(VertexClustering, TriangleSoupClustersLikeTheWeldedMesh) {
   TriangleMesh sphere = test::make_icosphere(3);
-  TriangleMesh s = soup(sphere);
+  TriangleMesh s = test::as_soup(sphere);
   std::vector<SimplifyResult> a = vertex_clustering(sphere);
   std::vector<SimplifyResult> b = vertex_clustering(s);
   expect_valid_chain(s, b);
@@ -341,7 +330,7 @@ TEST(VertexClustering, ErrorIsTheLargestVertexDisplacement) {
 /// be exactly this one.
 TEST(VertexClustering, ErrorIsExactlyTheLargestDisplacement) {
   for (const TriangleMesh& mesh :
-       {test::make_uv_sphere(32, 16), test::make_icosphere(4), soup(test::make_icosphere(3))}) {
+       {test::make_uv_sphere(32, 16), test::make_icosphere(4), test::as_soup(test::make_icosphere(3))}) {
     const std::vector<SimplifyResult> chain = vertex_clustering(mesh);
     ASSERT_GE(chain.size(), 3u);
     Box3 box;

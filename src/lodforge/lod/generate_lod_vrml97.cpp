@@ -17,6 +17,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/lod/choose_levels.h"
+#include "lodforge/scene/face_set_mesh.h"
 
 namespace lodforge {
 namespace {
@@ -107,12 +108,18 @@ class GeometryReader {
   /// False (with a warning) if the shape cannot be read as it is.
   bool read(Polygons& out) {
     if (!coord_ || !coord_->value("point")) return false;  // (an ElevationGrid's is made)
-    if (g_.type == "IndexedFaceSet")
-      read_indexed_face_set(out);
-    else if (g_.type == "ElevationGrid")
+    if (g_.type == "IndexedFaceSet") {
+      try {
+        read_indexed_face_set(out);
+      } catch (const DataError& e) {
+        log_.warn(LogCategory::kParse, fmt::format("{}; shape left without LOD", e.what()));
+        return false;
+      }
+    } else if (g_.type == "ElevationGrid") {
       read_elevation_grid(out);
-    else
+    } else {
       read_triangle_sets(out);
+    }
     for (const Corner& c : out.corners)
       if (c[0] >= coords_) {
         log_.warn(LogCategory::kParse,
@@ -136,21 +143,19 @@ class GeometryReader {
   void read_indexed_face_set(Polygons& out) {
     const std::vector<std::int32_t>* ci = ints_of(g_, "coordIndex");
     if (!ci) return;
-    std::size_t face = 0;
-    for (std::size_t i = 0; i <= ci->size(); ++i) {
-      if (i < ci->size() && (*ci)[i] >= 0) {
+    const std::string where = fmt::format("{}: {}", where_, g_.type);
+    const std::vector<scene::FaceRun> runs = scene::face_runs(*ci, coords_, {where, coord_->type});
+    for (std::size_t face = 0; face < runs.size(); ++face) {
+      for (std::size_t i = runs[face].first; i < runs[face].second; ++i) {
         Corner c{std::uint32_t((*ci)[i]), kNone, kNone, kNone};
         c[1] = corner_index(normal_, i, (*ci)[i]);
         c[2] = corner_index(tex_, i, (*ci)[i]);
         c[3] = corner_index(color_, i, (*ci)[i]);
         out.corners.push_back(c);
-        continue;
       }
-      if (out.corners.size() == out.start.back()) continue;  // an empty polygon
       out.start.push_back(std::uint32_t(out.corners.size()));
       out.face_normal.push_back(face_index(normal_, face));
       out.face_color.push_back(face_index(color_, face));
-      ++face;
     }
   }
 
@@ -286,11 +291,13 @@ struct Job {
 void build_mesh(Job& j, const GeometryReader& reader, const TriangulateOptions& triangulation) {
   const std::vector<float>& points = reader.coord()->value("point")->floats;
   std::unordered_map<Corner, std::uint32_t, CornerHash> vertex_of;
-  std::vector<Vec3> corner_points;
   std::vector<std::uint32_t> corner_vertex;
+  scene::FaceTriangulation rule{.triangulation = triangulation,
+                                .drop_repeated_vertex_triangles = true,
+                                .diagnose_triangles = false};
+  rule.triangulation.keep_quads = false;
   const Polygons& p = j.polygons;
   for (std::size_t f = 0; f + 1 < p.start.size(); ++f) {
-    corner_points.clear();
     corner_vertex.clear();
     for (std::uint32_t k = p.start[f]; k < p.start[f + 1]; ++k) {
       const Corner& c = p.corners[k];
@@ -299,18 +306,10 @@ void build_mesh(Job& j, const GeometryReader& reader, const TriangulateOptions& 
         j.mesh.positions.push_back({points[3 * c[0]], points[3 * c[0] + 1], points[3 * c[0] + 2]});
         j.vertex_corner.push_back(c);
       }
-      corner_points.push_back(j.mesh.positions[it->second]);
       corner_vertex.push_back(it->second);
     }
-    if (corner_points.size() < 3) continue;
-    TriangulateOptions o = triangulation;
-    o.keep_quads = false;
-    for (const Triangle& t : triangulate_polygon(corner_points, o).triangles) {
-      Triangle tri{corner_vertex[t[0]], corner_vertex[t[1]], corner_vertex[t[2]]};
-      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-      j.mesh.triangles.push_back(tri);
-      j.triangle_polygon.push_back(std::uint32_t(f));
-    }
+    scene::face_triangles(j.mesh.positions, corner_vertex, rule, j.mesh.triangles);
+    j.triangle_polygon.resize(j.mesh.triangles.size(), std::uint32_t(f));
   }
 }
 

@@ -15,9 +15,9 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/scene/attribute_binding.h"
+#include "lodforge/scene/face_set_mesh.h"
 #include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
-#include "lodforge/scene/shape_mesh.h"
 
 namespace lodforge {
 namespace {
@@ -121,7 +121,8 @@ class FaceSetReader {
 
   ShapeGeometry read() {
     ShapeGeometry g;
-    const auto runs = scene::split_index_runs(ci_);
+    const std::string where = fmt::format("line {}: {}", shape_.first_line, shape_.type);
+    const auto runs = scene::face_runs(ci_, npts_, {where, "Coordinate3"});
     while (!read_pass(runs, g)) {
     }
     finish(g);
@@ -226,12 +227,7 @@ class FaceSetReader {
   // Corner p of face f: its vertex (position and per-vertex attributes,
   // de-duplicated) and its per-vertex material index (-1: none).
   Corner read_corner(std::size_t f, std::size_t p, ShapeGeometry& g) {
-    const std::int32_t c = ci_[p];
-    if (c < 0 || std::size_t(c) >= npts_)
-      throw DataError(
-          fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the "
-                      "current Coordinate3 has {} points)",
-                      shape_.first_line, shape_.type, p, c, npts_));
+    const std::int32_t c = ci_[p];  // in range: read() checked it
     const Vec3 x{pts_->floats[3 * std::size_t(c)], pts_->floats[3 * std::size_t(c) + 1],
                  pts_->floats[3 * std::size_t(c) + 2]};
     if (!is_finite(x))
@@ -288,29 +284,29 @@ class FaceSetReader {
   void add_polygon(std::size_t f, std::uint32_t face_mat, std::uint32_t face_norm,
                    ShapeGeometry& g) {
     poly_.clear();
-    for (const auto& c : corners_)
-      if (poly_.empty() || poly_.back() != c.vertex) poly_.push_back(c.vertex);
-    while (poly_.size() > 1 && poly_.front() == poly_.back()) poly_.pop_back();
-    if (poly_.size() < 3) {
+    for (const auto& c : corners_) poly_.push_back(c.vertex);
+    const std::size_t first = g.mesh.triangles.size();
+    const scene::FaceTriangles ft = scene::face_triangles(
+        g.mesh.positions, poly_,
+        {.triangulation = options_.triangulation, .merge_repeated_corners = true},
+        g.mesh.triangles);
+    if (ft.corners < 3) {
       ++g.dropped_faces;
       return;
     }
-    const TriangulateResult tr =
-        triangulate_polygon(g.mesh.positions, poly_, options_.triangulation);
-    if (tr.has_warning())
+    if (ft.degenerate || ft.not_simple)
       log_.add(LogLevel::kMessage, LogCategory::kTriangulator,
                fmt::format("line {}: face {} is {}; triangulated anyway", shape_.first_line, f,
-                           tr.degenerate ? "degenerate" : "not simple"));
+                           ft.degenerate ? "degenerate" : "not simple"));
     const auto polygon = std::uint32_t(g.polygon_is_quad.size());
-    g.polygon_is_quad.push_back(poly_.size() == 4 && tr.keep_as_quad);
-    for (const auto& t : tr.triangles) {
-      g.mesh.triangles.push_back({poly_[t[0]], poly_[t[1]], poly_[t[2]]});
+    g.polygon_is_quad.push_back(ft.keep_as_quad);
+    for (std::size_t i = first; i < g.mesh.triangles.size(); ++i) {
+      const Triangle t = g.mesh.triangles[i];
       g.triangle_polygon.push_back(polygon);
       g.face_normal.push_back(face_norm);
       if (face_mat != kNone) g.mesh.materials.push_back(face_mat);
       for (int k = 0; k < 3; ++k)
-        if (g.vertex_face_material[poly_[t[k]]] == kNone)
-          g.vertex_face_material[poly_[t[k]]] = face_mat;
+        if (g.vertex_face_material[t[k]] == kNone) g.vertex_face_material[t[k]] = face_mat;
     }
   }
 

@@ -40,14 +40,6 @@ std::vector<Vec3> coordinates(const TraversalState& state, const Node& shape) {
   return pts;
 }
 
-void check_index(std::int32_t i, std::size_t n, const Node& shape, std::size_t pos) {
-  if (i < 0 || std::size_t(i) >= n)
-    throw DataError(
-        fmt::format("line {}: {} coordIndex[{}] = {} is out of range (the current "
-                    "Coordinate3 has {} points)",
-                    shape.first_line, shape.type, pos, i, n));
-}
-
 // The rows of the current Material as the renderer draws them.
 class MaterialRows {
  public:
@@ -231,14 +223,16 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
     log->add(LogLevel::kMessage, LogCategory::kTriangulator,
              fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, at, what));
   };
+  const std::string where = fmt::format("line {}: {}", shape.first_line, shape.type);
+  const std::vector<FaceRun> runs = face_runs(ci, pts.size(), {where, "Coordinate3"});
+  const FaceTriangulation triangulation{.triangulation = options.triangulation,
+                                        .diagnose_triangles = log != nullptr};
   std::vector<std::uint32_t> poly;
   std::size_t corner_seq = 0;
-  std::size_t f = 0;
-  for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
-    const std::size_t face = f++;
+  for (std::size_t face = 0; face < runs.size(); ++face) {
+    const auto [b, e] = runs[face];
     poly.clear();
     for (std::size_t i = b; i < e; ++i, ++corner_seq) {
-      check_index(ci[i], pts.size(), shape, i);
       const std::size_t row =
           options.appearance
               ? std::size_t(material_row(mindex.at(face, corner_seq, i), materials.rows(), 0))
@@ -251,39 +245,21 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
     if (line_set) {
       for (std::size_t i = 1; i < poly.size(); ++i)
         out.mesh.lines.push_back({poly[i - 1], poly[i]});
-      return;
+      continue;
     }
-    if (poly.size() < 3) {
+    const FaceTriangles ft =
+        face_triangles(out.mesh.positions, poly, triangulation, out.mesh.triangles);
+    if (ft.corners < 3) {
       if (log)
         log->warn(LogCategory::kFace, fmt::format("line {}: IndexedFaceSet face at coordIndex[{}] "
                                                   "has {} vertices; skipped",
                                                   shape.first_line, b, poly.size()));
-      return;
+      continue;
     }
-    if (poly.size() == 3) {  // a triangle passes through as it is
-      const auto& p = out.mesh.positions;
-      if (log && triangle_is_degenerate(p[poly[0]], p[poly[1]], p[poly[2]]))
-        note_face(b, "degenerate");
-      out.mesh.triangles.push_back({poly[0], poly[1], poly[2]});
-      return;
-    }
-    TriangulateResult tr = triangulate_polygon(out.mesh.positions, poly, options.triangulation);
-    if (log && tr.has_warning()) note_face(b, tr.degenerate ? "degenerate" : "not simple");
-    for (const auto& tri : tr.triangles)
-      out.mesh.triangles.push_back({poly[tri[0]], poly[tri[1]], poly[tri[2]]});
-  });
+    if (log && (ft.degenerate || ft.not_simple))
+      note_face(b, ft.degenerate ? "degenerate" : "not simple");
+  }
 }
-
-}  // namespace
-
-std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
-    const std::vector<std::int32_t>& index) {
-  std::vector<std::pair<std::size_t, std::size_t>> runs;
-  for_each_index_run(index, [&](std::size_t b, std::size_t e) { runs.emplace_back(b, e); });
-  return runs;
-}
-
-namespace {
 
 ShapeSurface surface(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* log) {
   if (has_indexed_equivalent(visit.shape.type)) {
@@ -359,13 +335,13 @@ ShapeCounts shape_counts(const ShapeVisit& visit, const ShapeMeshOptions& option
   const std::span<const float> f = coordinate_floats(visit.state, shape);
   const std::size_t points = f.size() / 3;
   const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
-  for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) check_index(ci[i], points, shape, i);
+  const std::string where = fmt::format("line {}: {}", shape.first_line, shape.type);
+  for (const auto& [b, e] : face_runs(ci, points, {where, "Coordinate3"})) {
     if (line_set)
       counts.segments += e - b - 1;
     else if (e - b >= 3)
       counts.triangles += e - b - 2;
-  });
+  }
   counts.vertices = points;
   const bool move = options.world_space && !(visit.state.transform == Mat4{});
   for (std::size_t i = 0; i < points; ++i) {

@@ -11,6 +11,7 @@
 #include "lodforge/core/log.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/mesh/triangulate_polygon.h"
+#include "lodforge/scene/face_set_mesh.h"
 #include "lodforge/scene/tessellate_primitive.h"
 #include "lodforge/scene/traverse.h"
 
@@ -73,23 +74,5 @@ struct ShapeSurface {
 /// As shape_mesh, with appearance (options.appearance is taken as true).
 ShapeSurface shape_surface(const ShapeVisit& visit, const ShapeMeshOptions& options = {},
                            Log* log = nullptr);
-
-/// Calls visit(begin, end) for each face of an IndexedFaceSet's coordIndex
-/// (or polyline of an IndexedLineSet), in order: the non-empty runs
-/// separated by -1 (any negative index); a missing final -1 is allowed.
-template <class Visit>
-void for_each_index_run(const std::vector<std::int32_t>& index, Visit&& visit) {
-  std::size_t begin = 0;
-  for (std::size_t i = 0; i < index.size(); ++i)
-    if (index[i] < 0) {
-      if (i > begin) visit(begin, i);
-      begin = i + 1;
-    }
-  if (index.size() > begin) visit(begin, index.size());
-}
-
-/// The runs of for_each_index_run as [begin, end) ranges into `index`.
-std::vector<std::pair<std::size_t, std::size_t>> split_index_runs(
-    const std::vector<std::int32_t>& index);
 
 }  // namespace lodforge::scene

@@ -243,45 +243,23 @@ class Converter {
     return a.value();
   }
 
-  // A DEF name, a field name in a ROUTE and the like: the classic encoding's
-  // identifier (no spaces, quotes, '#', ',', '.', brackets or braces; not
-  // starting with a digit, '+' or '-'), or the classic text would read as
-  // something else.
-  std::string_view identifier(pugi::xml_node e, const char* attribute, std::string_view value) {
-    const auto bad = [](char c) {
-      const auto u = static_cast<unsigned char>(c);
-      return u <= 0x20 || u == 0x7f ||
-             std::string_view("\"#',.[\\]{}").find(c) != std::string_view::npos;
-    };
-    const bool ok = !value.empty() && !std::isdigit(static_cast<unsigned char>(value[0])) &&
-                    value[0] != '+' && value[0] != '-' &&
-                    std::none_of(value.begin(), value.end(), bad);
-    if (!ok)
-      fail(e, fmt::format("<{}> {}=\"{}\" is not a name (VRML/X3D identifier)", e.name(), attribute,
-                          value));
-    return value;
-  }
-  std::string_view need_id(pugi::xml_node e, const char* attribute) {
-    return identifier(e, attribute, need(e, attribute));
-  }
-
   // A statement element; false if `e` is none.
   bool statement(pugi::xml_node e, int depth) {
     const std::string_view n = e.name();
     if (n == "ROUTE") {
-      const std::string_view from_node = need_id(e, "fromNode");
-      const std::string_view from_field = need_id(e, "fromField");
-      const std::string_view to_node = need_id(e, "toNode");
-      const std::string_view to_field = need_id(e, "toField");
+      const std::string_view from_node = need(e, "fromNode");
+      const std::string_view from_field = need(e, "fromField");
+      const std::string_view to_node = need(e, "toNode");
+      const std::string_view to_field = need(e, "toField");
       line(e, fmt::format("ROUTE {}.{} TO {}.{}", from_node, from_field, to_node, to_field));
     } else if (n == "IMPORT") {
-      const std::string_view inline_def = need_id(e, "inlineDEF");
-      std::string s = fmt::format("IMPORT {}.{}", inline_def, need_id(e, "importedDEF"));
-      if (*e.attribute("AS").value()) s += fmt::format(" AS {}", need_id(e, "AS"));
+      const std::string_view inline_def = need(e, "inlineDEF");
+      std::string s = fmt::format("IMPORT {}.{}", inline_def, need(e, "importedDEF"));
+      if (*e.attribute("AS").value()) s += fmt::format(" AS {}", e.attribute("AS").value());
       line(e, s);
     } else if (n == "EXPORT") {
-      std::string s = fmt::format("EXPORT {}", need_id(e, "localDEF"));
-      if (*e.attribute("AS").value()) s += fmt::format(" AS {}", need_id(e, "AS"));
+      std::string s = fmt::format("EXPORT {}", need(e, "localDEF"));
+      if (*e.attribute("AS").value()) s += fmt::format(" AS {}", e.attribute("AS").value());
       line(e, s);
     } else if (n == "ProtoDeclare" || n == "ExternProtoDeclare") {
       proto(e, depth);
@@ -296,7 +274,7 @@ class Converter {
                    bool with_value) {
     const std::string_view access = need(f, "accessType");
     const std::string_view type = need(f, "type");
-    const std::string_view name = need_id(f, "name");
+    const std::string_view name = need(f, "name");
     line(f, fmt::format("{} {} {}", access, type, name));
     if (!is.empty()) {
       out_ += " IS " + is;
@@ -378,7 +356,7 @@ class Converter {
       fail(e, fmt::format("<{}> out of place", n));
     (void)parent;
     if (const auto use = e.attribute("USE")) {
-      line(e, fmt::format("USE {}", identifier(e, "USE", use.value())));
+      line(e, fmt::format("USE {}", use.value()));
       return;
     }
     check_name(e, n);
@@ -386,8 +364,7 @@ class Converter {
     const bool instance = n == "ProtoInstance";
     if (instance) type = need(e, "name");
     std::string start;
-    if (const auto def = e.attribute("DEF"))
-      start = fmt::format("DEF {} ", identifier(e, "DEF", def.value()));
+    if (const auto def = e.attribute("DEF")) start = fmt::format("DEF {} ", def.value());
     line(e, start + type + " {");
     body(e, type, instance, depth);
     out_ += " }";

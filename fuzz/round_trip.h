@@ -6,7 +6,6 @@
 // a name a later USE could not reach gets "NAME_N".
 #include <cstring>
 #include <string>
-#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -84,21 +83,5 @@ class RoundTripComparer {
   std::unordered_map<const Node*, const Node*> pairs_;
   std::unordered_set<const Node*> paired_;
 };
-
-/// Reads `text`, writes the scene and reads the written text back: traps
-/// unless that is the same scene; returns the scene first read. `read` maps
-/// (text, source name) to a result with a `scene`; `write` a scene to text.
-template <class Read, class Write>
-lodforge::scene::Scene round_trip(std::string_view text, Read read, Write write) {
-  auto r = read(text, "fuzz");
-  const std::string out = write(r.scene);
-  auto back = read(out, "fuzz-out");
-  if (r.scene.header != back.scene.header || r.scene.roots.size() != back.scene.roots.size())
-    __builtin_trap();
-  RoundTripComparer same(r.scene);
-  for (std::size_t i = 0; i < r.scene.roots.size(); ++i)
-    if (!same.nodes(r.scene.roots[i], back.scene.roots[i])) __builtin_trap();
-  return std::move(r.scene);
-}
 
 }  // namespace lodforge::fuzz

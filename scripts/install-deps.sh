@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   clang clang-format clang-tidy libclang-rt-14-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libfast-float-dev zlib1g-dev
-  libtbb-dev libeigen3-dev libpugixml-dev
+  libtbb-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcoin-dev libmeshoptimizer-dev
   libosmesa6-dev libstb-dev libtinygltf-dev

@@ -11,8 +11,6 @@
 #include "lodforge/core/error.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
-#include "lodforge/io/x3dxml/read_x3d_xml.h"
-#include "lodforge/io/x3dxml/write_x3d_xml.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
 
 namespace lodforge::apps {
@@ -95,9 +93,7 @@ void vrml97_to_x3d(scene::Scene& s) {
 
 bool is_vrml97_input(const std::string& path) {
   if (path == "-") return false;
-  if (ends_with(path, ".x3dv") || ends_with(path, ".x3d") || ends_with(path, ".x3dv.gz") ||
-      ends_with(path, ".x3d.gz"))
-    return true;
+  if (ends_with(path, ".x3dv") || ends_with(path, ".x3d")) return true;
   std::ifstream in(path, std::ios::binary);
   char head[16] = {};
   in.read(head, sizeof head);
@@ -106,24 +102,20 @@ bool is_vrml97_input(const std::string& path) {
 
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
                           const std::string& format, const LodOptions& options) {
-  const bool xml_in = ends_with(input, ".x3d") || ends_with(input, ".x3d.gz");
-  vrml97::ReadResult r =
-      xml_in ? x3dxml::read_x3d_xml_file(input) : vrml97::read_vrml97_file(input);
+  if (ends_with(input, ".x3d"))
+    throw DataError("X3D XML encoding (.x3d) is not read yet; convert it to .x3dv");
+  vrml97::ReadResult r = vrml97::read_vrml97_file(input);
   const bool x3d_in = vrml97::is_x3d_header(r.scene.header);
   std::string to = format;
-  if (to.empty())
-    to = ends_with(output, ".x3dv") || ends_with(output, ".x3dv.gz") ? "x3dv"
-         : ends_with(output, ".x3d") || ends_with(output, ".x3d.gz") ? "x3d"
-                                                                     : "";
+  if (to.empty()) to = ends_with(output, ".x3dv") ? "x3dv" : ends_with(output, ".x3d") ? "x3d" : "";
+  if (to == "x3d")
+    throw DataError("writing X3D XML encoding (.x3d) is not supported yet; use .x3dv");
   if (to == "vrml97" && x3d_in)  // .wrl without --format keeps X3D
     throw DataError("writing an X3D scene as VRML97 is not supported; use .x3dv");
-  if ((to == "x3dv" || to == "x3d") && !x3d_in) vrml97_to_x3d(r.scene);
+  if (to == "x3dv" && !x3d_in) vrml97_to_x3d(r.scene);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
-  if (to == "x3d")
-    x3dxml::write_x3d_xml_file(result.scene, output);
-  else
-    vrml97::write_vrml97_file(result.scene, output);
+  vrml97::write_vrml97_file(result.scene, output);
   return result;
 }
 

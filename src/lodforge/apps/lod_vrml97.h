@@ -11,12 +11,11 @@ namespace lodforge::apps {
 /// ends in .x3dv / .x3d.
 bool is_vrml97_input(const std::string& path);
 
-/// Reads `input` (.x3d: the X3D XML encoding), sets the output encoding
-/// (`format`: "vrml97", "x3dv", "x3d", or empty: from `output`'s name, .x3dv =
-/// X3D classic, .x3d = X3D XML, otherwise the input's),
+/// Reads `input`, sets the output encoding (`format`: "vrml97", "x3dv", or
+/// empty: from `output`'s name, .x3dv = X3D classic, otherwise the input's),
 /// runs generate_lod_vrml97 and writes `output` atomically. Throws DataError
 /// (nothing written) for a parse error or an encoding it cannot write
-/// (X3D to VRML97, a PROTO to X3D XML).
+/// (X3D XML, X3D to VRML97).
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
                           const std::string& format, const LodOptions& options);
 

@@ -11,11 +11,12 @@
 
 namespace lodforge {
 
-std::size_t measure_samples_for(std::size_t triangles, std::size_t requested,
-                                SimplifyMethod method, std::size_t most) {
+std::size_t measure_samples_for(std::size_t triangles, std::size_t requested, SimplifyMethod method,
+                                std::size_t most) {
   if (requested) return requested;
   const std::size_t per_triangle = method == SimplifyMethod::kDecimate ? 4 : 1;
-  return per_triangle * std::clamp<std::size_t>(triangles, 20000, std::max<std::size_t>(most, 20000));
+  return per_triangle *
+         std::clamp<std::size_t>(triangles, 20000, std::max<std::size_t>(most, 20000));
 }
 
 namespace {
@@ -54,7 +55,8 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
       pending.push_back(i);
   }
   if (pending.empty()) return out;
-  const std::size_t samples = measure_samples_for(mesh.triangle_count(), options.measure_samples, options.method);
+  const std::size_t samples =
+      measure_samples_for(mesh.triangle_count(), options.measure_samples, options.method);
   const DeviationMeter full(mesh, {.samples = samples});
   // Progress in eighths of a full measurement: an estimate costs about one.
   // With estimates, the full measurements are counted against about a third

@@ -329,8 +329,8 @@ TEST(VertexClustering, ErrorIsTheLargestVertexDisplacement) {
 /// skips vertices a bound says cannot be the farthest: its figure must still
 /// be exactly this one.
 TEST(VertexClustering, ErrorIsExactlyTheLargestDisplacement) {
-  for (const TriangleMesh& mesh :
-       {test::make_uv_sphere(32, 16), test::make_icosphere(4), test::as_soup(test::make_icosphere(3))}) {
+  for (const TriangleMesh& mesh : {test::make_uv_sphere(32, 16), test::make_icosphere(4),
+                                   test::as_soup(test::make_icosphere(3))}) {
     const std::vector<SimplifyResult> chain = vertex_clustering(mesh);
     ASSERT_GE(chain.size(), 3u);
     Box3 box;

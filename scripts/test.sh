@@ -4,9 +4,14 @@
 #   scripts/test.sh --sanitize   AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
 #                                (all tests but the bunny-scale quality runs, which take 4-10x
 #                                longer under the sanitizers; their code paths run there on
-#                                smaller inputs, and the Release run has them all; and the
-#                                ulimit -v run, since AddressSanitizer reserves far more
-#                                address space than any such limit)
+#                                smaller inputs, and the Release run has them all; the two
+#                                browser tests (three.js drawing every glTF output, the studio
+#                                page), whose point is Chromium's verdict on the files and
+#                                pages the Release run serves, while the sanitized code writes
+#                                the same glTF files in LodGltf.* and serves the same API in
+#                                StudioServer.*; and the ulimit -v run, since
+#                                AddressSanitizer reserves far more address space than any
+#                                such limit)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -36,7 +41,9 @@ if [ "${1:-}" = "--sanitize" ]; then
         CompareMeshes.StanfordBunnyAgreesWithBruteForce
         "SharedMeshes/MeasuredErrorTest[ -~]*"
         "SharedMeshes/ErrorBudgetTest[ -~]*"
-        SimplifyOutOfCore.StreamsUnderAMemoryLimitTheInMemoryPathExceeds)
+        SimplifyOutOfCore.StreamsUnderAMemoryLimitTheInMemoryPathExceeds
+        lod_gltf_threejs
+        studio_browser)
   exclude=(-E "^($(IFS='|'; echo "${slow[*]}" | sed 's/\./\\./g'))\$")
 fi
 cmake -S . -B "$build" -G Ninja "${args[@]}" >/dev/null

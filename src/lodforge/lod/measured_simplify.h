@@ -2,8 +2,10 @@
 /// Simplification whose error is measured, not estimated: one of the three
 /// simplifiers, then the one-sided Hausdorff distance from its result to its
 /// input, sampled and refined (DeviationMeter) and enlarged by kErrorMargin.
-/// That figure is an upper bound that a denser measurement stays below, and
-/// at most kErrorMargin x the true distance, whatever the method; the
+/// That figure is meant to stay above what a denser measurement finds (a
+/// sampled measurement with a margin, not a proof; the error checks in bench/
+/// compare it with 10^6-sample measurements) and at most kErrorMargin x the
+/// distance it found, whatever the method; the
 /// simplifiers' own figures are not (quadric error and Schroeder's
 /// accumulated distance overstate or understate it many times, a vertex
 /// displacement is no surface bound at all).

@@ -80,6 +80,12 @@ TEST_F(McoCli, BuildInfoExtract) {
                    std::to_string(priorities + 100));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("clamped"));
+  // -q, as for the other commands: no warning, the summary line stays.
+  r = run_lodforge("mco extract -q " + m + " -o " + path("big.ply") + " --priority " +
+                   std::to_string(priorities + 100));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, Not(HasSubstr("warning")));
+  EXPECT_THAT(r.err, HasSubstr("triangles"));
 }
 
 // --metric distance orders the expansions by the distance metric: a model of

@@ -190,12 +190,13 @@ struct LoadedModel {
   std::uint64_t full_triangles = 0;
 };
 
-LoadedModel load_model(const std::string& path, std::int64_t max_priority = -1) {
+LoadedModel load_model(const std::string& path, std::int64_t max_priority = -1,
+                       bool quiet = false) {
   const std::string data = read_file(path);
   LoadedModel out;
   out.summary = summarize_mco_data(data, path);
   const McoFileSummary& s = out.summary;
-  if (s.truncated() && s.complete_priorities > 0 &&
+  if (!quiet && s.truncated() && s.complete_priorities > 0 &&
       (max_priority < 0 || static_cast<std::uint64_t>(max_priority) >= s.complete_priorities))
     fmt::print(stderr,
                "warning: {}: the file ends after priority {} of {} ({} bytes); only the levels "
@@ -203,7 +204,7 @@ LoadedModel load_model(const std::string& path, std::int64_t max_priority = -1) 
                path, s.complete_priorities - 1, s.priorities, data.size());
   out.model = read_mco_data(data, path, {.max_priority = max_priority, .prefix = true});
   out.full_triangles = s.full_triangles ? s.full_triangles : out.model.full_triangles();
-  if (s.truncated() && !s.full_triangles)
+  if (!quiet && s.truncated() && !s.full_triangles)
     fmt::print(stderr,
                "warning: {}: a version {} file does not record its full triangle count; "
                "percentages are of the {} triangles it holds\n",
@@ -215,6 +216,7 @@ struct Extract {
   std::string input, output;
   std::int64_t triangles = -1, priority = -1;
   double percent = -1;
+  bool quiet = false;
 };
 
 void add_mco_extract(CLI::App* mco, Runner& run) {
@@ -235,20 +237,21 @@ void add_mco_extract(CLI::App* mco, Runner& run) {
                  ->check(CLI::NonNegativeNumber);
   ot->excludes(op)->excludes(on);
   op->excludes(on);
+  extract->add_flag("-q,--quiet", e->quiet, "No warnings (the one-line summary stays)");
   extract->callback([e, &run] {
     run = [e] {
       check_output_paths(std::array{OutputPath{e->output, "the extracted mesh"}},
                          std::array{e->input});
       // --priority N reads only what priorities 0..N need (the file is
       // progressive: a prefix, e.g. a partial download, is enough).
-      const LoadedModel loaded = load_model(e->input, e->priority);
+      const LoadedModel loaded = load_model(e->input, e->priority, e->quiet);
       const McLodModel& model = loaded.model;
       // A percentage is of the whole model, whatever part of it the file holds.
       std::int64_t triangles = e->triangles;
       if (e->percent >= 0)
         triangles = std::llround(double(loaded.full_triangles) * e->percent / 100.0);
       auto r = extract_mc_mesh(model, {.priority = e->priority, .triangles = triangles});
-      if (r.clamped)
+      if (r.clamped && !e->quiet)
         fmt::print(stderr, "warning: request beyond the {}, clamped to priority {}\n",
                    loaded.summary.truncated() ? "levels the file holds" : "model's range",
                    r.priority);

@@ -201,9 +201,22 @@ try {
   if (!reported.startsWith(`line ${brokenLine}:`)) fail(`the broken edit on line ${brokenLine} reports "${reported}"`);
   if (markedLines !== 1) fail(`${markedLines} lines marked for the parse error`);
 
+  // The example's Texture2 (an inline SFImage) is drawn as a texture map.
+  const textured = await page.evaluate(() => window.studio.meshes.filter((m) => m.userData.own.map).length);
+  if (textured === 0) fail('no mesh draws the scene\'s texture');
+  // The per-type tabs: one type's panel at a time; its quality goes into
+  // the command line.
+  await page.click('#type-tabs button[data-type="cone"]');
+  const visible = await page.$$eval('#per-type > div', (d) => d.filter((x) => !x.hidden).map((x) => x.dataset.type));
+  if (visible.join() !== 'cone') fail(`the Cone tab shows the panels ${visible}`);
+  await page.type('#per-type input[name="quality-cone"]', '2');
+  const command = await page.$eval('#command-line', (e) => e.value);
+  if (!command.includes('--quality cone=2')) fail(`the Cone tab's quality is not in the command line: ${command}`);
+  console.log(`${textured} textured meshes; Cone tab: ${command}`);
+
   if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
-    await page.evaluate((d) => window.studio.viewFrom(d), distances[0]);
+    await page.evaluate((d) => window.studio.viewFrom(d), distances[1]);
     await page.click('#colour-deviation');
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });

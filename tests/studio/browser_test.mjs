@@ -153,9 +153,71 @@ try {
   if (!(halves.differ > 0)) fail('side by side: level 0 and the LOD draw the same pixels far out');
   await page.click('#side-by-side');
 
+  // Deviation colours: from the middle distance (levels past 0 drawn) the
+  // toggle changes the drawn colours, and some pixels are greener or redder
+  // than blue (a vertex away from level 0).
+  await page.evaluate((d) => window.studio.viewFrom(d), distances[2]);
+  const frame = () => page.evaluate(() => {
+    const s = window.studio;
+    s.renderer.render(s.scene3d, s.camera);
+    const gl = s.renderer.getContext();
+    const px = new Uint8Array(gl.drawingBufferWidth * gl.drawingBufferHeight * 4);
+    gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    return Array.from(px);
+  });
+  const before = await frame();
+  await page.click('#colour-deviation');
+  const after = await frame();
+  let changed = 0, offBlue = 0;
+  for (let i = 0; i < after.length; i += 4) {
+    if (Math.abs(after[i] - before[i]) + Math.abs(after[i + 1] - before[i + 1]) + Math.abs(after[i + 2] - before[i + 2]) > 12) ++changed;
+    if (Math.max(after[i], after[i + 1]) > after[i + 2] + 40) ++offBlue;
+  }
+  const devMax = await page.evaluate(() => window.studio.deviationMax);
+  console.log(`deviation colours (max ${devMax.toPrecision(3)}): ${(changed / (after.length / 4) * 100).toFixed(1)} % of the pixels change, ${(offBlue / (after.length / 4) * 100).toFixed(2)} % green or red`);
+  if (!(changed / (after.length / 4) > 0.02)) fail('the deviation toggle does not change the drawn colours');
+  if (!(devMax > 0) || offBlue === 0) fail('no vertex away from level 0 is drawn green or red');
+  await page.click('#colour-deviation');
+
+  // The editor holds the scene's text (highlighted by the VRML mode); a
+  // broken edit re-parsed reports its line and marks it, and the loaded
+  // scene stays.
+  const shown = await page.evaluate(() => window.studio.editor.getValue());
+  if (!shown.startsWith('#VRML V1.0 ascii')) fail(`the editor does not show the scene: ${shown.slice(0, 40)}`);
+  const highlighted = await page.$$eval('.CodeMirror .cm-type', (e) => e.length);
+  if (highlighted === 0) fail('the editor highlights no node type');
+  const brokenLine = await page.evaluate(() => {
+    const ed = window.studio.editor, lines = ed.getValue().split('\n');
+    const at = lines.findIndex((l, i) => i > 0 && l.includes('{'));
+    lines[at] = lines[at].replace('{', '{ 1.5 )');
+    ed.setValue(lines.join('\n'));
+    return at + 1;
+  });
+  await page.click('#reparse');
+  await page.waitForFunction(() => document.querySelector('#parse-error').textContent !== '', { timeout: 20000 });
+  const reported = await page.$eval('#parse-error', (e) => e.textContent);
+  const markedLines = await page.evaluate(() => [...document.querySelectorAll('.CodeMirror .parse-error-line')].length);
+  console.log(`broken edit on line ${brokenLine}: "${reported}", ${markedLines} line marked`);
+  if (!reported.startsWith(`line ${brokenLine}:`)) fail(`the broken edit on line ${brokenLine} reports "${reported}"`);
+  if (markedLines !== 1) fail(`${markedLines} lines marked for the parse error`);
+
+  // The example's Texture2 (an inline SFImage) is drawn as a texture map.
+  const textured = await page.evaluate(() => window.studio.meshes.filter((m) => m.userData.own.map).length);
+  if (textured === 0) fail('no mesh draws the scene\'s texture');
+  // The per-type tabs: one type's panel at a time; its quality goes into
+  // the command line.
+  await page.click('#type-tabs button[data-type="cone"]');
+  const visible = await page.$$eval('#per-type > div', (d) => d.filter((x) => !x.hidden).map((x) => x.dataset.type));
+  if (visible.join() !== 'cone') fail(`the Cone tab shows the panels ${visible}`);
+  await page.type('#per-type input[name="quality-cone"]', '2');
+  const command = await page.$eval('#command-line', (e) => e.value);
+  if (!command.includes('--quality cone=2')) fail(`the Cone tab's quality is not in the command line: ${command}`);
+  console.log(`${textured} textured meshes; Cone tab: ${command}`);
+
   if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
-    await page.click('#colour-levels');
+    await page.evaluate((d) => window.studio.viewFrom(d), distances[1]);
+    await page.click('#colour-deviation');
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });
   }

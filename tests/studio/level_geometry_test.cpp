@@ -61,6 +61,43 @@ Separator {
   EXPECT_EQ(m[0], 1);
 }
 
+// Level 1 lifted off level 0's square by 0.25 and 0.5 (under a
+// translation, so the distances are taken in world space): its vertices'
+// deviations are those heights, and their colours are the scale of `compare
+// --colored` at max 0.5 (green at half, red at the maximum); level 0 is blue.
+TEST(LevelGeometry, DeviationOfEachLevelFromLevelZero) {
+  const auto r = vrml1::read_vrml1(R"(#VRML V1.0 ascii
+Separator {
+  Translation { translation 3 0 0 }
+  LOD {
+    range [10]
+    Separator {
+      Coordinate3 { point [0 0 0, 2 0 0, 0 2 0, 2 2 0] }
+      IndexedFaceSet { coordIndex [0, 1, 2, -1, 1, 3, 2, -1] }
+    }
+    Separator {
+      Scale { scaleFactor 1 1 0.5 }
+      Coordinate3 { point [0.5 0.5 0.5, 1.5 0.5 0.5, 0.5 1.5 1] }
+      IndexedFaceSet { coordIndex [0, 1, 2, -1] }
+    }
+  }
+})");
+  const json g = json::parse(level_geometry(r.scene));
+  EXPECT_FLOAT_EQ(g["deviation_max"].get<float>(), 0.5f);
+  const auto& levels = g["lods"][0]["levels"];
+  EXPECT_EQ(levels[0][0]["deviation"], json({0, 0, 0, 0}));
+  EXPECT_EQ(levels[0][0]["deviation_colors"], json({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}));
+  const auto d = levels[1][0]["deviation"].get<std::vector<float>>();
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_FLOAT_EQ(d[0], 0.25f);
+  EXPECT_FLOAT_EQ(d[1], 0.25f);
+  EXPECT_FLOAT_EQ(d[2], 0.5f);
+  const auto c = levels[1][0]["deviation_colors"].get<std::vector<float>>();
+  EXPECT_EQ(c, std::vector<float>({0, 1, 0, 0, 1, 0, 1, 0, 0}));
+  EXPECT_FALSE(json::parse(level_geometry(r.scene, {.deviation = false}))["lods"][0]["levels"][1][0]
+                   .contains("deviation"));
+}
+
 TEST(LevelGeometry, TooManyTrianglesIsADataError) {
   const auto r = vrml1::read_vrml1("#VRML V1.0 ascii\nSeparator { Sphere { } }");
   EXPECT_THROW(level_geometry(r.scene, {.max_triangles = 10}), DataError);

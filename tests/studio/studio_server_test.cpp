@@ -197,6 +197,116 @@ TEST_F(StudioServerTest, PathsOutsideTheGivenFoldersAreRefused) {
   EXPECT_NE(page->body.find("lodforge studio"), std::string::npos);
 }
 
+// The geometry of a LOD result carries each level's per-vertex deviation
+// from level 0 and its colours on one scale: level 0 at 0 (blue), a coarser
+// level with some vertex off the surface.
+TEST_F(StudioServerTest, GeometryCarriesTheDeviationFromLevelZero) {
+  const std::string scene = (dir_ / "scene.wrl").string();
+  ASSERT_EQ(run_lod(scene, {{"levels", 3}})["state"], "done");
+  auto res = client_->Get(("/api/geometry?which=output&path=" + query(scene)).c_str());
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const json g = json::parse(res->body);
+  const float most = g["deviation_max"];
+  EXPECT_GT(most, 0);
+  float seen = 0;
+  for (const auto& lod : g["lods"])
+    for (std::size_t l = 0; l < lod["levels"].size(); ++l)
+      for (const auto& m : lod["levels"][l]) {
+        const auto d = m["deviation"].get<std::vector<float>>();
+        ASSERT_EQ(d.size() * 3, m["positions"].size());
+        ASSERT_EQ(m["deviation_colors"].size(), m["positions"].size());
+        for (float v : d) {
+          if (l == 0) EXPECT_EQ(v, 0);
+          EXPECT_LE(v, most);
+          seen = std::max(seen, v);
+        }
+      }
+  EXPECT_EQ(seen, most);
+}
+
+// The editor's text, re-parsed without saving: a syntax error answers its
+// line and column and keeps the scene; a good edit changes the tree and the
+// counts while the file on disk stays as it was.
+TEST_F(StudioServerTest, ReparseReportsLineAndColumnAndWritesNothing) {
+  const std::string scene = (dir_ / "scene.wrl").string();
+  const json text = get("/api/text?path=" + query(scene));
+  const std::string original = text["text"];
+  EXPECT_EQ(text["edited"], false);
+  EXPECT_EQ(original.rfind("#VRML V1.0 ascii", 0), 0u);
+  const std::size_t before = get("/api/files")["files"][1]["triangles"];
+
+  json r = post(
+      "/api/parse",
+      {{"path", scene}, {"text", "#VRML V1.0 ascii\nSeparator {\n  Cube {\n    width }\n}\n"}});
+  EXPECT_EQ(r["parsed"], false);
+  EXPECT_EQ(r["line"], 4);
+  EXPECT_EQ(r["column"], 11);
+  EXPECT_NE(r["error"].get<std::string>().find(":4:11:"), std::string::npos) << r;
+  EXPECT_EQ(get("/api/text?path=" + query(scene))["edited"], false);
+
+  r = post("/api/parse", {{"path", scene},
+                          {"text", "#VRML V1.0 ascii\nSeparator {\n  DEF Edited Cube { }\n}\n"}});
+  ASSERT_EQ(r["parsed"], true) << r;
+  EXPECT_EQ(r["triangles"], 12);
+  EXPECT_NE(before, 12u);
+  EXPECT_NE(get("/api/tree?path=" + query(scene)).dump().find("Edited"), std::string::npos);
+  EXPECT_EQ(get("/api/text?path=" + query(scene))["edited"], true);
+  std::ifstream in(scene);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), original);
+  post("/api/parse", {{"path", "/etc/passwd"}, {"text", "#VRML V1.0 ascii\n"}}, 403);
+}
+
+// An upload lands in the server's own temporary folder and loads from there;
+// a name that is not a plain file name is refused and nothing is written.
+TEST_F(StudioServerTest, UploadStaysInTheServersFolder) {
+  json f = post("/api/upload", {{"name", "up.wrl"}, {"text", "#VRML V1.0 ascii\nSphere { }\n"}});
+  const fs::path path = f["path"].get<std::string>();
+  EXPECT_EQ(path.filename(), "up.wrl");
+  EXPECT_NE(path.parent_path(), dir_);
+  EXPECT_EQ(f["shapes"]["Sphere"], 1);
+  EXPECT_GT(get("/api/tree?path=" + httplib::detail::encode_query_param(path.string())).size(), 0u);
+  for (const char* name : {"../up2.wrl", "/tmp/up2.wrl", "..", "", "a/b.wrl"})
+    post("/api/upload", {{"name", name}, {"text", "#VRML V1.0 ascii\n"}}, 400);
+  EXPECT_FALSE(fs::exists(path.parent_path().parent_path() / "up2.wrl"));
+  EXPECT_FALSE(fs::exists("/tmp/up2.wrl"));
+  // A path outside the allowed folders stays refused after an upload.
+  post("/api/open", {{"path", "/etc/passwd"}}, 403);
+  server_->stop();
+  if (thread_.joinable()) thread_.join();
+  server_.reset();
+  EXPECT_FALSE(fs::exists(path.parent_path())) << "the upload folder outlives the server";
+}
+
+// A scene's texture file is served from its folder with its image type;
+// one outside the allowed folders, or not an image, is not.
+TEST_F(StudioServerTest, TexturesAreServedFromTheAllowedFoldersOnly) {
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + "rest of the file";
+  std::ofstream(dir_ / "wood.png", std::ios::binary) << png;
+  std::ofstream(dir_ / "textured.wrl")
+      << "#VRML V1.0 ascii\nSeparator { Texture2 { filename \"wood.png\" } Cube { } }\n";
+  post("/api/open", {{"path", (dir_ / "textured.wrl").string()}});
+  const std::string scene = query((dir_ / "textured.wrl").string());
+  auto geo = client_->Get(("/api/geometry?path=" + scene).c_str());
+  ASSERT_TRUE(geo);
+  ASSERT_EQ(geo->status, 200) << geo->body;
+  const json mesh = json::parse(geo->body)["shapes"][0];
+  EXPECT_EQ(mesh["texture"]["file"], "wood.png");
+  EXPECT_EQ(mesh["texcoords"].size() * 3, mesh["positions"].size() * 2);
+  auto res = client_->Get(("/api/texture?path=" + scene + "&file=wood.png").c_str());
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->body, png);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
+  res = client_->Get(("/api/texture?path=" + scene + "&file=..%2F..%2F..%2Fetc%2Fpasswd").c_str());
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 403);
+  EXPECT_EQ(res->body.find("root:"), std::string::npos);
+  res = client_->Get(("/api/texture?path=" + scene + "&file=textured.wrl").c_str());
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+}
+
 TEST(StudioServer, ListensOnLoopbackByDefault) {
   EXPECT_EQ(StudioOptions{}.host, "127.0.0.1");
   EXPECT_THROW(StudioServer(StudioOptions{.scenes = {"/nonexistent/x.wrl"}}), DataError);

@@ -19,25 +19,31 @@ struct Settings {
   bool open = false;
 };
 
-// The page and three.js: installed beside the program (share/lodforge/studio),
-// else the source tree's this program was built from.
-std::pair<std::string, std::string> asset_folders() {
+struct AssetFolders {
+  std::string web, three, codemirror;
+};
+
+// The page, three.js and CodeMirror: installed beside the program
+// (share/lodforge/studio), else the source tree's this program was built from.
+AssetFolders asset_folders() {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   const fs::path installed = exe.parent_path().parent_path() / "share/lodforge/studio";
   if (!ec && fs::exists(installed / "web/index.html"))
-    return {(installed / "web").string(), (installed / "three").string()};
-  return {LODFORGE_STUDIO_WEB, LODFORGE_STUDIO_THREE};
+    return {(installed / "web").string(), (installed / "three").string(),
+            (installed / "codemirror").string()};
+  return {LODFORGE_STUDIO_WEB, LODFORGE_STUDIO_THREE, LODFORGE_STUDIO_CODEMIRROR};
 }
 
 int run_studio(const Settings& s) {
-  const auto [web, three] = asset_folders();
+  const AssetFolders assets = asset_folders();
   studio::StudioServer server(studio::StudioOptions{.scenes = s.scenes,
                                                     .host = s.host,
                                                     .port = s.port,
-                                                    .web_root = web,
-                                                    .three_root = three,
+                                                    .web_root = assets.web,
+                                                    .three_root = assets.three,
+                                                    .codemirror_root = assets.codemirror,
                                                     .threads = s.threads});
   const int port = server.bind();
   const std::string url = fmt::format("http://{}:{}/", s.host, port);

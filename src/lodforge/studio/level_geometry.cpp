@@ -5,10 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 
 #include "lodforge/core/error.h"
+#include "lodforge/metrics/colorize_deviation.h"
+#include "lodforge/metrics/triangle_bvh.h"
 #include "lodforge/scene/shape_mesh.h"
 #include "lodforge/scene/traverse.h"
 
@@ -30,29 +33,65 @@ void append_number(std::string& out, float v, bool& first) {
   fmt::format_to(std::back_inserter(out), "{}", v);
 }
 
-std::string mesh_text(const scene::ShapeVisit& visit, const scene::ShapeSurface& surface) {
-  const TriangleMesh& m = surface.mesh;
-  std::string out;
-  out.reserve(64 + m.positions.size() * 40 + m.triangles.size() * 24);
-  fmt::format_to(std::back_inserter(out), R"({{"type":{},"line":{},"matrix":)",
-                 nlohmann::json(visit.shape.type).dump(), visit.shape.first_line);
-  std::vector<float> matrix(16);
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) matrix[std::size_t(c * 4 + r)] = visit.state.transform.m[r][c];
-  append_list(out, matrix, append_number);
-  out += R"(,"positions":)";
-  append_list(out, m.positions, [](std::string& o, const Vec3& p, bool& first) {
+// One shape as drawn: its mesh in object space and the transform to world.
+struct DrawnMesh {
+  std::string type;
+  int line = 0;
+  Mat4 transform;
+  TriangleMesh mesh;
+  std::vector<float> deviation;          ///< per vertex, when computed
+  const scene::Node* texture = nullptr;  ///< the Texture2 drawn, if the mesh has texcoords
+};
+
+// "texture":{"file":NAME} (as the Texture2 gives it, relative to the scene's
+// folder) or {"image":[w,h,components,pixel,...]} (its SFImage), and the
+// texture coordinates.
+void append_texture(std::string& out, const DrawnMesh& drawn) {
+  const scene::FieldValue* name = drawn.texture->applied_value("filename");
+  const scene::FieldValue* image = drawn.texture->applied_value("image");
+  if (name && !name->strings.empty() && !name->strings[0].empty())
+    out += R"(,"texture":{"file":)" + nlohmann::json(name->strings[0]).dump() + "}";
+  else if (image && image->ints.size() > 3)
+    out += R"(,"texture":{"image":)" + nlohmann::json(image->ints).dump() + "}";
+  else
+    return;
+  out += R"(,"texcoords":)";
+  append_list(out, drawn.mesh.texcoords, [](std::string& o, const Vec2& t, bool& first) {
+    append_number(o, t.x, first);
+    append_number(o, t.y, first);
+  });
+}
+
+void append_vectors(std::string& out, const std::vector<Vec3>& values) {
+  append_list(out, values, [](std::string& o, const Vec3& p, bool& first) {
     append_number(o, p.x, first);
     append_number(o, p.y, first);
     append_number(o, p.z, first);
   });
+}
+
+std::string mesh_text(const DrawnMesh& drawn, float deviation_max) {
+  const TriangleMesh& m = drawn.mesh;
+  std::string out;
+  out.reserve(64 + m.positions.size() * 40 + m.triangles.size() * 24);
+  fmt::format_to(std::back_inserter(out), R"({{"type":{},"line":{},"matrix":)",
+                 nlohmann::json(drawn.type).dump(), drawn.line);
+  std::vector<float> matrix(16);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) matrix[std::size_t(c * 4 + r)] = drawn.transform.m[r][c];
+  append_list(out, matrix, append_number);
+  out += R"(,"positions":)";
+  append_vectors(out, m.positions);
   if (m.has_colors()) {
     out += R"(,"colors":)";
-    append_list(out, m.colors, [](std::string& o, const Vec3& c, bool& first) {
-      append_number(o, c.x, first);
-      append_number(o, c.y, first);
-      append_number(o, c.z, first);
-    });
+    append_vectors(out, m.colors);
+  }
+  if (drawn.texture && m.texcoords.size() == m.vertex_count()) append_texture(out, drawn);
+  if (drawn.deviation.size() == m.vertex_count()) {
+    out += R"(,"deviation":)";
+    append_list(out, drawn.deviation, append_number);
+    out += R"(,"deviation_colors":)";
+    append_vectors(out, colorize_deviation(m, drawn.deviation, deviation_max));
   }
   const auto append_index = [](std::string& o, std::uint32_t i, bool& first) {
     if (!first) o += ',';
@@ -73,13 +112,13 @@ std::string mesh_text(const scene::ShapeVisit& visit, const scene::ShapeSurface&
 
 struct LodInstance {
   const scene::Node* node = nullptr;
-  std::vector<std::vector<std::string>> levels;
+  std::vector<std::vector<DrawnMesh>> levels;
   std::vector<int> filled_in_pass;  ///< per level: the traversal that drew it, -1 none yet
   std::optional<Mat4> transform;    ///< at the node
   bool exact = false;               ///< transform read from a direct child
 };
 
-std::string lod_text(const LodInstance& lod) {
+std::string lod_text(const LodInstance& lod, float deviation_max) {
   const scene::Node& n = *lod.node;
   const scene::FieldValue* c = n.value("center");
   Vec3 center =
@@ -94,7 +133,8 @@ std::string lod_text(const LodInstance& lod) {
   out += R"(,"levels":[)";
   for (std::size_t l = 0; l < lod.levels.size(); ++l) {
     out += l ? ",[" : "[";
-    for (std::size_t k = 0; k < lod.levels[l].size(); ++k) out += (k ? "," : "") + lod.levels[l][k];
+    for (std::size_t k = 0; k < lod.levels[l].size(); ++k)
+      out += (k ? "," : "") + mesh_text(lod.levels[l][k], deviation_max);
     out += ']';
   }
   out += "]}";
@@ -110,12 +150,48 @@ std::size_t max_lod_children(const scene::Scene& scene) {
   return most;
 }
 
+// Level 0 of an LOD instance as one world-space surface.
+TriangleMesh world_surface(const std::vector<DrawnMesh>& level) {
+  TriangleMesh out;
+  for (const auto& d : level) {
+    const auto base = std::uint32_t(out.positions.size());
+    for (const Vec3& p : d.mesh.positions) out.positions.push_back(d.transform.transform_point(p));
+    for (const auto& t : d.mesh.triangles)
+      out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return out;
+}
+
+// Fills every level's per-vertex deviation from level 0 (the world-space
+// distance of each vertex to level 0's surface, as `compare` measures a
+// vertex of A against B); returns the largest.
+float measure_deviation(LodInstance& lod) {
+  if (lod.levels.empty()) return 0;
+  const TriangleMesh reference = world_surface(lod.levels[0]);
+  const TriangleBvh bvh(reference);
+  float most = 0;
+  for (std::size_t l = 0; l < lod.levels.size(); ++l)
+    for (auto& d : lod.levels[l]) {
+      d.deviation.assign(d.mesh.vertex_count(), 0.f);
+      if (l == 0 || reference.triangles.empty()) continue;
+      std::uint32_t hint = ClosestPoint::kNone;
+      for (std::size_t v = 0; v < d.mesh.vertex_count(); ++v) {
+        const ClosestPoint c =
+            bvh.closest_point(d.transform.transform_point(d.mesh.positions[v]), hint);
+        hint = c.triangle;
+        d.deviation[v] = std::sqrt(c.distance_squared);
+        most = std::max(most, d.deviation[v]);
+      }
+    }
+  return most;
+}
+
 }  // namespace
 
 std::string level_geometry(const scene::Scene& scene, const LevelGeometryOptions& options,
                            Log* log) {
   std::map<std::vector<std::size_t>, LodInstance> lods;  // by the path to the node
-  std::vector<std::string> shapes;
+  std::vector<DrawnMesh> shapes;
   std::size_t triangles = 0;
   scene::ShapeMeshOptions mesh_options{.world_space = false, .appearance = true};
   // The traversal draws one child of every LOD node; traversal k draws child
@@ -155,30 +231,42 @@ std::string level_geometry(const scene::Scene& scene, const LevelGeometryOptions
               lod->transform = v.state.transform;
             }
           }
-          const scene::ShapeSurface surface = scene::shape_surface(v, mesh_options, log);
+          scene::ShapeSurface surface = scene::shape_surface(v, mesh_options, log);
           triangles += surface.mesh.triangles.size();
           if (triangles > options.max_triangles)
             throw DataError(
                 fmt::format("the levels hold more than {} triangles, too many for the 3D view",
                             options.max_triangles));
-          std::string text = mesh_text(v, surface);
+          DrawnMesh drawn{.type = v.shape.type,
+                          .line = v.shape.first_line,
+                          .transform = v.state.transform,
+                          .mesh = std::move(surface.mesh),
+                          .texture = surface.texture};
           if (lod)
-            lod->levels[level].push_back(std::move(text));
+            lod->levels[level].push_back(std::move(drawn));
           else
-            shapes.push_back(std::move(text));
+            shapes.push_back(std::move(drawn));
         },
         t);
   }
+  // One scale for the whole scene, as `compare --colored --color-max` with
+  // the largest deviation of all levels: colours of different shapes compare.
+  float deviation_max = 0;
+  if (options.deviation)
+    for (auto& [key, lod] : lods) deviation_max = std::max(deviation_max, measure_deviation(lod));
   std::string out = R"({"lods":[)";
   bool first = true;
   for (const auto& [key, lod] : lods) {
     if (!first) out += ',';
     first = false;
-    out += lod_text(lod);
+    out += lod_text(lod, deviation_max);
   }
   out += R"(],"shapes":[)";
-  for (std::size_t i = 0; i < shapes.size(); ++i) out += (i ? "," : "") + shapes[i];
-  out += "]}";
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    if (options.deviation) shapes[i].deviation.assign(shapes[i].mesh.vertex_count(), 0.f);
+    out += (i ? "," : "") + mesh_text(shapes[i], deviation_max);
+  }
+  fmt::format_to(std::back_inserter(out), R"(],"deviation_max":{}}})", deviation_max);
   return out;
 }
 

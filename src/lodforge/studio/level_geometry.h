@@ -16,19 +16,33 @@ struct LevelGeometryOptions {
   /// and every shape outside LODs): a larger scene throws DataError, as
   /// the page cannot hold it.
   std::size_t max_triangles = 20'000'000;
+  /// Measure every LOD level's per-vertex deviation from level 0 and add it
+  /// to the meshes ("deviation", "deviation_colors", "deviation_max").
+  bool deviation = true;
 };
 
 /// JSON text:
 ///
 ///     {"lods": [{"center": [x,y,z] (world), "ranges": [...], "line": N,
 ///                "name": "DEF", "levels": [[MESH, ...], ...]}, ...],
-///      "shapes": [MESH, ...]}
+///      "shapes": [MESH, ...], "deviation_max": D}
 ///
 /// MESH = {"type", "line", "matrix": 16 numbers (object to world,
 /// column-major as THREE.Matrix4.fromArray reads it), "positions": [x,y,z,
 /// ...] (object space), "colors": [r,g,b, ...] (per vertex: the Material's
 /// diffuse + emissive, as `render` draws it), "indices": [a,b,c, ...],
-/// "lines": [a,b, ...]}.
+/// "lines": [a,b, ...], "deviation": [d, ...], "deviation_colors": [r,g,b,
+/// ...], "texture": {"file": NAME} or {"image": [w, h, components, pixel,
+/// ...]}, "texcoords": [s,t, ...]}; the texture is the Texture2 drawn on the
+/// shape (its filename as written, relative to the scene's folder, or its
+/// SFImage), present with the texture coordinates when the shape has both.
+///
+/// "deviation" is, per vertex, the world-space distance to the surface of
+/// its LOD instance's level 0 (closest points on metrics' TriangleBvh, the
+/// vertex deviation of `compare`; 0 on level 0 and outside LODs), and
+/// "deviation_colors" are those values through colorize_deviation with max
+/// D, the largest deviation in the scene: the colours of `lodforge compare
+/// --colored --color-max D`, one scale for every shape.
 ///
 /// An LOD instance is one LOD node reached along one path (a USEd LOD is
 /// several instances); its levels are its children as the traversal draws

@@ -4,6 +4,8 @@
 #include <httplib.h>
 
 #include <atomic>
+#include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -13,6 +15,7 @@
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/lod/generate_lod.h"
@@ -94,6 +97,7 @@ struct LoadedScene {
   json counts;  // shape type -> count
   std::size_t triangles = 0;
   LodJob job;
+  std::optional<std::string> edited;  // the text re-parsed in place of the file's
 };
 
 bool is_under(const fs::path& path, const fs::path& folder) {
@@ -114,6 +118,7 @@ struct StudioServer::Impl {
   std::atomic<bool> running_job{false};
   httplib::Server server;
   int port = 0;
+  fs::path upload_folder;  // made at the first upload, removed at the end
 
   // The canonical form of a path the API was given, if it lies under an
   // allowed folder; ApiError 403 otherwise.
@@ -131,6 +136,18 @@ struct StudioServer::Impl {
                                     given, list));
   }
 
+  // Takes the scene read for `s` (its counts, triangles and warnings).
+  static void adopt(LoadedScene& s, vrml1::ReadResult r) {
+    s.warnings = r.log.entries();
+    const scene::SceneStatistics stats = scene::scene_statistics(r.scene);
+    s.counts = json::object();
+    for (const auto& [type, n] : stats.node_counts)
+      if (scene::is_shape_type(type) || type == "LOD") s.counts[type] = n;
+    s.triangles = stats.total_triangles;
+    s.scene = std::move(r.scene);
+    s.error.clear();
+  }
+
   LoadedScene& load(const fs::path& path) {
     auto entry = std::make_unique<LoadedScene>();
     entry->path = path.string();
@@ -138,20 +155,105 @@ struct StudioServer::Impl {
     entry->size = std::size_t(fs::file_size(path, ec));
     if (ec) throw ApiError(404, fmt::format("{}: {}", path.string(), ec.message()));
     try {
-      vrml1::ReadResult r = vrml1::read_vrml1_file(path.string());
-      entry->warnings = r.log.entries();
-      const scene::SceneStatistics stats = scene::scene_statistics(r.scene);
-      entry->counts = json::object();
-      for (const auto& [type, n] : stats.node_counts)
-        if (scene::is_shape_type(type) || type == "LOD") entry->counts[type] = n;
-      entry->triangles = stats.total_triangles;
-      entry->scene = std::move(r.scene);
+      adopt(*entry, vrml1::read_vrml1_file(path.string()));
     } catch (const DataError& e) {
       entry->error = e.what();
     }
     auto& slot = scenes[entry->path];
     slot = std::move(entry);
     return *slot;
+  }
+
+  // The scene's text for the editor: the edited text once re-parsed, the
+  // file's (decompressed) otherwise.
+  json text(const std::string& path) {
+    std::lock_guard lock(mutex);
+    LoadedScene& s = scene_of(path);
+    if (s.edited) return {{"path", s.path}, {"text", *s.edited}, {"edited", true}};
+    try {
+      const FileBytes bytes(s.path);
+      return {{"path", s.path}, {"text", std::string(bytes.view())}, {"edited", false}};
+    } catch (const DataError& e) {
+      throw ApiError(400, e.what());
+    }
+  }
+
+  // Parses edited text in place of the scene's file, writing nothing: the
+  // tree, counts and Make LOD then work on it. A syntax error leaves the
+  // loaded scene as it was and answers its line and column.
+  json parse(const json& body) {
+    if (!body.contains("text") || !body["text"].is_string()) throw ApiError(400, "no text given");
+    const std::string text = body["text"];
+    std::lock_guard lock(mutex);
+    LoadedScene& s = scene_of(body.value("path", ""));
+    if (running_job) throw ApiError(409, "a LOD run is going on; re-parse when it ends");
+    vrml1::ReadOptions read;
+    read.source_name = s.path;
+    read.base_dir = fs::path(s.path).parent_path().string();
+    try {
+      adopt(s, vrml1::read_vrml1(text, read));
+    } catch (const ParseError& e) {
+      return {{"parsed", false}, {"error", e.what()}, {"line", e.line()}, {"column", e.column()}};
+    } catch (const DataError& e) {
+      return {{"parsed", false}, {"error", e.what()}};
+    }
+    s.edited = text;
+    s.job = LodJob{};
+    json j = file_json(s);
+    j["parsed"] = true;
+    return j;
+  }
+
+  // A texture file of a scene (its Texture2 filename, relative to the
+  // scene's folder), under the allowed folders only.
+  std::string texture(const std::string& path, const std::string& file, std::string& type) {
+    fs::path f(file);
+    {
+      std::lock_guard lock(mutex);
+      if (f.is_relative()) f = fs::path(scene_of(path).path).parent_path() / f;
+    }
+    const fs::path p = allowed(f.string());
+    std::string ext = p.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    static const std::map<std::string, std::string> kTypes = {
+        {".png", "image/png"}, {".jpg", "image/jpeg"}, {".jpeg", "image/jpeg"},
+        {".gif", "image/gif"}, {".bmp", "image/bmp"},  {".webp", "image/webp"}};
+    const auto it = kTypes.find(ext);
+    if (it == kTypes.end()) throw ApiError(400, file + ": not an image the page can show");
+    if (!fs::is_regular_file(p)) throw ApiError(404, file + ": no such texture file");
+    type = it->second;
+    try {
+      return read_file(p.string());
+    } catch (const DataError& e) {
+      throw ApiError(404, e.what());
+    }
+  }
+
+  // An uploaded scene goes to the server's own temporary folder (never
+  // elsewhere), which then counts as an allowed folder.
+  json upload(const json& body) {
+    const std::string name = body.value("name", "");
+    if (name.empty() || name.find('/') != std::string::npos ||
+        name.find('\\') != std::string::npos || name == "." || name == ".." ||
+        name.find('\0') != std::string::npos)
+      throw ApiError(400, fmt::format("'{}': an upload needs a plain file name", name));
+    if (!body.contains("text") || !body["text"].is_string()) throw ApiError(400, "no text given");
+    std::lock_guard lock(mutex);
+    if (upload_folder.empty()) {
+      std::string pattern = (fs::temp_directory_path() / "lodforge-studio-XXXXXX").string();
+      if (!mkdtemp(pattern.data())) throw ApiError(500, "cannot make a temporary folder");
+      upload_folder = fs::canonical(pattern);
+      folders.push_back(upload_folder);
+    }
+    const fs::path path = upload_folder / name;
+    if (running_job && scenes.count(path.string()))
+      throw ApiError(409, "a LOD run is going on; upload again when it ends");
+    try {
+      write_file_atomic(path.string(), body["text"].get<std::string>());
+    } catch (const DataError& e) {
+      throw ApiError(400, e.what());
+    }
+    return file_json(load(path));
   }
 
   LoadedScene& scene_of(const std::string& given) {
@@ -366,12 +468,29 @@ void StudioServer::Impl::routes() {
   server.Get("/api/lod", api([this](const auto& req, auto& res) {
                send(res, lod_status(req.get_param_value("path")));
              }));
+  server.Get("/api/text", api([this](const auto& req, auto& res) {
+               send(res, text(req.get_param_value("path")));
+             }));
+  server.Get("/api/texture", api([this](const auto& req, auto& res) {
+               std::string type;
+               std::string bytes =
+                   texture(req.get_param_value("path"), req.get_param_value("file"), type);
+               res.set_content(std::move(bytes), type);
+             }));
+  server.Post("/api/parse",
+              api([this](const auto& req, auto& res) { send(res, parse(body_of(req))); }));
+  server.Post("/api/upload",
+              api([this](const auto& req, auto& res) { send(res, upload(body_of(req))); }));
   server.Post("/api/save",
               api([this](const auto& req, auto& res) { send(res, save(body_of(req))); }));
   // Module scripts load only with a JavaScript type.
   server.set_file_extension_and_mimetype_mapping("js", "text/javascript");
   if (!options.three_root.empty() && !server.set_mount_point("/three", options.three_root))
     throw DataError(options.three_root + ": three.js is not there (scripts/install-web-deps.sh)");
+  if (!options.codemirror_root.empty() &&
+      !server.set_mount_point("/codemirror", options.codemirror_root))
+    throw DataError(options.codemirror_root +
+                    ": CodeMirror is not there (scripts/install-web-deps.sh)");
   if (!server.set_mount_point("/", options.web_root))
     throw DataError(options.web_root + ": the studio's page is not there");
 }
@@ -394,6 +513,10 @@ StudioServer::StudioServer(StudioOptions options) : impl_(std::make_unique<Impl>
 
 StudioServer::~StudioServer() {
   stop();
+  if (!impl_->upload_folder.empty()) {
+    std::error_code ec;
+    fs::remove_all(impl_->upload_folder, ec);
+  }
 }
 
 int StudioServer::bind() {

@@ -20,6 +20,20 @@
 ///                                    when done the statistics and messages
 ///   POST /api/save  {path, output}   writes the last result through the
 ///                                    CLI's atomic writer
+///   GET  /api/texture?path=P&file=F  the image file F of a Texture2 of
+///                                    scene P (relative to its folder)
+///   GET  /api/text?path=P            {path, text, edited}: the scene's text
+///                                    (the re-parsed text if there is one)
+///   POST /api/parse {path, text}     parses the text in place of the file,
+///                                    writing nothing: {parsed: true, the
+///                                    /api/files entry} or {parsed: false,
+///                                    error, line, column} (the loaded scene
+///                                    stays as it was)
+///   POST /api/upload {name, text}    writes the scene into the server's own
+///                                    temporary folder (removed at the end;
+///                                    the name must be a plain file name) and
+///                                    loads it; that folder is allowed from
+///                                    then on
 /// Every path the API takes must lie under the folders of the scenes given
 /// at start (symbolic links resolved); anything else is refused. The page
 /// and three.js are served from their folders only (no path leaves them).
@@ -32,10 +46,11 @@ namespace lodforge::studio {
 struct StudioOptions {
   std::vector<std::string> scenes;  ///< loaded at start; their folders are the allowed ones
   std::string host = "127.0.0.1";
-  int port = 8765;         ///< 0: any free port
-  std::string web_root;    ///< the page's files (index.html, studio.js, studio.css)
-  std::string three_root;  ///< the `three` npm package (build/, examples/jsm/)
-  int threads = 0;         ///< LodOptions::threads of the runs
+  int port = 8765;              ///< 0: any free port
+  std::string web_root;         ///< the page's files (index.html, studio.js, studio.css)
+  std::string three_root;       ///< the `three` npm package (build/, examples/jsm/)
+  std::string codemirror_root;  ///< the `codemirror` 5 npm package (lib/, addon/mode/)
+  int threads = 0;              ///< LodOptions::threads of the runs
 };
 
 class StudioServer {

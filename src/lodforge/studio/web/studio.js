@@ -55,6 +55,7 @@ async function select(path) {
   $('save-path').value = path.replace(/(\.[^./]+)?$/, '_lod$1');
   updateCommand();
   $('tree').replaceChildren();
+  await loadText(path);
   if (f && f.error) return;
   const tree = await api('GET', `/api/tree?path=${encodeURIComponent(path)}`);
   $('tree').append(...tree.map(treeNode));
@@ -124,11 +125,101 @@ $('open-form').addEventListener('submit', async (e) => {
   } catch (err) { $('open-error').textContent = err.message; }
 });
 
+$('upload-file').addEventListener('change', async (e) => {
+  const file = e.target.files[0];
+  if (!file) return;
+  $('open-error').textContent = '';
+  try {
+    const f = await api('POST', '/api/upload', { name: file.name, text: await file.text() });
+    await loadFiles();
+    await select(f.path);
+  } catch (err) { $('open-error').textContent = err.message; }
+});
+
+// ---- editor: CodeMirror 5 (a classic script, window.CodeMirror) ----
+CodeMirror.defineSimpleMode('vrml', {
+  start: [
+    { regex: /#.*/, token: 'comment' },
+    { regex: /"(?:[^\\"]|\\.)*"?/, token: 'string' },
+    { regex: /(?:DEF|USE)\b/, token: 'keyword', next: 'name' },
+    { regex: /(?:fields|isA|TRUE|FALSE|NULL)\b/, token: 'keyword' },
+    { regex: /[-+]?(?:0[xX][0-9a-fA-F]+|(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)/, token: 'number' },
+    { regex: /[A-Z][A-Za-z0-9_]*(?=\s*\{)/, token: 'type' },
+    { regex: /[A-Z][A-Z0-9_]*\b/, token: 'atom' },
+    { regex: /[A-Za-z_][A-Za-z0-9_]*/, token: 'attribute' },
+    { regex: /[{}\[\]]/, token: 'bracket' },
+  ],
+  name: [{ regex: /\s+/, token: null }, { regex: /[^\s{}\[\]]+/, token: 'variable-2', next: 'start' }],
+  meta: { lineComment: '#' },
+});
+const editor = CodeMirror.fromTextArea($('editor'), { mode: 'vrml', lineNumbers: true });
+state.editor = editor;
+let markedLine = null;
+
+function markParseError(line) {
+  if (markedLine !== null) editor.removeLineClass(markedLine, 'background', 'parse-error-line');
+  markedLine = line;
+  if (line !== null) editor.addLineClass(line, 'background', 'parse-error-line');
+}
+
+async function loadText(path) {
+  const t = await api('GET', `/api/text?path=${encodeURIComponent(path)}`);
+  editor.setValue(t.text);
+  editor.clearHistory();
+  markParseError(null);
+  $('parse-error').textContent = '';
+  $('parse-state').textContent = t.edited ? 'edited (not saved)' : '';
+  // A file that does not parse shows its error in the editor too.
+  const f = state.files.find((x) => x.path === path);
+  const at = f && f.error && /:(\d+):(\d+): /.exec(f.error);
+  if (at) showParseError({ error: f.error, line: Number(at[1]), column: Number(at[2]) });
+}
+
+function showParseError(r) {
+  $('parse-error').textContent = r.line ? `line ${r.line}:${r.column}: ${r.error}` : r.error;
+  if (r.line) {
+    markParseError(r.line - 1);
+    editor.setCursor({ line: r.line - 1, ch: Math.max(0, r.column - 1) });
+    editor.scrollIntoView(null, 100);
+  }
+}
+
+$('reparse').addEventListener('click', async () => {
+  $('parse-error').textContent = '';
+  markParseError(null);
+  try {
+    const r = await api('POST', '/api/parse', { path: state.current, text: editor.getValue() });
+    if (!r.parsed) { showParseError(r); $('parse-state').textContent = 'parse error'; return; }
+    const cursor = editor.getCursor();
+    await loadFiles();
+    await select(state.current);
+    editor.setCursor(cursor);
+    $('parse-state').textContent = 'parsed (not saved)';
+  } catch (err) { $('parse-error').textContent = err.message; }
+});
+
 // ---- options and the command line ----
-for (const t of TYPES) {
-  $('per-type').append(element('div', {}, element('b', {}, t + ' '),
-    element('label', { style: 'display:inline' }, ' quality ', element('input', { name: `quality-${t}`, type: 'number', step: 1, placeholder: 'auto' })),
-    element('label', { style: 'display:inline' }, ' ranges ', element('input', { name: `ranges-${t}`, placeholder: 'a,b,...', size: 10 }))));
+// One tab per shape type, as the seed's LoD dialog (Sphere | Cylinder | Cone
+// | Polygon | Line | Cube): its quality (0 an empty node, 1 no levels, else
+// how many levels) and its manual ranges. A tab with a setting is marked.
+const TAB_ORDER = ['sphere', 'cylinder', 'cone', 'polygon', 'line', 'cube'];
+function showTab(t) {
+  for (const b of $('type-tabs').children) b.classList.toggle('active', b.dataset.type === t);
+  for (const p of $('per-type').children) p.hidden = p.dataset.type !== t;
+}
+for (const t of TAB_ORDER.filter((x) => TYPES.includes(x))) {
+  $('type-tabs').append(element('button', { type: 'button', 'data-type': t, onclick: () => showTab(t) }, t[0].toUpperCase() + t.slice(1)));
+  $('per-type').append(element('div', { 'data-type': t },
+    element('label', {}, 'quality ', element('input', { name: `quality-${t}`, type: 'number', min: 0, step: 1, placeholder: 'auto' }),
+      element('small', {}, ' 0 empty node, 1 no levels, n levels')),
+    element('label', {}, 'ranges ', element('input', { name: `ranges-${t}`, placeholder: 'a,b,...', size: 16 }))));
+}
+showTab(TAB_ORDER[0]);
+function markTabs() {
+  for (const b of $('type-tabs').children) {
+    const t = b.dataset.type;
+    b.classList.toggle('set', [`quality-${t}`, `ranges-${t}`].some((n) => $('options').elements[n].value !== ''));
+  }
 }
 
 function options() {
@@ -163,7 +254,7 @@ function updateCommand() {
   }
   $('command-line').value = args.map(shellWord).join(' ');
 }
-$('options').addEventListener('input', updateCommand);
+$('options').addEventListener('input', () => { markTabs(); updateCommand(); });
 $('save-path').addEventListener('input', updateCommand);
 $('copy-command').addEventListener('click', () => {
   $('command-line').select();
@@ -275,6 +366,34 @@ const root = new THREE.Group();
 scene.add(root);
 state.renderer = renderer; state.camera = camera; state.controls = controls; state.scene3d = scene;
 
+// Textures by file (served by /api/texture from the allowed folders) or by
+// inline SFImage (w, h, components, then one integer per pixel, bottom row
+// first as OpenGL reads it), one THREE.Texture each.
+const textures = new Map();
+function textureOf(t) {
+  const key = t.file !== undefined ? `file:${t.file}` : `image:${t.image.join(',')}`;
+  if (textures.has(key)) return textures.get(key);
+  let tex;
+  if (t.file !== undefined) {
+    tex = new THREE.TextureLoader().load(`/api/texture?path=${encodeURIComponent(state.current)}&file=${encodeURIComponent(t.file)}`);
+  } else {
+    const [w, h, c] = t.image, px = new Uint8Array(w * h * 4);
+    for (let i = 0; i < w * h; ++i) {
+      const v = t.image[3 + i] >>> 0;
+      const bytes = c === 1 ? [v & 255, v & 255, v & 255, 255] : c === 2 ? [(v >> 8) & 255, (v >> 8) & 255, (v >> 8) & 255, v & 255]
+        : c === 3 ? [(v >> 16) & 255, (v >> 8) & 255, v & 255, 255] : [(v >>> 24) & 255, (v >> 16) & 255, (v >> 8) & 255, v & 255];
+      px.set(bytes, i * 4);
+    }
+    tex = new THREE.DataTexture(px, w, h);
+    tex.flipY = false;
+    tex.needsUpdate = true;
+  }
+  tex.wrapS = tex.wrapT = THREE.RepeatWrapping;
+  tex.colorSpace = THREE.SRGBColorSpace;
+  textures.set(key, tex);
+  return tex;
+}
+
 function meshOf(m, offset, level) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(m.positions, 3));
@@ -284,12 +403,22 @@ function meshOf(m, offset, level) {
   group.matrixAutoUpdate = false; group.matrix.copy(matrix);
   if (m.indices.length) {
     g.setIndex(m.indices); g.computeVertexNormals();
-    const own = new THREE.MeshLambertMaterial({ vertexColors: !!m.colors, side: THREE.DoubleSide });
+    const map = m.texture && m.texcoords && textureOf(m.texture);
+    if (map) g.setAttribute('uv', new THREE.Float32BufferAttribute(m.texcoords, 2));
+    // A texture replaces the diffuse colour, as VRML 1.0 draws an RGB one.
+    const own = new THREE.MeshLambertMaterial(map ? { map, side: THREE.DoubleSide } : { vertexColors: !!m.colors, side: THREE.DoubleSide });
     const byLevel = new THREE.MeshLambertMaterial({ color: LEVEL_COLOURS[level % LEVEL_COLOURS.length], side: THREE.DoubleSide });
-    const mesh = new THREE.Mesh(g, $('colour-levels').checked ? byLevel : own);
+    // The server's colours of `compare --colored` (colorize_deviation).
+    const byDeviation = m.deviation_colors && new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
+    const mesh = new THREE.Mesh(g, own);
     // "Triangles drawn" counts what the LODs choose, in view or not.
     mesh.frustumCulled = false;
-    mesh.userData = { own, byLevel, line: m.line };
+    mesh.userData = {
+      own, byLevel, byDeviation, line: m.line, deviation: m.deviation,
+      ownColors: g.getAttribute('color'),
+      deviationColors: m.deviation_colors && new THREE.Float32BufferAttribute(m.deviation_colors, 3),
+    };
+    colourMesh(mesh);
     state.meshes.push(mesh);
     group.add(mesh);
   }
@@ -307,6 +436,9 @@ async function loadGeometry() {
   const geo = await api('GET', `/api/geometry?path=${encodeURIComponent(state.current)}&which=${which}`);
   for (const c of [...root.children]) root.remove(c);
   state.meshes = []; state.lods = [];
+  textures.clear();
+  state.deviationMax = geo.deviation_max || 0;
+  $('deviation-scale').textContent = `0 … ${state.deviationMax.toPrecision(3)}`;
   const none = new THREE.Matrix4();
   for (const s of geo.shapes) root.add(meshOf(s, none, 0));
   for (const l of geo.lods) {
@@ -349,9 +481,21 @@ function viewFrom(d) {
 }
 state.viewFrom = viewFrom;
 $('distance-slider').addEventListener('input', (e) => viewFrom(Number(e.target.value)));
-$('colour-levels').addEventListener('change', () => {
-  for (const m of state.meshes) m.material = $('colour-levels').checked ? m.userData.byLevel : m.userData.own;
-});
+// One colouring for every mesh: deviation colours over level colours over
+// the scene's own.
+function colourMesh(mesh) {
+  const u = mesh.userData;
+  const deviation = $('colour-deviation').checked && u.deviationColors;
+  const colors = deviation ? u.deviationColors : u.ownColors;
+  if (colors) mesh.geometry.setAttribute('color', colors);
+  mesh.material = deviation ? u.byDeviation : $('colour-levels').checked ? u.byLevel : u.own;
+}
+function colourAll() {
+  for (const m of state.meshes) colourMesh(m);
+  $('colour-levels').disabled = $('colour-deviation').checked;
+}
+$('colour-levels').addEventListener('change', colourAll);
+$('colour-deviation').addEventListener('change', colourAll);
 
 // A click (not a drag) on the view selects the nearest drawn mesh.
 const raycaster = new THREE.Raycaster();

@@ -9,6 +9,7 @@
 
 #include "apps/run_command.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
+#include "lodforge/io/vrml97/read_vrml97.h"
 
 namespace lodforge {
 namespace {
@@ -142,6 +143,50 @@ TEST_F(Cli, InlinesAreReadOnlyWhenAskedAndNeverOutsideTheFolder) {
   auto remote = run_lodforge("info --inline " + net);
   EXPECT_EQ(remote.exit_code, 0);
   EXPECT_THAT(remote.err, HasSubstr("lodforge never reads over a network"));
+}
+
+// `format` on VRML97 and X3D classic scenes: written back in their own
+// encoding, the same scene read again; VRML97 to X3D classic by the output
+// name; what cannot be written is exit 1 with a message and no file.
+TEST_F(Cli, FormatWritesVrml97AndX3dClassicScenesBackAsTheSameScene) {
+  std::vector<std::string> files;
+  for (const char* dir : {"/vrml2", "/x3d"}) {
+    const fs::path root = fs::path(LODFORGE_SHARED_DATA + std::string(dir));
+    std::error_code ec;
+    if (!fs::is_directory(root, ec)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(root)) {
+      const std::string ext = e.path().extension().string();
+      if (e.is_regular_file() && (ext == ".wrl" || ext == ".x3dv")) files.push_back(e.path());
+    }
+  }
+  if (files.empty()) GTEST_SKIP() << "no VRML97 / X3D corpus at " << LODFORGE_SHARED_DATA;
+  std::sort(files.begin(), files.end());
+  std::size_t vrml97_files = 0;
+  for (const std::string& in : files) {
+    const vrml97::ReadResult original = vrml97::read_vrml97_file(in);
+    const bool x3d = vrml97::is_x3d_header(original.scene.header);
+    const std::string same = path(x3d ? "same.x3dv" : "same.wrl");
+    auto r = run_lodforge("format -q '" + in + "' -o " + same);
+    ASSERT_EQ(r.exit_code, 0) << in << "\n" << r.err;
+    EXPECT_TRUE(scene::equal(original.scene, vrml97::read_vrml97_file(same).scene)) << in;
+    if (x3d) {
+      r = run_lodforge("format -q '" + in + "' --format vrml97 -o " + path("no.wrl"));
+      EXPECT_EQ(r.exit_code, 1) << in;
+      EXPECT_THAT(r.err, HasSubstr("X3D scene as VRML97")) << in;
+      EXPECT_FALSE(fs::exists(path("no.wrl"))) << in;
+      continue;
+    }
+    ++vrml97_files;
+    r = run_lodforge("format -q '" + in + "' -o " + path("as.x3dv"));
+    ASSERT_EQ(r.exit_code, 0) << in << "\n" << r.err;
+    EXPECT_TRUE(vrml97::is_x3d_header(vrml97::read_vrml97_file(path("as.x3dv")).scene.header))
+        << in;
+  }
+  EXPECT_GT(vrml97_files, 0u);
+  const auto glb = run_lodforge("format '" + files.front() + "' -o " + path("out.glb"));
+  EXPECT_EQ(glb.exit_code, 1);
+  EXPECT_THAT(glb.err, HasSubstr("not glTF"));
+  EXPECT_FALSE(fs::exists(path("out.glb")));
 }
 
 }  // namespace

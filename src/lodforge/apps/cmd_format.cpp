@@ -1,5 +1,7 @@
 // `lodforge format SCENE -o OUT`: read a VRML 1.0 scene and write it back
-// cleanly formatted with the writer options, or as glTF (OUT.glb / .gltf).
+// cleanly formatted with the writer options, or as VRML97 / X3D classic or
+// glTF (OUT.glb / .gltf); a VRML97 or X3D classic scene is written back as
+// VRML97 or X3D classic.
 #include <fmt/core.h>
 
 #include <array>
@@ -7,12 +9,15 @@
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/apps/write_scene_gltf.h"
 #include "lodforge/apps/write_scene_vrml97.h"
+#include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/io/vrml97/write_vrml97.h"
 
 namespace lodforge::apps {
 
@@ -28,9 +33,10 @@ void add_format_command(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand(
       "format",
       "Read a VRML 1.0 or Inventor scene and write it back formatted, or as VRML97, X3D classic "
-      "or glTF");
+      "or glTF; a VRML97 or X3D classic scene as VRML97 or X3D classic");
   cmd->add_option("SCENE", s->input,
-                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin)")
+                  "VRML 1.0, Inventor, VRML97 or X3D classic file (.wrl, .iv, .x3dv, optionally "
+                  ".gz; - = stdin for VRML 1.0 / Inventor)")
       ->required();
   cmd->add_option("-o,--output", s->output,
                   "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF; "
@@ -46,6 +52,17 @@ void add_format_command(CLI::App& app, Runner& run) {
     run = [s] {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
+      if (is_vrml97_input(s->input)) {
+        if (gltf::is_gltf_path(s->output))
+          throw DataError(fmt::format(
+              "{}: a VRML97 / X3D scene is written as VRML97 (.wrl) or X3D classic (.x3dv), "
+              "not glTF",
+              s->input));
+        vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
+        if (!s->read.quiet) print_diagnostics(r.log.entries());
+        vrml97::write_vrml97_file(r.scene, s->output);
+        return 0;
+      }
       vrml1::ReadResult r = read_scene(s->input, s->read);
       const std::string as_vrml97 = vrml97_format_of(s->format, s->output);
       if (!as_vrml97.empty()) {

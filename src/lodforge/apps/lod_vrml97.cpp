@@ -100,8 +100,8 @@ bool is_vrml97_input(const std::string& path) {
   return vrml97::is_vrml97_header(std::string_view(head, std::size_t(in.gcount())));
 }
 
-LodResult lod_vrml97_file(const std::string& input, const std::string& output,
-                          const std::string& format, const LodOptions& options) {
+vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
+                                  const std::string& format) {
   if (ends_with(input, ".x3d"))
     throw DataError("X3D XML encoding (.x3d) is not read yet; convert it to .x3dv");
   vrml97::ReadResult r = vrml97::read_vrml97_file(input);
@@ -113,6 +113,12 @@ LodResult lod_vrml97_file(const std::string& input, const std::string& output,
   if (to == "vrml97" && x3d_in)  // .wrl without --format keeps X3D
     throw DataError("writing an X3D scene as VRML97 is not supported; use .x3dv");
   if (to == "x3dv" && !x3d_in) vrml97_to_x3d(r.scene);
+  return r;
+}
+
+LodResult lod_vrml97_file(const std::string& input, const std::string& output,
+                          const std::string& format, const LodOptions& options) {
+  vrml97::ReadResult r = read_vrml97_as(input, output, format);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
   vrml97::write_vrml97_file(result.scene, output);

@@ -3,6 +3,7 @@
 /// encoding (from --format or the output name), and the run from file to file.
 #include <string>
 
+#include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/lod/generate_lod.h"
 
 namespace lodforge::apps {
@@ -10,6 +11,13 @@ namespace lodforge::apps {
 /// True if `path` (not "-") starts with a VRML97 or X3D classic header, or
 /// ends in .x3dv / .x3d.
 bool is_vrml97_input(const std::string& path);
+
+/// Reads `input` and sets the scene's encoding for `output` (`format`:
+/// "vrml97", "x3dv", or empty: from `output`'s name, .x3dv = X3D classic,
+/// otherwise the input's). Throws DataError for a parse error or an encoding
+/// it cannot write (X3D XML, X3D to VRML97).
+vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
+                                  const std::string& format);
 
 /// Reads `input`, sets the output encoding (`format`: "vrml97", "x3dv", or
 /// empty: from `output`'s name, .x3dv = X3D classic, otherwise the input's),

@@ -218,6 +218,7 @@ try {
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);
     await page.evaluate((d) => window.studio.viewFrom(d), distances[1]);
     await page.click('#colour-deviation');
+    await page.evaluate(() => { document.getElementById('side').scrollTop = 0; });  // the panel from its top
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });
   }

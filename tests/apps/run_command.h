@@ -68,6 +68,14 @@ inline constexpr bool kOutsideReaders = false;
 inline constexpr bool kOutsideReaders = true;
 #endif
 
+/// Expects `r` to be a clean refusal of the input `in`: exit code 1, an
+/// "error:" message, and no file written at `out`.
+inline void expect_refused(const CommandResult& r, const std::string& in, const std::string& out) {
+  EXPECT_EQ(r.exit_code, 1) << in << "\n" << r.err;
+  EXPECT_NE(r.err.find("error:"), std::string::npos) << in;
+  EXPECT_FALSE(std::filesystem::exists(out)) << in;
+}
+
 /// A test with a fresh folder of its own for input and output files.
 
 }  // namespace lodforge::testing

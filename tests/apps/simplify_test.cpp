@@ -13,6 +13,7 @@
 
 #include "apps/run_command.h"
 #include "lodforge/mesh/mesh_io.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
@@ -21,40 +22,14 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using testing::run_lodforge;
 
-/// A closed UV sphere of radius 1 at the origin: `slices` around, `stacks`
-/// from pole to pole, one vertex per pole; 2 x slices x (stacks - 1) triangles.
-TriangleMesh uv_sphere(int slices, int stacks) {
-  TriangleMesh m;
-  const float pi = 3.14159265358979f;
-  m.positions.push_back({0, 0, 1});
-  for (int i = 1; i < stacks; ++i) {
-    float theta = pi * float(i) / float(stacks);
-    for (int j = 0; j < slices; ++j) {
-      float phi = 2 * pi * float(j) / float(slices);
-      m.positions.push_back(
-          {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
-    }
-  }
-  m.positions.push_back({0, 0, -1});
-  auto ring = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * slices + (j % slices)); };
-  const auto bottom = std::uint32_t(m.positions.size() - 1);
-  for (int j = 0; j < slices; ++j) {
-    m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i + 1 < stacks; ++i) {
-      m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-    m.triangles.push_back({ring(stacks - 1, j), bottom, ring(stacks - 1, j + 1)});
-  }
-  return m;
-}
-
 class SimplifyCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("lodforge_simplify_cli_" + std::to_string(getpid()));
     fs::create_directories(dir_);
-    sphere_ = uv_sphere(40, 20);  // 1 520 triangles
+    sphere_ = test::make_uv_sphere(40, 20);  // 1 520 triangles, positions only
+    sphere_.normals.clear();
+    sphere_.texcoords.clear();
     write_mesh(sphere_, path("sphere.obj"));
     write_mesh(sphere_, path("sphere.ply"));
   }

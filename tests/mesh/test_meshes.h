@@ -4,8 +4,11 @@
 /// All closed meshes are consistently oriented with outward normals
 /// (counter-clockwise seen from outside). Counts are given per builder so that
 /// tests can assert them.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <random>
 #include <unordered_map>
 #include <vector>
@@ -211,13 +214,53 @@ inline TriangleMesh make_seamed_sphere(float r = 1, int rings = 24, int segments
   return m;
 }
 
-/// The same surface as a triangle soup: three vertices of its own per triangle.
-inline TriangleMesh as_soup(const TriangleMesh& m) {
+/// Cube [0,1]^3 whose faces are n x n grids of quads (2 triangles each), with
+/// shared edge and corner vertices: 6 n^2 + 2 vertices, 12 n^2 triangles.
+inline TriangleMesh make_subdivided_cube(int n) {
+  TriangleMesh m;
+  std::map<std::array<int, 3>, std::uint32_t> index;
+  auto vertex = [&](std::array<int, 3> g) {
+    auto [it, inserted] = index.try_emplace(g, static_cast<std::uint32_t>(m.positions.size()));
+    if (inserted) m.positions.push_back({float(g[0]) / n, float(g[1]) / n, float(g[2]) / n});
+    return it->second;
+  };
+  // Each face: origin corner, two in-face axes (u x v = outward normal).
+  struct Face {
+    std::array<int, 3> o, u, v;
+  };
+  const Face faces[6] = {{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
+                         {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
+                         {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (const Face& f : faces) {
+    auto at = [&](int i, int j) {
+      std::array<int, 3> g;
+      for (int c = 0; c < 3; ++c) g[c] = f.o[c] * n + f.u[c] * i + f.v[c] * j;
+      return vertex(g);
+    };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+        m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+  }
+  return m;
+}
+
+/// The same surface as a triangle soup: three vertices of its own per
+/// triangle, in triangle order, or (reversed) with the vertex list in reverse
+/// order, so that the first vertex at a coordinate is another one.
+inline TriangleMesh as_soup(const TriangleMesh& m, bool reversed = false) {
   TriangleMesh s;
   for (const auto& t : m.triangles) {
     const auto base = static_cast<std::uint32_t>(s.positions.size());
     for (auto i : t) s.positions.push_back(m.positions[i]);
     s.triangles.push_back({base, base + 1, base + 2});
+  }
+  if (reversed) {
+    const auto last = static_cast<std::uint32_t>(s.positions.size() - 1);
+    std::reverse(s.positions.begin(), s.positions.end());
+    for (auto& t : s.triangles)
+      for (auto& v : t) v = last - v;
   }
   return s;
 }

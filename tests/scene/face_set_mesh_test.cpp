@@ -111,5 +111,80 @@ TEST(FaceTriangles, ACollinearFaceIsReportedDegenerate) {
   EXPECT_TRUE(face_triangles(pts, quad, {}, tris).degenerate);
 }
 
+// Two faces, a triangle and a quad: positions 0..2 and 4..7 of coordIndex.
+const std::vector<std::int32_t> kTwoFaces{0, 1, 2, -1, 2, 1, 3, 4, -1};
+
+// The value index of every corner (face, corner number, coordIndex position).
+std::vector<std::int64_t> corner_values(const FaceSetAttribute& a) {
+  std::vector<std::int64_t> out;
+  std::size_t corner = 0;
+  const std::vector<FaceRun> runs = face_runs(kTwoFaces, 5, {});
+  for (std::size_t f = 0; f < runs.size(); ++f)
+    for (std::size_t p = runs[f].first; p < runs[f].second; ++p, ++corner)
+      out.push_back(corner_attribute(a, f, corner, p, "line 3: IndexedFaceSet"));
+  return out;
+}
+
+using Values = std::vector<std::int64_t>;
+
+TEST(CornerAttribute, EachBindingPicksItsValue) {
+  const std::vector<std::int32_t> face_index{1, 0};
+  const std::vector<std::int32_t> vertex_index{6, 5, 4, -1, 3, 2, 1, 0, -1};
+  const std::vector<std::int32_t> default_index{-1};
+  auto with = [&](Binding b, const std::vector<std::int32_t>* index) {
+    return corner_values({{b, index, &kTwoFaces}, 7, "materialIndex"});
+  };
+  EXPECT_EQ(with(Binding::kOverall, nullptr), Values(7, -1));
+  EXPECT_EQ(with(Binding::kPerFace, nullptr), (Values{0, 0, 0, 1, 1, 1, 1}));
+  EXPECT_EQ(with(Binding::kPerFaceIndexed, &face_index), (Values{1, 1, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(with(Binding::kPerVertex, nullptr), (Values{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(with(Binding::kPerVertexIndexed, &vertex_index), (Values{6, 5, 4, 3, 2, 1, 0}));
+  // PER_VERTEX_INDEXED with the index field left at [] or [-1]: coordIndex.
+  EXPECT_EQ(with(Binding::kPerVertexIndexed, &default_index), (Values{0, 1, 2, 2, 1, 3, 4}));
+  EXPECT_EQ(with(Binding::kPerVertexIndexed, nullptr), (Values{0, 1, 2, 2, 1, 3, 4}));
+}
+
+TEST(CornerAttribute, Vrml97BindingsByPerVertexAndIndexField) {
+  EXPECT_EQ(vrml97_binding(true, true), Binding::kPerVertexIndexed);
+  EXPECT_EQ(vrml97_binding(true, false), Binding::kPerVertexIndexed);
+  EXPECT_EQ(vrml97_binding(false, true), Binding::kPerFaceIndexed);
+  EXPECT_EQ(vrml97_binding(false, false), Binding::kPerFace);
+}
+
+TEST(CornerAttribute, ABadIndexIsADataErrorNamingTheFieldAndIndex) {
+  using ::testing::ThrowsMessage;
+  const std::vector<std::int32_t> past{0, 1, 2, -1, 0, 9, 1, 2, -1};
+  const std::vector<std::int32_t> minus{0, 1, -1, -1, 0, 1, 2, 3, -1};
+  const std::vector<std::int32_t> short_faces{0};
+  const std::vector<std::int32_t> short_corners{0, 1, 2, -1, 0};
+  auto values = [&](Binding b, const std::vector<std::int32_t>* index, std::size_t count) {
+    return [=] { corner_values({{b, index, &kTwoFaces}, count, "colorIndex"}); };
+  };
+  EXPECT_THAT(values(Binding::kPerVertexIndexed, &past, 4),
+              ThrowsMessage<DataError>(
+                  "line 3: IndexedFaceSet colorIndex[5] = 9 is out of range (4 values)"));
+  // A -1 at a corner (not at the end of a face) is no value either.
+  EXPECT_THAT(values(Binding::kPerVertexIndexed, &minus, 4),
+              ThrowsMessage<DataError>(
+                  "line 3: IndexedFaceSet colorIndex[2] = -1 is out of range (4 values)"));
+  EXPECT_THAT(values(Binding::kPerVertexIndexed, &short_corners, 4),
+              ThrowsMessage<DataError>("line 3: IndexedFaceSet colorIndex has no entry 5 (5 "
+                                       "entries)"));
+  // coordIndex read for a default index field is named as such.
+  EXPECT_THAT(values(Binding::kPerVertexIndexed, nullptr, 4),
+              ThrowsMessage<DataError>(
+                  "line 3: IndexedFaceSet coordIndex[7] = 4 is out of range (4 values)"));
+  EXPECT_THAT(values(Binding::kPerFaceIndexed, &short_faces, 4),
+              ThrowsMessage<DataError>("line 3: IndexedFaceSet colorIndex has no entry 1 (1 "
+                                       "entries)"));
+  EXPECT_THAT(values(Binding::kPerFace, nullptr, 1),
+              ThrowsMessage<DataError>(
+                  "line 3: IndexedFaceSet PER_FACE[1] = 1 is out of range (1 values)"));
+  EXPECT_THAT(values(Binding::kPerVertex, nullptr, 6),
+              ThrowsMessage<DataError>(
+                  "line 3: IndexedFaceSet PER_VERTEX[6] = 6 is out of range (6 values)"));
+  EXPECT_NO_THROW(values(Binding::kOverall, nullptr, 0)());
+}
+
 }  // namespace
 }  // namespace lodforge::scene

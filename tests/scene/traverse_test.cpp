@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "lodforge/io/vrml1/read_vrml1.h"
 
 namespace lodforge::scene {
@@ -133,6 +135,25 @@ TEST(Traverse, UsedShapeIsVisitedAtEveryPlace) {
     Separator { DEF Box Cube {} Translation { translation 0 0 4 } USE Box })");
   ASSERT_EQ(seen.size(), 2u);
   EXPECT_EQ(seen[1].origin, (Vec3{0, 0, 4}));
+}
+
+TEST(Traverse, ForEachNodeVisitsEveryDistinctNodeOnce) {
+  // A Cube used twice, a LOD of three levels, and a node held in a field.
+  auto r = vrml1::read_vrml1(R"(#VRML V1.0 ascii
+    Separator { DEF Box Cube {} USE Box LOD { Cube {} Sphere {} Separator { USE Box } } })");
+  NodePtr held = make_node("Box");
+  FieldValue geometry;
+  geometry.type.kind = FieldKind::kNode;
+  geometry.nodes = {held, nullptr};
+  r.scene.roots[0]->set("geometry", geometry);
+  std::map<std::string, int> count;
+  for_each_node(r.scene, [&](const Node& n) { ++count[n.type]; });
+  EXPECT_EQ(count,
+            (std::map<std::string, int>{{"Cube", 2}, {"LOD", 1}, {"Separator", 2}, {"Sphere", 1}}));
+  for_each_node(r.scene, [&](const Node& n) { ++count[n.type]; }, {.field_nodes = true});
+  EXPECT_EQ(count["Box"], 1);
+  EXPECT_EQ(count["Cube"], 4);
+  EXPECT_EQ(lod_level_count(r.scene), 3u);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/mesh/mesh_io.h"
+#include "mesh/test_meshes.h"
 
 namespace lodforge::detail::clustering {
 namespace {
@@ -17,22 +18,6 @@ TriangleMesh bunny() {
   const std::filesystem::path path =
       std::filesystem::path(LODFORGE_SHARED_DATA) / "meshes" / "bun_zipper.ply";
   return read_mesh(path.string());
-}
-
-/// Every triangle with its own three corners, in reverse order of the
-/// vertices (so that the first vertex at a coordinate differs).
-TriangleMesh soup(const TriangleMesh& m) {
-  TriangleMesh s;
-  s.positions.resize(3 * m.triangles.size());
-  for (std::size_t f = 0; f < m.triangles.size(); ++f) {
-    Triangle t;
-    for (int i = 0; i < 3; ++i) {
-      t[i] = static_cast<std::uint32_t>(s.positions.size() - 1 - (3 * f + i));
-      s.positions[t[i]] = m.positions[m.triangles[f][i]];
-    }
-    s.triangles.push_back(t);
-  }
-  return s;
 }
 
 struct Level0 {
@@ -87,7 +72,7 @@ TEST(ClusteringLevel0, BunnyIsInOctreeOrderWithItsTrianglesSortedBySmallestCorne
 
 TEST(ClusteringLevel0, SoupMergesIntoTheWeldedBunny) {
   const TriangleMesh mesh = bunny();
-  const Level0 welded = level0(mesh), merged = level0(soup(mesh));
+  const Level0 welded = level0(mesh), merged = level0(test::as_soup(mesh, true));
   expect_same_level(merged.cut, welded.cut, false);
 }
 
@@ -104,7 +89,7 @@ TEST(ClusteringLevel0, DoubletsAndCollapsedTrianglesFollowTheFaceRules) {
 }
 
 TEST(ClusteringLevel0, DoesNotDependOnTheThreadCount) {
-  const TriangleMesh mesh = soup(bunny());
+  const TriangleMesh mesh = test::as_soup(bunny(), true);
   const Level0 parallel = level0(mesh);
   tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
   const Level0 serial = level0(mesh);

@@ -29,37 +29,6 @@ double mean_deviation(const CompareResult& c) {
   return std::max(c.a_to_b.mean, c.b_to_a.mean);
 }
 
-/// Cube [0,1]^3 with each face an n x n grid of quads: 6 n^2 * 2 triangles,
-/// welded, outward.
-TriangleMesh make_subdivided_cube(int n) {
-  TriangleMesh m;
-  std::map<std::array<int, 3>, std::uint32_t> ids;
-  auto vertex = [&](int x, int y, int z) {
-    auto [it, inserted] =
-        ids.try_emplace({x, y, z}, static_cast<std::uint32_t>(m.positions.size()));
-    if (inserted) m.positions.push_back({float(x) / n, float(y) / n, float(z) / n});
-    return it->second;
-  };
-  // For each axis and side, a grid of quads oriented outward.
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side)
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          auto at = [&](int a, int b) {
-            std::array<int, 3> c{};
-            c[axis] = side * n;
-            c[(axis + 1) % 3] = a;
-            c[(axis + 2) % 3] = b;
-            return vertex(c[0], c[1], c[2]);
-          };
-          std::uint32_t q[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
-          if (side == 0) std::swap(q[1], q[3]);
-          m.triangles.push_back({q[0], q[1], q[2]});
-          m.triangles.push_back({q[0], q[2], q[3]});
-        }
-  return m;
-}
-
 /// Disk of radius 1 in z = 0 with `rings` rings of `segments` vertices around
 /// a centre: the outer ring is the border.
 TriangleMesh make_ring_disk(int segments, int rings) {
@@ -157,7 +126,7 @@ TEST(QuadricCollapse, PlanarGridCollapsesToTwoTrianglesWithoutDeviation) {
 }
 
 TEST(QuadricCollapse, CubeKeepsCornersAndSharpEdges) {
-  TriangleMesh m = make_subdivided_cube(4);
+  TriangleMesh m = test::make_subdivided_cube(4);
   ASSERT_EQ(m.triangles.size(), 192u);
   SimplifyResult r = quadric_collapse(m, {.target = {.triangles = 12}});
   expect_valid(r, m);

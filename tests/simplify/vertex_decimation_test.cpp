@@ -31,38 +31,6 @@ using test::make_uv_sphere;
 
 constexpr float kTiny = 1e-6f;
 
-/// Cube [0,1]^3 whose faces are n x n grids of quads (2 triangles each), with
-/// shared edge and corner vertices: 6 n^2 + 2 vertices, 12 n^2 triangles.
-TriangleMesh make_subdivided_cube(int n) {
-  TriangleMesh m;
-  std::map<std::array<int, 3>, std::uint32_t> index;
-  auto vertex = [&](std::array<int, 3> g) {
-    auto [it, inserted] = index.try_emplace(g, static_cast<std::uint32_t>(m.positions.size()));
-    if (inserted) m.positions.push_back({float(g[0]) / n, float(g[1]) / n, float(g[2]) / n});
-    return it->second;
-  };
-  // Each face: origin corner, two in-face axes (u x v = outward normal).
-  struct Face {
-    std::array<int, 3> o, u, v;
-  };
-  const Face faces[6] = {{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
-                         {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
-                         {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  for (const Face& f : faces) {
-    auto at = [&](int i, int j) {
-      std::array<int, 3> g;
-      for (int c = 0; c < 3; ++c) g[c] = f.o[c] * n + f.u[c] * i + f.v[c] * j;
-      return vertex(g);
-    };
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-        m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-      }
-  }
-  return m;
-}
-
 Vec3 face_cross(const TriangleMesh& m, const Triangle& t) {
   return cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
 }
@@ -142,7 +110,7 @@ TEST(VertexDecimation, PlanarGridGoesToOneTriangleForACountTarget) {
 // Cube with subdivided faces: face vertices (planar), edge vertices (on a
 // feature line: interior-edge class) and the 8 corners (3 feature edges).
 TEST(VertexDecimation, SubdividedCubeKeepsCornersAndEdges) {
-  TriangleMesh m = make_subdivided_cube(4);
+  TriangleMesh m = test::make_subdivided_cube(4);
   ASSERT_EQ(m.vertex_count(), 6u * 16 + 2);
   // Without feature preservation the edge vertices go along their feature line.
   for (DecimationPriority priority :

@@ -16,6 +16,7 @@
 #include <unordered_set>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/math.h"
 #include "lodforge/lod/choose_levels.h"
 #include "lodforge/scene/face_set_mesh.h"
 
@@ -26,7 +27,6 @@ using scene::FieldKind;
 using scene::Node;
 using scene::NodePtr;
 
-constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 constexpr float kDefaultFieldOfView = 0.785398f;  // VRML97 / X3D Viewpoint default, π/4
 
 // One corner's indices into the coordinate, normal, texture coordinate and
@@ -87,6 +87,8 @@ struct Attribute {
   std::size_t count = 0;
   bool per_vertex = true;
   const std::vector<std::int32_t>* index = nullptr;
+  std::string_view index_field;
+  std::string error;  ///< the first bad index found (the attribute is dropped)
 };
 
 class GeometryReader {
@@ -95,12 +97,14 @@ class GeometryReader {
     where_ = where;
     coord_ = node_of(g, "coord");
     coords_ = attribute_count(coord_, "point");
+    node_where_ = fmt::format("{}: {}", where_, g.type);
     normal_ = {node_of(g, "normal"), 0, bool_of(g, "normalPerVertex", true),
-               ints_of(g, "normalIndex")};
+               ints_of(g, "normalIndex"), "normalIndex"};
     normal_.count = attribute_count(normal_.node, "vector");
-    tex_ = {node_of(g, "texCoord"), 0, true, ints_of(g, "texCoordIndex")};
+    tex_ = {node_of(g, "texCoord"), 0, true, ints_of(g, "texCoordIndex"), "texCoordIndex"};
     tex_.count = attribute_count(tex_.node, "point");
-    color_ = {node_of(g, "color"), 0, bool_of(g, "colorPerVertex", true), ints_of(g, "colorIndex")};
+    color_ = {node_of(g, "color"), 0, bool_of(g, "colorPerVertex", true), ints_of(g, "colorIndex"),
+              "colorIndex"};
     color_.count = attribute_count(color_.node, "color");
     if (g.type == "ElevationGrid") elevation_grid_nodes();
   }
@@ -128,9 +132,9 @@ class GeometryReader {
                               where_, g_.type, c[0], coords_));
         return false;
       }
-    drop_bad(out, normal_, 1, out.face_normal, "normal");
-    drop_bad(out, tex_, 2, out.face_normal, "texture coordinate");
-    drop_bad(out, color_, 3, out.face_color, "colour");
+    drop_bad(out, normal_, 1, &out.face_normal, "normal");
+    drop_bad(out, tex_, 2, nullptr, "texture coordinate");
+    drop_bad(out, color_, 3, &out.face_color, "colour");
     return true;
   }
 
@@ -143,20 +147,10 @@ class GeometryReader {
   void read_indexed_face_set(Polygons& out) {
     const std::vector<std::int32_t>* ci = ints_of(g_, "coordIndex");
     if (!ci) return;
-    const std::string where = fmt::format("{}: {}", where_, g_.type);
-    const std::vector<scene::FaceRun> runs = scene::face_runs(*ci, coords_, {where, coord_->type});
-    for (std::size_t face = 0; face < runs.size(); ++face) {
-      for (std::size_t i = runs[face].first; i < runs[face].second; ++i) {
-        Corner c{std::uint32_t((*ci)[i]), kNone, kNone, kNone};
-        c[1] = corner_index(normal_, i, (*ci)[i]);
-        c[2] = corner_index(tex_, i, (*ci)[i]);
-        c[3] = corner_index(color_, i, (*ci)[i]);
-        out.corners.push_back(c);
-      }
-      out.start.push_back(std::uint32_t(out.corners.size()));
-      out.face_normal.push_back(face_index(normal_, face));
-      out.face_color.push_back(face_index(color_, face));
-    }
+    const std::vector<scene::FaceRun> runs =
+        scene::face_runs(*ci, coords_, {node_where_, coord_->type});
+    for (std::size_t face = 0; face < runs.size(); ++face)
+      add_face(out, *ci, face, runs[face].first, runs[face].second);
   }
 
   // IndexedTriangleSet / IndexedQuadSet (`index`) and TriangleSet (the
@@ -169,18 +163,8 @@ class GeometryReader {
     } else if (g_.type == "TriangleSet") {
       for (std::size_t i = 0; i < coords_; ++i) order.push_back(std::int32_t(i));
     }
-    for (std::size_t f = 0; f + per <= order.size(); f += per) {
-      for (std::size_t k = 0; k < per; ++k) {
-        const std::uint32_t v = order[f + k] < 0 ? kNone - 1 : std::uint32_t(order[f + k]);
-        out.corners.push_back({v, normal_.node && normal_.per_vertex ? v : kNone,
-                               tex_.node ? v : kNone,
-                               color_.node && color_.per_vertex ? v : kNone});
-      }
-      out.start.push_back(std::uint32_t(out.corners.size()));
-      const std::uint32_t face = std::uint32_t(f / per);
-      out.face_normal.push_back(normal_.node && !normal_.per_vertex ? face : kNone);
-      out.face_color.push_back(color_.node && !color_.per_vertex ? face : kNone);
-    }
+    for (std::size_t f = 0; f + per <= order.size(); f += per)
+      add_face(out, order, f / per, f, f + per);
   }
 
   int int_of(std::string_view field) const {
@@ -221,54 +205,61 @@ class GeometryReader {
     if (!coord_) return;
     const std::uint32_t nx = std::uint32_t(int_of("xDimension"));
     const std::uint32_t nz = std::uint32_t(int_of("zDimension"));
+    std::vector<std::int32_t> quads;
     for (std::uint32_t z = 0; z + 1 < nz; ++z)
-      for (std::uint32_t x = 0; x + 1 < nx; ++x) {
+      for (std::uint32_t x = 0; x + 1 < nx; ++x)
         for (std::uint32_t v : {z * nx + x, (z + 1) * nx + x, (z + 1) * nx + x + 1, z * nx + x + 1})
-          out.corners.push_back({v, normal_.node && normal_.per_vertex ? v : kNone, v,
-                                 color_.node && color_.per_vertex ? v : kNone});
-        out.start.push_back(std::uint32_t(out.corners.size()));
-        const std::uint32_t face = z * (nx - 1) + x;
-        out.face_normal.push_back(normal_.node && !normal_.per_vertex ? face : kNone);
-        out.face_color.push_back(color_.node && !color_.per_vertex ? face : kNone);
-      }
+          quads.push_back(std::int32_t(v));
+    for (std::size_t f = 0; 4 * f < quads.size(); ++f) add_face(out, quads, f, 4 * f, 4 * f + 4);
   }
 
-  static std::uint32_t corner_index(const Attribute& a, std::size_t i, std::int32_t coord) {
-    if (!a.node || !a.per_vertex) return kNone;
-    if (!a.index) return std::uint32_t(coord);
-    return i < a.index->size() && (*a.index)[i] >= 0 ? std::uint32_t((*a.index)[i]) : kNone - 1;
-  }
-
-  static std::uint32_t face_index(const Attribute& a, std::size_t face) {
-    if (!a.node || a.per_vertex) return kNone;
-    if (!a.index) return std::uint32_t(face);
-    return face < a.index->size() && (*a.index)[face] >= 0 ? std::uint32_t((*a.index)[face])
-                                                           : kNone - 1;
-  }
-
-  // An attribute with an index out of range is dropped (browsers generate
-  // normals, or draw without texture coordinates or colours).
-  void drop_bad(Polygons& out, Attribute& a, int slot, std::vector<std::uint32_t>& per_face,
-                std::string_view what) {
-    if (!a.node) return;
-    bool bad = false;
-    if (a.per_vertex || slot == 2) {
-      for (const Corner& c : out.corners) bad |= c[std::size_t(slot)] >= a.count;
-    } else {
-      for (std::uint32_t f : per_face) bad |= f >= a.count;
+  // Face `face`: the corners at [b, e) of the coordinate index `ci`, each
+  // with its per-vertex attribute values, and the face's per-face values.
+  void add_face(Polygons& out, const std::vector<std::int32_t>& ci, std::size_t face, std::size_t b,
+                std::size_t e) {
+    for (std::size_t p = b; p < e; ++p) {
+      // A negative coordinate is out of range as an unsigned index: read() rejects the shape.
+      const std::uint32_t v = ci[p] < 0 ? kNone - 1 : std::uint32_t(ci[p]);
+      out.corners.push_back({v, value(normal_, true, ci, face, p), value(tex_, true, ci, face, p),
+                             value(color_, true, ci, face, p)});
     }
-    if (!bad) return;
-    log_.warn(
-        LogCategory::kParse,
-        fmt::format("{}: a {} index is out of range; the levels have no {}s", where_, what, what));
+    out.start.push_back(std::uint32_t(out.corners.size()));
+    out.face_normal.push_back(value(normal_, false, ci, face, b));
+    out.face_color.push_back(value(color_, false, ci, face, b));
+  }
+
+  // The value of attribute `a` at a corner (per_vertex) or a face, by the
+  // one face-set rule (scene::corner_attribute); kNone when it is not bound
+  // that way or the index is bad (the first bad index is kept in a.error).
+  std::uint32_t value(Attribute& a, bool per_vertex, const std::vector<std::int32_t>& ci,
+                      std::size_t face, std::size_t pos) {
+    if (!a.node || a.per_vertex != per_vertex) return kNone;
+    const scene::FaceSetAttribute rule{
+        {scene::vrml97_binding(a.per_vertex, a.index != nullptr), a.index, &ci},
+        a.count,
+        a.index_field};
+    try {
+      return std::uint32_t(scene::corner_attribute(rule, face, pos, pos, node_where_));
+    } catch (const DataError& e) {
+      if (a.error.empty()) a.error = e.what();
+      return kNone;
+    }
+  }
+
+  // An attribute with a bad index is dropped (browsers generate normals, or
+  // draw without texture coordinates or colours).
+  void drop_bad(Polygons& out, Attribute& a, std::size_t slot, std::vector<std::uint32_t>* per_face,
+                std::string_view what) {
+    if (!a.node || a.error.empty()) return;
+    log_.warn(LogCategory::kParse, fmt::format("{}; the levels have no {}s", a.error, what));
     a.node = nullptr;
-    for (Corner& c : out.corners) c[std::size_t(slot)] = kNone;
-    if (slot != 2) std::fill(per_face.begin(), per_face.end(), kNone);
+    for (Corner& c : out.corners) c[slot] = kNone;
+    if (per_face) std::fill(per_face->begin(), per_face->end(), kNone);
   }
 
   const Node& g_;
   Log& log_;
-  std::string where_;
+  std::string where_, node_where_;
   NodePtr coord_;
   std::size_t coords_ = 0;
   Attribute normal_, tex_, color_;

@@ -27,7 +27,6 @@ using scene::make_node;
 using scene::Node;
 using scene::NodePtr;
 
-using scene::AttributeIndexer;
 using Bind = scene::Binding;
 using scene::binding_of;
 
@@ -112,7 +111,8 @@ class FaceSetReader {
         log_(log),
         lines_(shape_.type == "IndexedLineSet"),
         ci_(scene::field_or_default(shape_, "coordIndex")->ints),
-        mat_(st_.material ? *st_.material : default_material()) {
+        mat_(st_.material ? *st_.material : default_material()),
+        where_(fmt::format("line {}: {}", shape_.first_line, shape_.type)) {
     static const Node kDefaultCoords{.type = "Coordinate3"};
     pts_ = scene::field_or_default(st_.coordinate3 ? *st_.coordinate3 : kDefaultCoords, "point");
     npts_ = pts_->floats.size() / 3;
@@ -121,8 +121,7 @@ class FaceSetReader {
 
   ShapeGeometry read() {
     ShapeGeometry g;
-    const std::string where = fmt::format("line {}: {}", shape_.first_line, shape_.type);
-    const auto runs = scene::face_runs(ci_, npts_, {where, "Coordinate3"});
+    const auto runs = scene::face_runs(ci_, npts_, {where_, "Coordinate3"});
     while (!read_pass(runs, g)) {
     }
     finish(g);
@@ -159,21 +158,32 @@ class FaceSetReader {
     material_ok_ = mbind_ != Bind::kOverall;
     normal_ok_ = nbind_ != Bind::kOverall;
     tex_ok_ = !lines_ && ntex_ > 0;
-    mindex_ = {mbind_, &scene::field_or_default(shape_, "materialIndex")->ints, &ci_};
-    nindex_ = {nbind_, &scene::field_or_default(shape_, "normalIndex")->ints, &ci_};
-    tindex_ = {Bind::kPerVertexIndexed, &scene::field_or_default(shape_, "textureCoordIndex")->ints,
-               &ci_};
+    material_ = {{mbind_, &scene::field_or_default(shape_, "materialIndex")->ints, &ci_},
+                 nmat_,
+                 "materialIndex"};
+    normal_ = {{nbind_, &scene::field_or_default(shape_, "normalIndex")->ints, &ci_},
+               nnormals_,
+               "normalIndex"};
+    tex_ = {{Bind::kPerVertexIndexed, &scene::field_or_default(shape_, "textureCoordIndex")->ints,
+             &ci_},
+            ntex_,
+            "textureCoordIndex"};
   }
 
-  // Switches an attribute off for the out-of-range index `bad`, with a warning.
-  void drop(bool& ok, const char* what, std::int64_t bad, std::size_t limit) {
-    if (!ok) return;
-    ok = false;
-    repaired_ = true;
-    log_.warn(
-        LogCategory::kParse,
-        fmt::format("line {}: {} {} index {} is out of range (0..{}); the {}s are ignored",
-                    shape_.first_line, shape_.type, what, bad, std::int64_t(limit) - 1, what));
+  // The value of an attribute at a corner under the one face-set rule
+  // (scene::corner_attribute); a bad index switches the attribute off, with
+  // a warning, and gives -1.
+  std::int64_t value_of(bool& ok, const scene::FaceSetAttribute& a, const char* what, std::size_t f,
+                        std::size_t p) {
+    try {
+      return scene::corner_attribute(a, f, corner_seq_, p, where_);
+    } catch (const DataError& e) {
+      if (ok)
+        log_.warn(LogCategory::kParse, fmt::format("{}; the {}s are ignored", e.what(), what));
+      ok = false;
+      repaired_ = true;
+      return -1;
+    }
   }
 
   Vec3 normal_value(std::int64_t n) const {
@@ -205,12 +215,10 @@ class FaceSetReader {
 
   bool read_face(std::size_t f, std::size_t b, std::size_t e, ShapeGeometry& g) {
     const bool was_ok[3] = {material_ok_, normal_ok_, tex_ok_};
-    const std::int64_t fmat = material_ok_ && per_face(mbind_) ? mindex_.at(f, 0, b) : -1;
-    if (fmat != -1 && (fmat < 0 || std::size_t(fmat) >= nmat_))
-      drop(material_ok_, "material", fmat, nmat_);
-    const std::int64_t fnorm = normal_ok_ && per_face(nbind_) ? nindex_.at(f, 0, b) : -1;
-    if (fnorm != -1 && (fnorm < 0 || std::size_t(fnorm) >= nnormals_))
-      drop(normal_ok_, "normal", fnorm, nnormals_);
+    const std::int64_t fmat =
+        material_ok_ && per_face(mbind_) ? value_of(material_ok_, material_, "material", f, b) : -1;
+    const std::int64_t fnorm =
+        normal_ok_ && per_face(nbind_) ? value_of(normal_ok_, normal_, "normal", f, b) : -1;
     corners_.clear();
     for (std::size_t p = b; p < e; ++p, ++corner_seq_) corners_.push_back(read_corner(f, p, g));
     if (was_ok[0] != material_ok_ || was_ok[1] != normal_ok_ || was_ok[2] != tex_ok_) return false;
@@ -236,28 +244,20 @@ class FaceSetReader {
           st_.coordinate3 ? st_.coordinate3->first_line : 0, c, shape_.type, shape_.first_line));
     VertexKey key{{bits(x.x), bits(x.y), bits(x.z)}, kNone, kNone, kNone};
     if (normal_ok_ && per_vertex(nbind_)) {
-      const std::int64_t n = nindex_.at(f, corner_seq_, p);
-      if (n < 0 || std::size_t(n) >= nnormals_)
-        drop(normal_ok_, "normal", n, nnormals_);
-      else
-        key.normal = add_normal(n);
+      const std::int64_t n = value_of(normal_ok_, normal_, "normal", f, p);
+      if (n >= 0) key.normal = add_normal(n);
     }
     if (tex_ok_) {
-      const std::int64_t t = tindex_.at(f, corner_seq_, p);
-      if (t < 0 || std::size_t(t) >= ntex_) {
-        drop(tex_ok_, "texture coordinate", t, ntex_);
-      } else {
+      const std::int64_t t = value_of(tex_ok_, tex_, "texture coordinate", f, p);
+      if (t >= 0) {
         const Vec2 v{tc_field_->floats[2 * t], tc_field_->floats[2 * t + 1]};
         key.texcoord = texcoords_.add(v, {bits(v.x), bits(v.y)});
       }
     }
     std::int64_t vm = -1;
     if (material_ok_ && per_vertex(mbind_)) {
-      vm = mindex_.at(f, corner_seq_, p);
-      if (vm < 0 || std::size_t(vm) >= nmat_)
-        drop(material_ok_, "material", vm, nmat_);
-      else
-        key.material = add_material(vm);
+      vm = value_of(material_ok_, material_, "material", f, p);
+      if (vm >= 0) key.material = add_material(vm);
     }
     auto [it, fresh] = vertex_ids_.try_emplace(key, std::uint32_t(g.mesh.positions.size()));
     if (fresh) {
@@ -380,7 +380,8 @@ class FaceSetReader {
   const FieldValue* normal_field_ = nullptr;
   const FieldValue* tc_field_ = nullptr;
   std::size_t nnormals_ = 0, ntex_ = 0, nmat_ = 1;
-  AttributeIndexer mindex_, nindex_, tindex_;
+  std::string where_;
+  scene::FaceSetAttribute material_, normal_, tex_;
   bool material_ok_ = false, normal_ok_ = false, tex_ok_ = false, repaired_ = false;
 
   Deduper<Vec3, std::array<std::uint32_t, 3>> normals_;

@@ -19,6 +19,45 @@ std::vector<FaceRun> face_runs(std::span<const std::int32_t> coord_index, std::s
   return runs;
 }
 
+Binding vrml97_binding(bool per_vertex, bool has_index) {
+  if (per_vertex) return Binding::kPerVertexIndexed;  // an empty index field reads coordIndex
+  return has_index ? Binding::kPerFaceIndexed : Binding::kPerFace;
+}
+
+std::int64_t corner_attribute(const FaceSetAttribute& attribute, std::size_t face,
+                              std::size_t corner_seq, std::size_t pos, std::string_view where) {
+  const AttributeIndexer& ix = attribute.indexer;
+  if (ix.bind == Binding::kOverall) return -1;
+  const std::int64_t v = ix.at(face, corner_seq, pos);
+  if (v >= 0 && std::size_t(v) < attribute.count) return v;
+  std::string_view field = attribute.index_field;
+  std::size_t k = pos;
+  std::size_t entries = 0;
+  switch (ix.bind) {
+    case Binding::kPerFace:
+      field = "PER_FACE";
+      k = face;
+      break;
+    case Binding::kPerVertex:
+      field = "PER_VERTEX";
+      k = corner_seq;
+      break;
+    case Binding::kPerFaceIndexed:
+      k = face;
+      entries = ix.index ? ix.index->size() : 0;
+      if (entries == 0) throw DataError(fmt::format("{} {} is empty", where, field));
+      break;
+    default:
+      if (ix.index_is_default()) field = "coordIndex";
+      entries = (ix.index_is_default() ? ix.coord_index : ix.index)->size();
+      break;
+  }
+  if (entries > 0 && k >= entries)
+    throw DataError(fmt::format("{} {} has no entry {} ({} entries)", where, field, k, entries));
+  throw DataError(fmt::format("{} {}[{}] = {} is out of range ({} values)", where, field, k, v,
+                              attribute.count));
+}
+
 FaceTriangles face_triangles(std::span<const Vec3> positions, std::vector<std::uint32_t>& poly,
                              const FaceTriangulation& options, std::vector<Triangle>& triangles) {
   if (options.merge_repeated_corners) {

@@ -15,6 +15,7 @@
 
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/mesh/triangulate_polygon.h"
+#include "lodforge/scene/attribute_binding.h"
 
 namespace lodforge::scene {
 
@@ -48,6 +49,34 @@ void for_each_index_run(std::span<const std::int32_t> index, Visit&& visit) {
 /// first index out of range. O(coord_index.size()).
 std::vector<FaceRun> face_runs(std::span<const std::int32_t> coord_index, std::size_t point_count,
                                const FaceSetSource& source);
+
+/// One attribute of an indexed face set bound to its corners: VRML 1.0's
+/// materials, normals and texture coordinates under their binding
+/// (attribute_binding.h), VRML97 / X3D's normals, colours and texture
+/// coordinates (vrml97_binding).
+struct FaceSetAttribute {
+  AttributeIndexer indexer;      ///< binding, index field, coordIndex
+  std::size_t count = 0;         ///< values in the attribute's list
+  std::string_view index_field;  ///< named in errors, e.g. "materialIndex", "colorIndex"
+};
+
+/// The binding of a VRML97 / X3D attribute (colorPerVertex /
+/// normalPerVertex, and whether its index field is given): per vertex by the
+/// index field, or by coordIndex when it is empty; per face by the index
+/// field, or face by face when it is empty. Texture coordinates are always
+/// per vertex.
+Binding vrml97_binding(bool per_vertex, bool has_index);
+
+/// The value of `attribute` at corner `corner_seq` (counted over the whole
+/// face set) of face `face`, at position `pos` of coordIndex: an index into
+/// the attribute's list, or -1 under OVERALL. One rule for every reader: a
+/// value index that is negative, past the list, or missing (index field too
+/// short) is an error. Throws DataError "<where> <field>[k] = v is out of
+/// range (n values)" or "<where> <field> has no entry k (n entries)", where
+/// <field> is coordIndex when PER_VERTEX_INDEXED reads it, and "PER_FACE" /
+/// "PER_VERTEX" when the binding has no index field. O(1).
+std::int64_t corner_attribute(const FaceSetAttribute& attribute, std::size_t face,
+                              std::size_t corner_seq, std::size_t pos, std::string_view where);
 
 /// How face_triangles treats a face.
 struct FaceTriangulation {

@@ -11,6 +11,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/scene/attribute_binding.h"
+#include "lodforge/scene/face_set_mesh.h"
 #include "lodforge/scene/inventor_shapes.h"
 #include "lodforge/scene/schema.h"
 
@@ -165,27 +166,29 @@ class CornerVertices {
   std::map<Key, std::uint32_t> ids_;
 };
 
-// An attribute index checked against the rows it indexes: -1 (OVERALL) is
-// row 0, an index out of range is `fallback` after one warning per shape.
+// An attribute of the shape read under the one face-set rule
+// (corner_attribute): OVERALL is `fallback`, and so is a bad index, after
+// one warning per shape, because a renderer draws the shape without it.
 class CheckedIndex {
  public:
-  CheckedIndex(const Node& shape, LogCategory category, const char* what, Log* log)
-      : shape_(shape), category_(category), what_(what), log_(log) {}
-  std::int64_t operator()(std::int64_t i, std::size_t count, std::int64_t fallback) {
-    if (i == -1) return fallback;
-    if (i >= 0 && std::size_t(i) < count) return i;
-    if (log_ && !warned_)
-      log_->warn(category_,
-                 fmt::format("line {}: {} {} index {} is out of range (0..{}); drawn without it",
-                             shape_.first_line, shape_.type, what_, i, std::int64_t(count) - 1));
-    warned_ = true;
-    return fallback;
+  CheckedIndex(FaceSetAttribute attribute, const std::string& where, LogCategory category, Log* log)
+      : attribute_(attribute), where_(where), category_(category), log_(log) {}
+  std::int64_t operator()(std::size_t face, std::size_t corner_seq, std::size_t pos,
+                          std::int64_t fallback) {
+    if (attribute_.indexer.bind == Binding::kOverall) return fallback;
+    try {
+      return corner_attribute(attribute_, face, corner_seq, pos, where_);
+    } catch (const DataError& e) {
+      if (log_ && !warned_) log_->warn(category_, fmt::format("{}; drawn without it", e.what()));
+      warned_ = true;
+      return fallback;
+    }
   }
 
  private:
-  const Node& shape_;
+  FaceSetAttribute attribute_;
+  const std::string& where_;
   LogCategory category_;
-  const char* what_;
   Log* log_;
   bool warned_ = false;
 };
@@ -204,18 +207,22 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
 
   // Appearance: material rows by the binding, texture coordinates by
   // textureCoordIndex (scene/attribute_binding.h).
+  const std::string where = fmt::format("line {}: {}", shape.first_line, shape.type);
   const MaterialRows materials(visit.state.material);
   const Binding mbind = binding_of(visit.state.material_binding, Binding::kOverall);
-  const AttributeIndexer mindex{mbind, &field_or_default(shape, "materialIndex")->ints, &ci};
-  CheckedIndex material_row(shape, LogCategory::kMaterial, "material", log);
-  CheckedIndex texcoord_index(shape, LogCategory::kTexCoord, "texture coordinate", log);
+  CheckedIndex material_row({{mbind, &field_or_default(shape, "materialIndex")->ints, &ci},
+                             materials.rows(),
+                             "materialIndex"},
+                            where, LogCategory::kMaterial, log);
   out.texture = options.appearance && !line_set ? current_texture(visit.state) : nullptr;
   const FieldValue* tc = out.texture && visit.state.texture_coordinate2
                              ? field_or_default(*visit.state.texture_coordinate2, "point")
                              : nullptr;
   const FieldValue* tci = field_or_default(shape, "textureCoordIndex");
-  const AttributeIndexer tindex{Binding::kPerVertexIndexed, tci ? &tci->ints : nullptr, &ci};
-  const std::size_t ntex = tc ? tc->floats.size() / 2 : 0;
+  CheckedIndex texcoord_index({{Binding::kPerVertexIndexed, tci ? &tci->ints : nullptr, &ci},
+                               tc ? tc->floats.size() / 2 : 0,
+                               "textureCoordIndex"},
+                              where, LogCategory::kTexCoord, log);
   const std::optional<DefaultMapping> mapping =
       out.texture ? std::optional<DefaultMapping>(DefaultMapping(pts, ci)) : std::nullopt;
 
@@ -223,7 +230,6 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
     log->add(LogLevel::kMessage, LogCategory::kTriangulator,
              fmt::format("line {}: face at coordIndex[{}] is {}", shape.first_line, at, what));
   };
-  const std::string where = fmt::format("line {}: {}", shape.first_line, shape.type);
   const std::vector<FaceRun> runs = face_runs(ci, pts.size(), {where, "Coordinate3"});
   const FaceTriangulation triangulation{.triangulation = options.triangulation,
                                         .diagnose_triangles = log != nullptr};
@@ -234,11 +240,8 @@ void indexed_set(const ShapeVisit& visit, const ShapeMeshOptions& options, Log* 
     poly.clear();
     for (std::size_t i = b; i < e; ++i, ++corner_seq) {
       const std::size_t row =
-          options.appearance
-              ? std::size_t(material_row(mindex.at(face, corner_seq, i), materials.rows(), 0))
-              : 0;
-      const std::int64_t t =
-          tc ? texcoord_index(tindex.at(face, corner_seq, i), ntex, -1) : std::int64_t(-1);
+          options.appearance ? std::size_t(material_row(face, corner_seq, i, 0)) : 0;
+      const std::int64_t t = tc ? texcoord_index(face, corner_seq, i, -1) : std::int64_t(-1);
       poly.push_back(vertices.vertex(ci[i], row, t, materials, tc ? &tc->floats : nullptr,
                                      mapping ? &*mapping : nullptr));
     }

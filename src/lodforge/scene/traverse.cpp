@@ -381,18 +381,27 @@ void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& 
   for (std::size_t i = 0; i < scene.roots.size(); ++i) w.node(*scene.roots[i], state, i);
 }
 
-std::size_t lod_level_count(const Scene& scene) {
-  std::size_t count = 1;
+void for_each_node(const Scene& scene, const std::function<void(const Node&)>& visit,
+                   const NodeWalkOptions& options) {
   std::unordered_set<const Node*> seen;
   std::vector<const Node*> stack;
   for (const auto& r : scene.roots) stack.push_back(r.get());
   while (!stack.empty()) {
     const Node* n = stack.back();
     stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (n->type == "LOD" || n->type == "LevelOfDetail") count = std::max(count, n->children.size());
+    if (!n || !seen.insert(n).second) continue;
+    visit(*n);
     for (const auto& c : n->children) stack.push_back(c.get());
+    if (options.field_nodes)
+      for (const auto& c : field_nodes(*n)) stack.push_back(c.get());
   }
+}
+
+std::size_t lod_level_count(const Scene& scene) {
+  std::size_t count = 1;
+  for_each_node(scene, [&](const Node& n) {
+    if (n.type == "LOD" || n.type == "LevelOfDetail") count = std::max(count, n.children.size());
+  });
   return count;
 }
 

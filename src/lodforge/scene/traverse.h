@@ -103,6 +103,19 @@ Mat4 local_transform(const Node& node);
 void traverse(const Scene& scene, const std::function<void(const ShapeVisit&)>& visit,
               const TraverseOptions& options = {});
 
+/// What for_each_node walks into.
+struct NodeWalkOptions {
+  /// Also the nodes held in node-valued fields (VRML97's children of
+  /// Shape, Inventor's vertexProperty), besides children.
+  bool field_nodes = false;
+};
+
+/// Calls `visit` once for every distinct node reachable from the scene's
+/// roots (a node used at several places once), depth first; null entries
+/// are skipped. No traversal state is kept. O(nodes).
+void for_each_node(const Scene& scene, const std::function<void(const Node&)>& visit,
+                   const NodeWalkOptions& options = {});
+
 /// The number of LOD levels of a scene: the most children of any LOD (or
 /// Inventor LevelOfDetail) node (1 if there is none).
 std::size_t lod_level_count(const Scene& scene);

@@ -11,6 +11,7 @@
 
 #include "lodforge/scene/lod_shapes.h"
 #include "lodforge/scene/schema.h"
+#include "lodforge/scene/traverse.h"
 
 namespace lodforge::vrml97 {
 namespace {
@@ -259,17 +260,11 @@ std::map<std::string, std::size_t> not_carried(const scene::Scene& s) {
                                                               "Text2",
                                                               "Text3"};
   std::map<std::string, std::size_t> count;
-  std::unordered_set<const Node*> done;
-  std::vector<const Node*> stack;
-  for (const auto& r : s.roots) stack.push_back(r.get());
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (!n || !done.insert(n).second) continue;
-    if (kTypes.count(n->type)) ++count[n->type];
-    for (const auto& c : n->children) stack.push_back(c.get());
-    for (const auto& c : scene::field_nodes(*n)) stack.push_back(c.get());
-  }
+  scene::for_each_node(s,
+                       [&](const Node& n) {
+                         if (kTypes.count(n.type)) ++count[n.type];
+                       },
+                       {.field_nodes = true});
   return count;
 }
 

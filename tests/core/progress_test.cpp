@@ -155,6 +155,29 @@ TEST(Progress, TheLastCountOfAStageIsRedrawn) {
   EXPECT_EQ(percentages(term.text()), (std::vector<int>{10, 90}));
 }
 
+TEST(Progress, AClearedBarStaysOffUntilTheCountMoves) {
+  FakeTerminal term;
+  Progress p("scene.wrl", 20, term.options(/*delay=*/0, /*interval=*/0.02));
+  p.update(3);   // drawn
+  p.update(10);  // within the interval: not drawn yet
+  p.clear();     // the caller prints something
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_TRUE(term.text().ends_with("\r\033[K")) << "the redrawing thread drew over the caller";
+  EXPECT_EQ(percentages(term.text()), (std::vector<int>{15}));
+  p.update(15);  // a later count brings the bar back
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(percentages(term.text()), (std::vector<int>{15, 75}));
+}
+
+TEST(Progress, AClearBeforeTheFirstDrawingHoldsTheBarToo) {
+  FakeTerminal term;
+  Progress p("scene.wrl", 20, term.options(/*delay=*/0.05, /*interval=*/0.02));
+  p.update(20);  // under the delay: not drawn
+  p.clear();     // the work is done; the caller prints its summary
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(term.text(), "") << "the bar appeared after the work was done";
+}
+
 TEST(ProgressCounter, ReportsEveryStepAndTheEnd) {
   std::vector<std::uint64_t> calls;
   ProgressCallback cb = [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {

@@ -1,15 +1,42 @@
 // The studio's page in headless Chromium (Debian's `chromium`, driven by
 // puppeteer-core): it lists the scene, runs Make LOD, draws the scene on its
 // WebGL canvas, and draws fewer triangles as the "view from distance" slider
-// moves out. Usage: node browser_test.mjs LODFORGE_EXE SCENE [CHROMIUM]
+// moves out.
+// With a bunny mesh (ASCII PLY), a one-shape scene of it is opened too: both
+// files are listed with their counts, and Make LOD on it with the error range
+// changed gives the levels and ranges `lodforge lod` writes with that option.
+// Usage: node browser_test.mjs LODFORGE_EXE SCENE [BUNNY.ply [CHROMIUM]]
 // Exit 0 pass, 1 fail, 77 skipped (Chromium cannot start).
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { launchChromium } from '../tools/launch_chromium.mjs';
 
-const [exe, scenePath, chromium = '/usr/bin/chromium'] = process.argv.slice(2);
+const [exe, scenePath, bunnyPly = '', chromium = '/usr/bin/chromium'] = process.argv.slice(2);
 const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
 
-const server = spawn(exe, ['studio', scenePath, '--port', '0'], { stdio: ['ignore', 'ignore', 'pipe'] });
+// A VRML 1.0 scene of one IndexedFaceSet: the triangles of an ASCII PLY.
+function sceneOfPly(ply, out) {
+  const lines = readFileSync(ply, 'latin1').split('\n');
+  let v = 0, f = 0, at = 0;
+  for (; at < lines.length; ++at) {
+    const w = lines[at].trim().split(/\s+/);
+    if (w[0] === 'element' && w[1] === 'vertex') v = Number(w[2]);
+    if (w[0] === 'element' && w[1] === 'face') f = Number(w[2]);
+    if (w[0] === 'end_header') break;
+  }
+  const points = lines.slice(at + 1, at + 1 + v).map((l) => l.trim().split(/\s+/).slice(0, 3).join(' '));
+  const faces = lines.slice(at + 1 + v, at + 1 + v + f).map((l) => `${l.trim().split(/\s+/).slice(1, 4).join(' ')} -1`);
+  writeFileSync(out, `#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [\n${points.join(',\n')}] }\n` +
+    `IndexedFaceSet { coordIndex [\n${faces.join(',\n')}] }\n}\n`);
+  return f;
+}
+const work = mkdtempSync(join(tmpdir(), 'lodforge-studio-'));
+const bunny = bunnyPly && existsSync(bunnyPly) ? join(work, 'bunny.wrl') : '';
+const bunnyTriangles = bunny ? sceneOfPly(bunnyPly, bunny) : 0;
+
+const server = spawn(exe, ['studio', scenePath, ...(bunny ? [bunny] : []), '--port', '0'], { stdio: ['ignore', 'ignore', 'pipe'] });
 const url = await new Promise((resolve, reject) => {
   let text = '';
   server.stderr.on('data', (d) => {
@@ -40,6 +67,15 @@ try {
   await page.waitForFunction(() => window.studio && window.studio.lods && document.querySelector('#files tbody tr'), { timeout: 180000 });
   const listed = await page.$eval('#files tbody', (t) => t.textContent);
   if (!listed.includes(scenePath.split('/').pop())) fail(`the file list lacks the scene: ${listed}`);
+
+  if (bunny) {  // both files, each with its shape and triangle counts
+    const rows = await page.$$eval('#files tbody tr', (r) => r.map((x) => [...x.cells].map((c) => c.textContent)));
+    const row = (name) => rows.find((r) => r[0] === name) || [];
+    if (!row('bunny.wrl')[2]?.includes('IndexedFaceSet 1') || row('bunny.wrl')[3] !== String(bunnyTriangles))
+      fail(`the bunny's row: ${row('bunny.wrl')}`);
+    const example = row(scenePath.split('/').pop());
+    if (!(Number(example[3]) > 0) || !example[2]) fail(`the example's row: ${example}`);
+  }
 
   await page.click('#make-lod');
   await page.waitForFunction(() => window.studio.result && !window.studio.running && window.studio.lods.length > 0, { timeout: 300000 });
@@ -222,11 +258,39 @@ try {
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: process.env.STUDIO_SCREENSHOT });
   }
+
+  if (bunny) {
+    // Make LOD on the bunny with the defaults, then with error range 10 %:
+    // the statistics change, and equal what `lodforge lod` writes with it.
+    const makeLod = async () => {
+      await page.evaluate(() => { window.studio.result = null; });  // the run's own result, not the last one
+      await page.click('#make-lod');
+      await page.waitForFunction(() => window.studio.result && !window.studio.running, { timeout: 300000 });
+      return page.evaluate(() => window.studio.result.shapes.map((s) => s.levels.map((l) => [l.triangles, l.from_distance])));
+    };
+    await page.click('#files tbody tr[data-path$="bunny.wrl"]');
+    await page.waitForFunction(() => window.studio.current && window.studio.current.endsWith('bunny.wrl') && !window.studio.result, { timeout: 60000 });
+    const defaults = await makeLod();
+    await page.$eval('#options input[name="error-range"]', (e) => { e.value = '10'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+    const tenPercent = await makeLod();
+    if (JSON.stringify(defaults) === JSON.stringify(tenPercent)) fail('error range 10 % does not change the statistics');
+    const stats = join(work, 'stats.json');
+    execFileSync(exe, ['lod', bunny, '-o', join(work, 'bunny_lod.wrl'), '--error-range', '10', '--stats', stats, '-q'],
+      { stdio: ['ignore', 'ignore', 'pipe'] });
+    const written = JSON.parse(readFileSync(stats, 'utf8')).shapes.map((s) =>
+      s.levels.map((l, i) => [l.triangles, i === 0 ? 0 : s.ranges[i - 1]]));
+    const close = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
+    const same = written.length === tenPercent.length && written.every((levels, k) => levels.length === tenPercent[k].length &&
+      levels.every(([t, d], i) => t === tenPercent[k][i][0] && (i === 0 || close(tenPercent[k][i][1], d))));
+    if (!same) fail(`the page shows ${JSON.stringify(tenPercent)}, lod writes ${JSON.stringify(written)}`);
+    console.log(`bunny: ${tenPercent[0].length} levels at error range 10 %, as lod --error-range 10 writes (${JSON.stringify(tenPercent[0])})`);
+  }
   if (errors.length) fail(`console errors: ${errors.join(' | ')}`);
 } catch (e) {
   fail(e.stack || e.message);
 } finally {
   await browser.close();
   server.kill();
+  rmSync(work, { recursive: true, force: true });
 }
 if (!process.exitCode) console.log('1 passed, 0 failed');

@@ -107,12 +107,19 @@ ProgressCallback Progress::callback() {
 
 void Progress::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (finished_ || !drawn_) return;
-  std::fputs("\r\033[K", options_.out);
-  std::fflush(options_.out);
+  if (finished_) return;
+  if (drawn_) {
+    std::fputs("\r\033[K", options_.out);
+    std::fflush(options_.out);
+  }
   drawn_ = false;
   held_ = true;
   last_draw_ = Clock::now();
+  // The counts so far count as shown, also when the bar was not drawn yet:
+  // the ticker brings it back only for a later count, not over what the
+  // caller prints next (the summary after the work, while nothing counts).
+  drawn_done_ = done_.load(std::memory_order_relaxed);
+  drawn_total_ = total_.load(std::memory_order_relaxed);
 }
 
 void Progress::finish() {
@@ -142,7 +149,7 @@ void Progress::draw_if_due(bool only_changes) {
   const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   if (seconds(now - start_) < options_.delay) return;
   if ((drawn_ || held_) && seconds(now - last_draw_) < options_.interval) return;
-  if (only_changes && drawn_ && done_.load(std::memory_order_relaxed) == drawn_done_ &&
+  if (only_changes && (drawn_ || held_) && done_.load(std::memory_order_relaxed) == drawn_done_ &&
       total_.load(std::memory_order_relaxed) == drawn_total_)
     return;
   draw(now);

@@ -111,7 +111,8 @@ class Progress {
   Clock::time_point start_, stage_start_, last_draw_;
   std::atomic<bool> drawn_{false};
   bool finished_ = false;
-  bool held_ = false;  // cleared by clear(): no drawing for an interval
+  bool held_ = false;  // cleared by clear(): no drawing for an interval, none by the ticker until
+                       // the count moves
   int last_percent_ = -1;
   std::uint64_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawing showed
   std::condition_variable wake_;

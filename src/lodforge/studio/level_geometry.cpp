@@ -133,8 +133,10 @@ std::string lod_text(const LodInstance& lod, float deviation_max) {
   out += R"(,"levels":[)";
   for (std::size_t l = 0; l < lod.levels.size(); ++l) {
     out += l ? ",[" : "[";
-    for (std::size_t k = 0; k < lod.levels[l].size(); ++k)
-      out += (k ? "," : "") + mesh_text(lod.levels[l][k], deviation_max);
+    for (std::size_t k = 0; k < lod.levels[l].size(); ++k) {
+      if (k) out += ',';
+      out += mesh_text(lod.levels[l][k], deviation_max);
+    }
     out += ']';
   }
   out += "]}";
@@ -264,7 +266,8 @@ std::string level_geometry(const scene::Scene& scene, const LevelGeometryOptions
   out += R"(],"shapes":[)";
   for (std::size_t i = 0; i < shapes.size(); ++i) {
     if (options.deviation) shapes[i].deviation.assign(shapes[i].mesh.vertex_count(), 0.f);
-    out += (i ? "," : "") + mesh_text(shapes[i], deviation_max);
+    if (i) out += ',';
+    out += mesh_text(shapes[i], deviation_max);
   }
   fmt::format_to(std::back_inserter(out), R"(],"deviation_max":{}}})", deviation_max);
   return out;

@@ -57,9 +57,8 @@ struct MeasuredLevel {
 /// points along the edges, are sampled as well; the farthest samples are
 /// refined), four times that for vertex decimation: it keeps the input's
 /// vertices, so its deviation peaks lie inside triangles where a result
-/// triangle bridges a narrow fold, about as wide as the sample spacing (on
-/// the bunny and the horse one to three samples per triangle missed some;
-/// four to eight find the same maxima).
+/// triangle bridges a narrow fold, about as wide as the sample spacing (the
+/// measurements behind the factor: docs/RESULTS.md, `## simplify`).
 std::size_t measure_samples_for(std::size_t triangles, std::size_t requested,
                                 SimplifyMethod method = SimplifyMethod::kQem,
                                 std::size_t most = 200000);

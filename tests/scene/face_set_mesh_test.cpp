@@ -178,11 +178,11 @@ TEST(CornerAttribute, ABadIndexIsADataErrorNamingTheFieldAndIndex) {
               ThrowsMessage<DataError>("line 3: IndexedFaceSet colorIndex has no entry 1 (1 "
                                        "entries)"));
   EXPECT_THAT(values(Binding::kPerFace, nullptr, 1),
-              ThrowsMessage<DataError>(
-                  "line 3: IndexedFaceSet PER_FACE[1] = 1 is out of range (1 values)"));
+              ThrowsMessage<DataError>("line 3: IndexedFaceSet PER_FACE binding: face 1 takes "
+                                       "value 1, out of range (1 values)"));
   EXPECT_THAT(values(Binding::kPerVertex, nullptr, 6),
-              ThrowsMessage<DataError>(
-                  "line 3: IndexedFaceSet PER_VERTEX[6] = 6 is out of range (6 values)"));
+              ThrowsMessage<DataError>("line 3: IndexedFaceSet PER_VERTEX binding: corner 6 takes "
+                                       "value 6, out of range (6 values)"));
   EXPECT_NO_THROW(values(Binding::kOverall, nullptr, 0)());
 }
 

@@ -34,14 +34,16 @@ std::int64_t corner_attribute(const FaceSetAttribute& attribute, std::size_t fac
   std::size_t k = pos;
   std::size_t entries = 0;
   switch (ix.bind) {
-    case Binding::kPerFace:
-      field = "PER_FACE";
-      k = face;
-      break;
-    case Binding::kPerVertex:
-      field = "PER_VERTEX";
-      k = corner_seq;
-      break;
+    case Binding::kPerFace:  // no index field: the n-th face takes the n-th value
+      throw DataError(
+          fmt::format("{} PER_FACE binding: face {} takes value {}, out of range ({} "
+                      "values)",
+                      where, face, v, attribute.count));
+    case Binding::kPerVertex:  // the n-th corner takes the n-th value
+      throw DataError(
+          fmt::format("{} PER_VERTEX binding: corner {} takes value {}, out of range "
+                      "({} values)",
+                      where, corner_seq, v, attribute.count));
     case Binding::kPerFaceIndexed:
       k = face;
       entries = ix.index ? ix.index->size() : 0;

@@ -73,8 +73,9 @@ Binding vrml97_binding(bool per_vertex, bool has_index);
 /// value index that is negative, past the list, or missing (index field too
 /// short) is an error. Throws DataError "<where> <field>[k] = v is out of
 /// range (n values)" or "<where> <field> has no entry k (n entries)", where
-/// <field> is coordIndex when PER_VERTEX_INDEXED reads it, and "PER_FACE" /
-/// "PER_VERTEX" when the binding has no index field. O(1).
+/// <field> is coordIndex when PER_VERTEX_INDEXED reads it; a binding without
+/// an index field says "<where> PER_FACE binding: face k takes value v, out
+/// of range (n values)" (PER_VERTEX: corner k). O(1).
 std::int64_t corner_attribute(const FaceSetAttribute& attribute, std::size_t face,
                               std::size_t corner_seq, std::size_t pos, std::string_view where);
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/run_command.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 
@@ -183,6 +184,19 @@ TEST_F(Cli, FormatWritesVrml97AndX3dClassicScenesBackAsTheSameScene) {
         << in;
   }
   EXPECT_GT(vrml97_files, 0u);
+  // A gzipped VRML97 file (.wrl.gz) is one too, for format and lod.
+  const auto plain = std::find_if(files.begin(), files.end(), [](const std::string& f) {
+    return !vrml97::is_x3d_header(vrml97::read_vrml97_file(f).scene.header);
+  });
+  ASSERT_NE(plain, files.end());
+  std::ofstream(path("in.wrl.gz"), std::ios::binary) << gzip(read_text(*plain));
+  auto gz = run_lodforge("format -q " + path("in.wrl.gz") + " -o " + path("gz.wrl"));
+  ASSERT_EQ(gz.exit_code, 0) << gz.err;
+  EXPECT_TRUE(scene::equal(vrml97::read_vrml97_file(*plain).scene,
+                           vrml97::read_vrml97_file(path("gz.wrl")).scene));
+  gz = run_lodforge("lod -q " + path("in.wrl.gz") + " -o " + path("gz_lod.wrl"));
+  EXPECT_EQ(gz.exit_code, 0) << gz.err;
+  EXPECT_FALSE(vrml97::is_x3d_header(vrml97::read_vrml97_file(path("gz_lod.wrl")).scene.header));
   const auto glb = run_lodforge("format '" + files.front() + "' -o " + path("out.glb"));
   EXPECT_EQ(glb.exit_code, 1);
   EXPECT_THAT(glb.err, HasSubstr("not glTF"));

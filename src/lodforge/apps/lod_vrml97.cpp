@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
@@ -97,7 +98,15 @@ bool is_vrml97_input(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char head[16] = {};
   in.read(head, sizeof head);
-  return vrml97::is_vrml97_header(std::string_view(head, std::size_t(in.gcount())));
+  const std::string_view start(head, std::size_t(in.gcount()));
+  if (!is_gzip(start)) return vrml97::is_vrml97_header(start);
+  // A gzip file (.wrl.gz, .wrz): the header of what it holds.
+  try {
+    const FileBytes bytes(path);
+    return vrml97::is_vrml97_header(bytes.view().substr(0, 16));
+  } catch (const DataError&) {
+    return false;  // the reader that takes it names what is wrong
+  }
 }
 
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,

@@ -142,6 +142,18 @@ TEST_F(FileBytesTest, GzipDataIsInflated) {
   EXPECT_EQ(FileBytes(p).view(), text);
 }
 
+TEST_F(FileBytesTest, TheHeadOfAFileIsItsFirstBytesInflated) {
+  // A large stream: the head comes from its first bytes only.
+  const std::string text = "#VRML V2.0 utf8\n" + std::string(5000000, ' ') + "Group {}\n";
+  EXPECT_EQ(read_head(write("plain.wrl", text), 16), text.substr(0, 16));
+  EXPECT_EQ(read_head(write("packed.wrl.gz", gzip(text)), 16), text.substr(0, 16));
+  EXPECT_EQ(read_head(write("short.wrl", "#VRML"), 16), "#VRML");
+  EXPECT_EQ(read_head(path("none.wrl"), 16), "");
+  std::string corrupt = gzip(text);
+  corrupt.resize(12);  // the header and nothing inflatable
+  EXPECT_EQ(read_head(write("corrupt.wrl.gz", corrupt), 16), "");
+}
+
 TEST_F(FileBytesTest, AnEmptyFileIsEmpty) {
   EXPECT_TRUE(FileBytes(write("empty.wrl", "")).view().empty());
 }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <functional>
 #include <unordered_set>
 
@@ -95,18 +94,8 @@ void vrml97_to_x3d(scene::Scene& s) {
 bool is_vrml97_input(const std::string& path) {
   if (path == "-") return false;
   if (ends_with(path, ".x3dv") || ends_with(path, ".x3d")) return true;
-  std::ifstream in(path, std::ios::binary);
-  char head[16] = {};
-  in.read(head, sizeof head);
-  const std::string_view start(head, std::size_t(in.gcount()));
-  if (!is_gzip(start)) return vrml97::is_vrml97_header(start);
-  // A gzip file (.wrl.gz, .wrz): the header of what it holds.
-  try {
-    const FileBytes bytes(path);
-    return vrml97::is_vrml97_header(bytes.view().substr(0, 16));
-  } catch (const DataError&) {
-    return false;  // the reader that takes it names what is wrong
-  }
+  // (Of a gzip file, .wrl.gz or .wrz, the header of what it holds.)
+  return vrml97::is_vrml97_header(read_head(path, 16));
 }
 
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,

@@ -34,6 +34,27 @@ std::size_t max_inflated_size(std::size_t compressed) {
   return compressed > SIZE_MAX / kRatio ? SIZE_MAX : std::max(kRatio * compressed, kFloor);
 }
 
+std::string read_head(const std::string& path, std::size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  // A gzip header is at most a few hundred bytes unless it holds a long name
+  // or comment; 64 KiB of deflate data hold far more than a header's worth.
+  std::string raw(std::max<std::size_t>(n, std::size_t{1} << 16), '\0');
+  in.read(raw.data(), std::streamsize(raw.size()));
+  raw.resize(std::size_t(std::max<std::streamsize>(in.gcount(), 0)));
+  if (!is_gzip(raw)) return raw.substr(0, n);
+  z_stream zs{};
+  if (inflateInit2(&zs, 15 + 32) != Z_OK) return {};
+  std::string out(n, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(raw.data());
+  zs.avail_in = static_cast<uInt>(raw.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(n);
+  inflate(&zs, Z_SYNC_FLUSH);
+  out.resize(n - zs.avail_out);
+  inflateEnd(&zs);
+  return out;
+}
+
 std::string gunzip(std::string_view data, const std::string& what, std::size_t max_size) {
   if (max_size == 0) max_size = max_inflated_size(data.size());
   z_stream zs{};
@@ -286,7 +307,10 @@ AtomicFileWriter::AtomicFileWriter(const std::string& path) : impl_(std::make_un
   // A link's target is replaced, so the temporary file goes beside it.
   w.target = resolve_output_path(path);
   const std::filesystem::path dir = w.target.has_parent_path() ? w.target.parent_path() : ".";
-  w.temporary = (dir / ("." + w.target.filename().string() + ".tmpXXXXXX")).string();
+  std::string name = ".";  // (built in steps: GCC 12 takes "." + s + "..." for an overlap)
+  name += w.target.filename().string();
+  name += ".tmpXXXXXX";
+  w.temporary = (dir / name).string();
   w.fd = mkstemp(w.temporary.data());
   if (w.fd < 0) w.fail("cannot create", errno);
 }

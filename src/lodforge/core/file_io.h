@@ -73,6 +73,13 @@ std::size_t max_inflated_size(std::size_t compressed);
 /// max_inflated_size(data.size())).
 std::string gunzip(std::string_view data, const std::string& what, std::size_t max_size = 0);
 
+/// The first `n` bytes of a file's content (fewer if it is shorter), inflated
+/// when the file is gzip data: only as much of the file is read and inflated
+/// as `n` bytes need, to tell a file's kind by its header. A file that cannot
+/// be read, or whose gzip data is corrupt before `n` bytes, gives what was
+/// read (possibly nothing): the reader that takes the file names the error.
+std::string read_head(const std::string& path, std::size_t n);
+
 /// Compresses `data` as one gzip member (zlib's default level; deterministic:
 /// no name and no time stamp in the header).
 std::string gzip(std::string_view data);

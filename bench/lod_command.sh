@@ -15,33 +15,9 @@ while [ $# -gt 0 ] && [ "$1" != "--" ]; do bins+=("$1"); shift; done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-as_scene() {  # a mesh file -> VRML 1.0 scene of one IndexedFaceSet
-  case "$1" in
-    *.wrl|*.wrl.gz|*.iv|*.iv.gz) echo "$1" ;;
-    *.ply|*.obj|*.off|*.stl)
-      # Any mesh format lodforge reads (binary PLY too), through OBJ: `simplify
-      # --ratio 1` writes the mesh as it is.
-      out="$work/$(basename "$1").wrl"
-      "${bins[0]}" simplify "$1" --ratio 1 -o "$work/mesh.obj" -q >/dev/null 2>&1
-      python3 - "$work/mesh.obj" "$out" <<'PY'
-import sys
-v, f = [], []
-for line in open(sys.argv[1]):
-    w = line.split()
-    if w and w[0] == 'v':
-        v.append(' '.join(w[1:4]))
-    elif w and w[0] == 'f':
-        f.append(', '.join(str(int(x.split('/')[0]) - 1) for x in w[1:]))
-with open(sys.argv[2], 'w') as o:
-    o.write('#VRML V1.0 ascii\nSeparator {\nCoordinate3 { point [\n')
-    o.write(''.join(p + ',\n' for p in v))
-    o.write('] }\nIndexedFaceSet { coordIndex [\n')
-    o.write(''.join(t + ', -1,\n' for t in f))
-    o.write('] }\n}\n')
-PY
-      echo "$out" ;;
-    *) echo "unsupported input $1 (VRML 1.0, Inventor, PLY, OBJ, OFF or STL)" >&2; exit 2 ;;
-  esac
+as_scene() {  # a mesh file -> VRML 1.0 scene of one IndexedFaceSet (lod_error_check.py's)
+  python3 -c 'import sys; sys.path.insert(0, sys.argv[1]); from lod_error_check import as_scene
+print(as_scene(*sys.argv[2:]))' "$(dirname "$0")" "${bins[0]}" "$1" "$work"
 }
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }

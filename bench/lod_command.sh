@@ -4,7 +4,7 @@
 # side (runs alternate, so both see the same machine), as a Markdown table.
 #   bench/lod_command.sh [-r RUNS] LODFORGE [OTHER_LODFORGE] -- SCENE...
 # A mesh file (PLY, OBJ, OFF, STL) is first made a VRML 1.0 scene of one
-# IndexedFaceSet (`lodforge format` does not do that, so a small converter here).
+# IndexedFaceSet by lod_error_check.py's as_scene (`lodforge format` does not do that).
 set -euo pipefail
 runs=3
 if [ "${1:-}" = "-r" ]; then runs=$2; shift 2; fi

@@ -3,12 +3,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 
 #include "apps/run_command.h"
+#include "lod/lod_test_support.h"
 #include "lodforge/mesh/mesh_io.h"
 
 namespace lodforge {
@@ -26,19 +28,13 @@ class ProgressCli : public testing::TempDirTest {
   // example scene take about that delay itself).
   std::string bunny_scene() {
     const TriangleMesh m = read_mesh(kBunny);
-    const std::string out = path("bunnies.wrl");
-    std::ofstream f(out);
-    f << "#VRML V1.0 ascii\nSeparator {\n";
+    std::string text = "#VRML V1.0 ascii\nSeparator {\n";
     for (int copy = 0; copy < 6; ++copy) {
-      f << "Separator {\nTranslation { translation " << copy * 0.2 << " 0 0 }\n";
-      f << "Coordinate3 { point [\n";
-      for (const Vec3& p : m.positions) f << p.x << ' ' << p.y << ' ' << p.z << ",\n";
-      f << "] }\nIndexedFaceSet { coordIndex [\n";
-      for (const Triangle& t : m.triangles) f << t[0] << ' ' << t[1] << ' ' << t[2] << " -1,\n";
-      f << "] }\n}\n";
+      const std::string one =
+          testing::scene_of(m, fmt::format("Translation {{ translation {} 0 0 }}", copy * 0.2));
+      text += one.substr(one.find('\n') + 1);  // its Separator, without the header
     }
-    f << "}\n";
-    return out;
+    return write("bunnies.wrl", text + "}\n");
   }
 };
 const std::string kBunnyLow = std::string(LODFORGE_SHARED_DATA) + "/meshes/bun_zipper_res3.ply";

@@ -47,14 +47,24 @@ TrianglePoint closest_on_degenerate(const Vec3& p, const Vec3& a, const Vec3& b,
 
 }  // namespace
 
-TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
-                                        const Vec3& c) {
-  Vec3 ab = b - a, ac = c - a;
-  Vec3 n = cross(ab, ac);
-  if (length_squared(n) <= kDegenerate * length_squared(ab) * length_squared(ac)) {
-    return closest_on_degenerate(p, a, b, c);
-  }
-  // Region tests, in Ericson's order:
+PreparedTriangle PreparedTriangle::of(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a;
+  const Vec3 n = cross(ab, ac);
+  return {.a = a,
+          .b = b,
+          .c = c,
+          .ab_ab = dot(ab, ab),
+          .ab_ac = dot(ab, ac),
+          .ac_ac = dot(ac, ac),
+          .degenerate = length_squared(n) <= kDegenerate * length_squared(ab) * length_squared(ac)};
+}
+
+TrianglePoint closest_point_on_triangle(const Vec3& p, const PreparedTriangle& t) {
+  if (t.degenerate) return closest_on_degenerate(p, t.a, t.b, t.c);
+  const Vec3 &a = t.a, &b = t.b, &c = t.c;
+  const Vec3 ab = b - a, ac = c - a;
+  // Region tests, in Ericson's order, with d3..d6 (the dot products of ab and
+  // ac with p - b and p - c) from d1, d2 and the edges' own dot products:
   //   vertex A  : d1 <= 0, d2 <= 0
   //   vertex B  : d3 >= 0, d4 <= d3
   //   edge AB   : vc <= 0, d1 >= 0, d3 <= 0
@@ -62,39 +72,42 @@ TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3
   //   edge AC   : vb <= 0, d2 >= 0, d6 <= 0
   //   edge BC   : va <= 0, d4 - d3 >= 0, d5 - d6 >= 0
   //   face      : otherwise
-  Vec3 ap = p - a;
-  float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  const Vec3 ap = p - a;
+  const float d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return make(p, a, 1, 0, 0);
 
-  Vec3 bp = p - b;
-  float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  const float d3 = d1 - t.ab_ab, d4 = d2 - t.ab_ac;
   if (d3 >= 0 && d4 <= d3) return make(p, b, 0, 1, 0);
 
-  float vc = d1 * d4 - d3 * d2;
+  const float vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
     float v = d1 / (d1 - d3);
     return make(p, a + ab * v, 1 - v, v, 0);
   }
 
-  Vec3 cp = p - c;
-  float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  const float d5 = d1 - t.ab_ac, d6 = d2 - t.ac_ac;
   if (d6 >= 0 && d5 <= d6) return make(p, c, 0, 0, 1);
 
-  float vb = d5 * d2 - d1 * d6;
+  const float vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
     float w = d2 / (d2 - d6);
     return make(p, a + ac * w, 1 - w, 0, w);
   }
 
-  float va = d3 * d6 - d5 * d4;
+  const float va = d3 * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
     float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return make(p, b + (c - b) * w, 0, 1 - w, w);
   }
 
-  float denom = 1 / (va + vb + vc);
-  float v = vb * denom, w = vc * denom;
+  const float denom = 1 / (va + vb + vc);
+  const float v = vb * denom, w = vc * denom;
   return make(p, a + ab * v + ac * w, 1 - v - w, v, w);
+}
+
+TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
+                                        const Vec3& c) {
+  return closest_point_on_triangle(p, PreparedTriangle::of(a, b, c));
 }
 
 }  // namespace lodforge

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge {
 
@@ -25,7 +26,7 @@ enum class BvhBuild {
 
 struct BvhOptions {
   int leaf_size = 4;           ///< at most this many triangles per leaf (1..32)
-  int bins = 16;               ///< SAH bins per axis when splitting (2..64)
+  int bins = 16;               ///< SAH bins along the split axis (2..64)
   bool vertex_normals = true;  ///< normal_at interpolates the mesh's vertex normals if it has any
   BvhBuild build = BvhBuild::kSah;
 };
@@ -49,7 +50,8 @@ struct ClosestPoint {
 /// Morton order, BvhOptions::build), nodes in one flat array in depth-first
 /// order. Queries: stack traversal, nearer child
 /// first, subtrees pruned when their box is farther than the best distance so
-/// far. Degenerate triangles take part as the segments or points they are.
+/// far; with a hint, from the hint's leaf up through the other children of its
+/// ancestors (so a query that may stop early stops near the hint). Degenerate triangles take part as the segments or points they are.
 class TriangleBvh {
  public:
   /// Preconditions: triangle indices < #V (assert). A mesh without triangles
@@ -103,9 +105,6 @@ class TriangleBvh {
     std::uint32_t index;  // interior: right child (left is this + 1); leaf: first triangle
     std::uint32_t count;  // 0 for interior nodes, else triangles in the leaf
   };
-  struct Corners {
-    Vec3 a, b, c;
-  };
 
   // How a query chooses among triangles at the same distance: the first one
   // found, the lowest index (exact ties), or the best normal (near ties).
@@ -124,11 +123,13 @@ class TriangleBvh {
   const TriangleMesh* mesh_;
   BvhOptions options_;
   std::vector<Node> nodes_;
-  std::vector<Corners> corners_;      // triangle corners in leaf order
-  std::vector<std::uint32_t> order_;  // leaf order -> mesh triangle index
-  std::vector<std::uint32_t> slot_;   // mesh triangle index -> leaf order
-  std::vector<Vec3> face_normals_;    // per mesh triangle, unit or zero
-  float tie_floor_ = 0;               // absolute tie tolerance on squared distances
+  std::vector<PreparedTriangle> corners_;  // triangles in leaf order
+  std::vector<std::uint32_t> order_;       // leaf order -> mesh triangle index
+  std::vector<std::uint32_t> slot_;        // mesh triangle index -> leaf order
+  std::vector<std::uint32_t> parent_;      // node -> its parent (the root: 0)
+  std::vector<std::uint32_t> leaf_of_;     // leaf order -> the leaf holding it
+  std::vector<Vec3> face_normals_;         // per mesh triangle, unit or zero
+  float tie_floor_ = 0;                    // absolute tie tolerance on squared distances
   int depth_ = 0;
 };
 

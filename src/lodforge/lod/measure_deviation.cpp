@@ -65,7 +65,10 @@ Side make_side(const TriangleMesh& m, std::size_t samples, std::uint64_t seed,
                                                 .vertices = true,
                                                 .edge_count = samples / 4,
                                                 .vertex_normals = false}));
-  if (with_bvh) s.bvh = std::make_unique<TriangleBvh>(m);
+  // Morton order: its build costs a fraction of SAH's, and the searches,
+  // which start at a hinted triangle and mostly end near it, hardly feel its
+  // looser boxes.
+  if (with_bvh) s.bvh = std::make_unique<TriangleBvh>(m, BvhOptions{.build = BvhBuild::kMorton});
   return s;
 }
 
@@ -249,8 +252,6 @@ double DeviationMeter::distance_to_reference(const TriangleMesh& level,
 
 double DeviationMeter::estimate(const TriangleMesh& level) const {
   if (impl_->reference.mesh->triangles.empty() || level.triangles.empty()) return 0.0;
-  // Built in Morton order: several times faster to build than by SAH, for
-  // the few queries an estimate makes.
   const TriangleBvh to(level, {.build = BvhBuild::kMorton});
   return one_sided(impl_->thin_reference, to,
                    std::max<std::size_t>(impl_->options.refine / kEstimateThinning, 1), {});

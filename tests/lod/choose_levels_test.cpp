@@ -35,8 +35,12 @@ TEST(ChooseLevels, AutomaticLevelsAreSpacedMeasuredAndSmaller) {
   DeviationMeter meter(mesh, {.samples = measure_samples_for(mesh.triangle_count(), 0)});
   for (const ChosenLevel& l : chosen.levels) {
     EXPECT_TRUE(l.measured.measured_in_full);
-    EXPECT_EQ(l.measured.error,
-              kErrorMargin * meter.hausdorff(l.measured.level.mesh, l.measured.level.face_map));
+    // The level's full measurement started from its estimate, so its local
+    // searches started at other samples: equal to a measurement from scratch
+    // up to what those searches find.
+    const double error =
+        kErrorMargin * meter.hausdorff(l.measured.level.mesh, l.measured.level.face_map);
+    EXPECT_NEAR(l.measured.error, error, 1e-3 * error);
     EXPECT_GE(l.switch_error, l.measured.error);
     const std::size_t n = l.measured.level.mesh.triangle_count();
     EXPECT_LE(double(n), options.spacing.max_ratio * double(before));

@@ -86,5 +86,24 @@ TEST(DeviationMeter, EstimateIsTheReferenceSideMeasuredThinly) {
   EXPECT_GE(estimate, 0.5 * full);
 }
 
+// A full measurement that starts from the estimate finds the same distance
+// (up to where its local searches start) and never less than the estimate;
+// it finds the bump of a reference whose estimate saw only the sheet.
+TEST(DeviationMeter, FullMeasurementFromAKnownDistance) {
+  const TriangleMesh sphere = bumpy_sphere();
+  const SimplifyResult r = simplified(sphere, 0.1f);
+  DeviationMeter meter(sphere);
+  const double plain = meter.hausdorff(r.mesh, r.face_map);
+  const double estimate = meter.estimate(r.mesh);
+  const double from_estimate = meter.hausdorff(r.mesh, r.face_map, estimate);
+  EXPECT_GE(from_estimate, estimate);
+  EXPECT_NEAR(from_estimate, plain, 1e-3 * plain);
+
+  TriangleMesh bumped = grid(16);
+  bumped.positions[8 * 17 + 8].z = 0.3f;
+  EXPECT_NEAR(DeviationMeter(bumped, {.samples = 500}).hausdorff(grid(3, 0.f), {}, 0.01), 0.3,
+              1e-4);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -140,7 +140,7 @@ double climb(const TriangleMesh& from, std::uint32_t tri, const Vec3& start, con
 // whose neighbourhoods are searched are the farthest of those whose distance
 // is known (all above the floor, and the strided ones).
 double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
-                 std::span<const std::uint32_t> near) {
+                 std::span<const std::uint32_t> near, double known = 0) {
   constexpr std::size_t kStride = 32;
   const std::size_t n = from.samples.size();
   if (n == 0) return 0.0;
@@ -150,30 +150,35 @@ double one_sided(const Side& from, const TriangleBvh& to, std::size_t refine,
     return near.empty() ? ClosestPoint::kNone : near[from.samples.triangles[i]];
   };
   std::vector<double> d(n, -1.0);  // -1: nearer than the floor
-  auto measure = [&](std::size_t stride, double floor) {
+  // Measures every stride-th sample not measured yet (`skip`: every
+  // kStride-th is).
+  auto measure = [&](std::size_t stride, double floor, bool skip) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (n + stride - 1) / stride, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         std::uint32_t hint = ClosestPoint::kNone;
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const std::size_t i = k * stride;
-                          if (floor >= 0 && i % kStride == 0) continue;
+                          if (skip && i % kStride == 0) continue;
                           hint = start(i, hint);
                           d[i] = distance_above(to, at[i], floor, hint);
                         }
                       });
   };
-  measure(kStride, -1);
-  double floor = 0;
-  for (std::size_t i = 0; i < n; i += kStride) floor = std::max(floor, d[i]);
-  measure(1, floor);
+  double floor = known;
+  if (floor <= 0) {
+    measure(kStride, -1, false);
+    for (std::size_t i = 0; i < n; i += kStride) floor = std::max(floor, d[i]);
+  }
+  measure(1, floor, known <= 0);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < n; ++i)
     if (d[i] >= 0) order.push_back(i);
+  if (order.empty()) return known;  // no sample farther than the known distance
   const std::size_t k = std::min(refine, order.size());
   std::partial_sort(
       order.begin(), order.begin() + std::ptrdiff_t(k), order.end(),
       [&](std::size_t x, std::size_t y) { return d[x] > d[y] || (d[x] == d[y] && x < y); });
-  double best = d[order[0]];
+  double best = std::max(d[order[0]], known);
   std::vector<double> refined(k, 0.0);
   tbb::parallel_for(std::size_t(0), k, [&](std::size_t i) {
     const std::size_t s = order[i];
@@ -224,8 +229,8 @@ std::span<const std::uint32_t> level_to_reference(std::span<const std::uint32_t>
 
 }  // namespace
 
-double DeviationMeter::hausdorff(const TriangleMesh& level,
-                                 std::span<const std::uint32_t> face_map) const {
+double DeviationMeter::hausdorff(const TriangleMesh& level, std::span<const std::uint32_t> face_map,
+                                 double known) const {
   const TriangleMesh& reference = *impl_->reference.mesh;
   if (reference.triangles.empty() || level.triangles.empty()) return 0.0;
   Side other = make_side(level, impl_->options.samples, impl_->options.seed);
@@ -236,7 +241,7 @@ double DeviationMeter::hausdorff(const TriangleMesh& level,
     to_level.assign(reference.triangles.size(), ClosestPoint::kNone);
     for (std::uint32_t t = 0; t < to_reference.size(); ++t) to_level[to_reference[t]] = t;
   }
-  const double ab = one_sided(impl_->reference, *other.bvh, impl_->options.refine, to_level);
+  const double ab = one_sided(impl_->reference, *other.bvh, impl_->options.refine, to_level, known);
   const double ba = one_sided(other, *impl_->reference.bvh, impl_->options.refine, to_reference);
   return std::max(ab, ba);
 }

@@ -35,8 +35,12 @@ class DeviationMeter {
   /// simplifier's SimplifyResult::face_map, one reference triangle per level
   /// triangle) only tells where each search starts: the result is the same
   /// with or without it, found faster with it. A map of the wrong size or
-  /// with an index out of range is ignored.
-  double hausdorff(const TriangleMesh& level, std::span<const std::uint32_t> face_map = {}) const;
+  /// with an index out of range is ignored. `known`: a distance from a point
+  /// of the reference to `level` already measured (estimate() of the same
+  /// level, say); the result is at least it, and the search, which then only
+  /// looks for farther points, ends sooner.
+  double hausdorff(const TriangleMesh& level, std::span<const std::uint32_t> face_map = {},
+                   double known = 0) const;
 
   /// One-sided: the largest distance from a point of `level` to the
   /// reference, in model units; 0 if either has no triangles. Cheaper than

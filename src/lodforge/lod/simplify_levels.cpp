@@ -28,7 +28,10 @@ void measure(std::vector<MeasuredLevel>& levels, std::span<const std::size_t> wh
              std::uint64_t units) {
   tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t k) {
     MeasuredLevel& m = levels[which[k]];
-    m.error = kErrorMargin * (in_full ? meter.hausdorff(m.level.mesh, m.level.face_map)
+    // An estimate is a distance measured from the reference to the level: the
+    // full measurement starts from it.
+    const double known = m.measured_in_full ? 0.0 : m.error / kErrorMargin;
+    m.error = kErrorMargin * (in_full ? meter.hausdorff(m.level.mesh, m.level.face_map, known)
                                       : meter.estimate(m.level.mesh));
     m.measured_in_full = in_full;
     progress.add(units);

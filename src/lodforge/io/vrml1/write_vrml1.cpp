@@ -5,6 +5,7 @@
 // (rebound in between) is made unique.
 #include "lodforge/io/vrml1/write_vrml1.h"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <functional>
@@ -161,7 +162,16 @@ class Writer {
     out_ += '"';
   }
 
-  void write_float(float f) { fmt::format_to(std::back_inserter(out_), "{}", f); }
+  // Numbers are formatted into a local buffer and appended: formatting
+  // through a back_inserter of the output string costs several times more.
+  void write_number(std::int32_t i) {
+    const fmt::format_int text(i);
+    out_.append(text.data(), text.size());
+  }
+  void write_float(float f) {
+    char buffer[32];
+    out_.append(buffer, fmt::format_to_n(buffer, sizeof buffer, FMT_COMPILE("{}"), f).out);
+  }
 
   // Values of one kind, `per_value` numbers each, wrapped after `per_line`.
   template <typename T, typename Emit>
@@ -195,7 +205,7 @@ class Writer {
 
   void write_value(const FieldValue& v, int depth) {
     auto emit_float = [this](float f) { write_float(f); };
-    auto emit_int = [this](std::int32_t i) { fmt::format_to(std::back_inserter(out_), "{}", i); };
+    auto emit_int = [this](std::int32_t i) { write_number(i); };
     switch (v.type.kind) {
       case FieldKind::kColor:
       case FieldKind::kFloat:
@@ -284,7 +294,7 @@ class Writer {
           else if (i)
             out_ += ' ';
           if (i < 3)
-            fmt::format_to(std::back_inserter(out_), "{}", v.ints[i]);
+            write_number(v.ints[i]);
           else
             fmt::format_to(std::back_inserter(out_), "{:#x}",
                            static_cast<std::uint32_t>(v.ints[i]));

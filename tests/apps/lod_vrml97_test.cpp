@@ -115,6 +115,67 @@ TEST_F(LodVrml97Corpus, TheX3dOutputDrawsLikeTheInputAtItsViewpoint) {
   EXPECT_EQ(a, b);
 }
 
+// `info` flattens a VRML97 scene as Coin3D does: on every corpus file whose
+// shapes Coin reads and draws as indexed face sets (Coin tessellates the
+// primitives its own way), the same triangles in all.
+TEST_F(LodVrml97Corpus, InfoCountsTheTrianglesCoinDraws) {
+  if (!kOutsideReaders) GTEST_SKIP() << "Coin3D is not run under the sanitizers";
+  std::size_t compared = 0;
+  for (const auto& in : vrml97_corpus()) {
+    const CommandResult r = run_lodforge("info --json -q '" + in + "'");
+    ASSERT_EQ(r.exit_code, 0) << in << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    if (!in.ends_with(".wrl")) continue;  // Coin reads VRML97, not X3D
+    const CoinResult coin = run_coin_probe(in);
+    if (!coin.accepted()) continue;
+    bool faces_only = true;
+    for (const auto& [type, n] : coin.shape_triangles)
+      faces_only = faces_only && type == "VRMLIndexedFaceSet";
+    if (!faces_only) continue;
+    EXPECT_EQ(j["triangles"].get<std::size_t>(), coin.triangles()) << in;
+    ++compared;
+  }
+  EXPECT_GE(compared, 15u);
+}
+
+// render, simplify and compare take a VRML97 / X3D scene as one surface: the
+// LOD output's level 0 is the input, its level 1 within the error written for
+// it, and the picture draws the triangles info counts.
+TEST_F(LodVrml97Corpus, RenderSimplifyAndCompareReadTheScene) {
+  const std::string in =
+      std::string(LODFORGE_SHARED_DATA) + "/vrml2/castle-engine__demo-models/vrml_2/teapot.wrl";
+  const std::string out = (dir_ / "teapot.x3dv").string();
+  const std::string stats = (dir_ / "stats.json").string();
+  ASSERT_EQ(run_lodforge("lod -q '" + in + "' -o " + out + " --stats " + stats).exit_code, 0);
+  const auto st = nlohmann::json::parse(read_text(stats));
+  const auto info = nlohmann::json::parse(run_lodforge("info --json '" + in + "'").out);
+  const std::size_t triangles = info["triangles"].get<std::size_t>();
+  EXPECT_EQ(triangles, st["shapes"][0]["levels"][0]["triangles"].get<std::size_t>());
+
+  const CommandResult same = run_lodforge("compare --json -q '" + in + "' " + out);
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_EQ(nlohmann::json::parse(same.out)["hausdorff"], 0.0);
+  const CommandResult level1 = run_lodforge("compare --json -q '" + in + "' " + out + " --level 1");
+  ASSERT_EQ(level1.exit_code, 0) << level1.err;
+  const double h = nlohmann::json::parse(level1.out)["hausdorff"].get<double>();
+  EXPECT_GT(h, 0);
+  // (The error is the shape's own units; the teapot is scaled by its Transform.)
+  EXPECT_LE(h, st["shapes"][0]["levels"][1]["error"].get<double>() *
+                   st["shapes"][0]["scale"].get<double>() * (1 + 1e-5));
+
+  const CommandResult pic = run_lodforge("render '" + in + "' -o " + (dir_ / "t.png").string());
+  ASSERT_EQ(pic.exit_code, 0) << pic.err;
+  EXPECT_NE(pic.err.find(std::to_string(triangles) + " triangles"), std::string::npos) << pic.err;
+  EXPECT_GT(fs::file_size(dir_ / "t.png"), 2000u);
+
+  const CommandResult half =
+      run_lodforge("simplify '" + in + "' -o " + (dir_ / "half.ply").string() + " --ratio 0.5 -q");
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  const auto small =
+      nlohmann::json::parse(run_lodforge("info --json " + (dir_ / "half.ply").string()).out);
+  EXPECT_NEAR(small["triangles"].get<double>(), triangles / 2.0, triangles * 0.02);
+}
+
 TEST_F(LodVrml97Corpus, BadInputExitsOneWithTheLineAndNoOutput) {
   const std::string in = (dir_ / "bad.wrl").string();
   {
@@ -134,6 +195,16 @@ TEST_F(LodVrml97Corpus, BadInputExitsOneWithTheLineAndNoOutput) {
   EXPECT_EQ(x3d.exit_code, 1);
   EXPECT_NE(x3d.err.find("X3D scene as VRML97 is not supported"), std::string::npos) << x3d.err;
   EXPECT_FALSE(fs::exists(out));
+  // The one-surface commands give the reader's message too.
+  for (const std::string cmd : {"info '" + in + "'", "render '" + in + "' -o " + out + ".png",
+                                "simplify '" + in + "' -o " + out + ".ply --ratio 0.5",
+                                "compare '" + in + "' '" + in + "'"}) {
+    const CommandResult c = run_lodforge(cmd);
+    EXPECT_EQ(c.exit_code, 1) << cmd;
+    EXPECT_NE(c.err.find("bad.wrl:2:29: expected a number"), std::string::npos) << cmd << c.err;
+  }
+  EXPECT_FALSE(fs::exists(out + ".png"));
+  EXPECT_FALSE(fs::exists(out + ".ply"));
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
 #include "lodforge/apps/info_gltf.h"
+#include "lodforge/apps/info_vrml97.h"
 #include "lodforge/apps/load_geometry.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/mesh/adjacency.h"
 #include "lodforge/mesh/mesh_io.h"
@@ -74,16 +76,20 @@ void add_info_command(CLI::App& app, Runner& run) {
   };
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Show what a VRML 1.0 or Open Inventor scene, a glTF scene, or a mesh file, holds");
+      "info",
+      "Show what a VRML 1.0, Open Inventor, VRML97, X3D classic or glTF scene, or a mesh file, "
+      "holds");
   cmd->add_option("SCENE", s->input,
-                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), glTF (.gltf, "
-                  ".glb), or a mesh (.ply, .obj, .off, .stl)")
+                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), VRML97 or X3D "
+                  "classic (.wrl, .x3dv, optionally .gz), glTF (.gltf, .glb), or a mesh (.ply, "
+                  ".obj, .off, .stl)")
       ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   add_scene_read_options(*cmd, s->read);
   cmd->callback([s, &run] {
     run = [s] {
       if (gltf::is_gltf_path(s->input)) return print_gltf_info(s->input, s->json, s->read.quiet);
+      if (is_vrml97_input(s->input)) return print_vrml97_info(s->input, s->json, s->read.quiet);
       if (!is_scene_path(s->input) && format_from_path(s->input) != MeshFormat::kAuto)
         return mesh_info(s->input, s->json);
       SceneReadSettings read = s->read;

@@ -25,7 +25,9 @@
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/info_vrml97.h"
 #include "lodforge/apps/load_geometry.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/mesh/mesh_io.h"
@@ -172,6 +174,11 @@ scene::Scene read_lod_scene(const std::string& path, std::string_view option,
   if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
     throw DataError(
         fmt::format("{}: {} needs a VRML 1.0 or Inventor scene with LOD nodes", path, option));
+  if (is_vrml97_input(path))
+    throw DataError(fmt::format(
+        "{}: {} reads VRML 1.0 and Inventor scenes; a VRML97 / X3D scene's levels are drawn "
+        "with --levels or --level K",
+        path, option));
   return read_scene(path, read).scene;
 }
 
@@ -193,12 +200,19 @@ int sheet_columns(std::size_t n) {
 // One panel per LOD level of a scene, all seen by the same camera.
 int render_levels(const std::string& input, const std::string& output, const RenderOptions& options,
                   const SceneReadSettings& read, TextureLoader& loader) {
-  const scene::Scene scene = read_lod_scene(input, "--levels", read);
-  const std::size_t count = scene::lod_level_count(scene);
   std::vector<Drawing> levels;
-  for (std::size_t k = 0; k < count; ++k)
-    levels.push_back(
-        drawing(scene::flatten_scene_appearance(scene, {.lod_level = int(k)}), loader));
+  if (is_vrml97_input(input)) {
+    const std::size_t count = vrml97_lod_level_count(input);
+    for (std::size_t k = 0; k < count; ++k)
+      levels.push_back(drawing(load_vrml97(input, int(k), read.quiet || k > 0).flat, loader));
+  } else {
+    const scene::Scene scene = read_lod_scene(input, "--levels", read);
+    const std::size_t count = scene::lod_level_count(scene);
+    for (std::size_t k = 0; k < count; ++k)
+      levels.push_back(
+          drawing(scene::flatten_scene_appearance(scene, {.lod_level = int(k)}), loader));
+  }
+  const std::size_t count = levels.size();
   std::vector<ContactSheetPanel> panels;
   for (std::size_t k = 0; k < count; ++k)
     panels.push_back({.mesh = &levels[k].flat.mesh,

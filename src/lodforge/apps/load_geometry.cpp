@@ -7,6 +7,8 @@
 #include <unordered_set>
 
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/info_vrml97.h"
+#include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/file_io.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/gltf/scene_mesh.h"
@@ -44,6 +46,19 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
     if (!read.quiet)
       for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", name, w);
     return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level));
+  }
+  if (is_vrml97_input(path)) {
+    // A VRML97 / X3D classic scene: its shapes in world space, with their
+    // materials' colours.
+    scene::FlatScene flat = load_vrml97(path, lod_level, read.quiet).flat;
+    check_coordinate_range(flat.mesh, name);
+    if (!appearance) {  // the surface alone, as for the other scene kinds
+      flat.mesh.colors.clear();
+      flat.mesh.texcoords.clear();
+      flat.mesh.materials.clear();
+      return scene::FlatScene{.mesh = std::move(flat.mesh)};
+    }
+    return flat;
   }
   vrml1::ReadResult r;
   if (is_scene_path(path)) {

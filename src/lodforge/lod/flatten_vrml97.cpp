@@ -1,0 +1,248 @@
+#include "lodforge/lod/flatten_vrml97.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "lodforge/core/error.h"
+#include "lodforge/core/math.h"
+#include "lodforge/lod/vrml97_geometry.h"
+#include "lodforge/scene/tessellate_primitive.h"
+
+namespace lodforge {
+namespace {
+
+using scene::FieldKind;
+using scene::FieldValue;
+using scene::Node;
+using scene::NodePtr;
+
+// Deeper nesting than the reader allows cannot occur; this guards USE cycles.
+constexpr int kMaxDepth = 512;
+const Vec3 kDefaultGrey{0.8f, 0.8f, 0.8f};
+
+Vec3 vec3_of(const Node& n, std::string_view field, Vec3 fallback) {
+  const FieldValue* v = n.value(field);
+  return v && v->floats.size() >= 3 ? Vec3{v->floats[0], v->floats[1], v->floats[2]} : fallback;
+}
+
+Mat4 rotation_of(const Node& n, std::string_view field, bool inverse = false) {
+  const FieldValue* v = n.value(field);
+  if (!v || v->floats.size() < 4) return {};
+  return Mat4::rotation({v->floats[0], v->floats[1], v->floats[2]},
+                        inverse ? -v->floats[3] : v->floats[3]);
+}
+
+// T * C * R * SR * S * SR^-1 * C^-1 (ISO/IEC 14772-1, 6.52 Transform).
+Mat4 transform_of(const Node& n) {
+  const Vec3 c = vec3_of(n, "center", {});
+  return Mat4::translation(vec3_of(n, "translation", {})) * Mat4::translation(c) *
+         rotation_of(n, "rotation") * rotation_of(n, "scaleOrientation") *
+         Mat4::scale(vec3_of(n, "scale", {1, 1, 1})) * rotation_of(n, "scaleOrientation", true) *
+         Mat4::translation(-c);
+}
+
+std::vector<NodePtr> nodes_of(const Node& n, std::string_view field) {
+  const FieldValue* v = n.value(field);
+  return v && v->type.kind == FieldKind::kNode ? v->nodes : std::vector<NodePtr>{};
+}
+
+int int_of(const Node& n, std::string_view field, int fallback) {
+  const FieldValue* v = n.value(field);
+  return v && !v->ints.empty() ? v->ints[0] : fallback;
+}
+
+float float_of(const Node& n, std::string_view field, float fallback) {
+  const FieldValue* v = n.value(field);
+  return v && !v->floats.empty() ? v->floats[0] : fallback;
+}
+
+bool is_primitive(const std::string& type) {
+  return type == "Box" || type == "Sphere" || type == "Cone" || type == "Cylinder";
+}
+
+// A VRML97 primitive as the VRML 1.0 node tessellate_primitive knows (the
+// same defaults; Box's size is Cube's width, height and depth; side, top and
+// bottom are Cone's and Cylinder's parts).
+NodePtr as_vrml1_primitive(const Node& g) {
+  if (g.type == "Box") {
+    NodePtr cube = scene::make_node("Cube");
+    cube->first_line = g.first_line;
+    const Vec3 size = vec3_of(g, "size", {2, 2, 2});
+    cube->set("width", scene::make_float(size.x));
+    cube->set("height", scene::make_float(size.y));
+    cube->set("depth", scene::make_float(size.z));
+    return cube;
+  }
+  NodePtr n = scene::make_node(g.type);
+  n->first_line = g.first_line;
+  for (const char* f : {"radius", "bottomRadius", "height"})
+    if (const FieldValue* v = g.value(f)) n->set(f, *v);
+  if (g.type == "Sphere") return n;
+  FieldValue parts = scene::make_enum("SIDES");
+  parts.strings.clear();
+  auto part = [&](const char* field, const char* name) {
+    const FieldValue* v = g.value(field);
+    if (!v || v->ints.empty() || v->ints[0]) parts.strings.push_back(name);
+  };
+  part("side", "SIDES");
+  part("bottom", "BOTTOM");
+  if (g.type == "Cylinder") part("top", "TOP");
+  n->set("parts", std::move(parts));
+  return n;
+}
+
+class Flattener {
+ public:
+  Flattener(const FlattenVrml97Options& options, Log& log) : options_(options), log_(log) {}
+
+  void node(const NodePtr& n, const Mat4& m, int depth) {
+    if (!n) return;
+    if (depth > kMaxDepth)
+      throw DataError(fmt::format("line {}: nodes nested deeper than {} (a USE inside itself?)",
+                                  n->first_line, kMaxDepth));
+    const std::string& t = n->type;
+    if (n->statement) return;  // PROTO, ROUTE, ... (their bodies are not drawn)
+    if (t == "Shape") return shape(*n, m);
+    if (t == "Transform") return children(nodes_of(*n, "children"), m * transform_of(*n), depth);
+    if (t == "LOD") return lod(*n, m, depth);
+    if (t == "Switch") return choice(*n, m, depth);
+    if (t == "Inline") {
+      ++out_.skipped[t];
+      return;
+    }
+    children(nodes_of(*n, "children"), m, depth);
+  }
+
+  FlatVrml97 result() {
+    if (has_color_) {
+      auto& mesh = out_.flat.mesh;
+      mesh.texcoords.assign(mesh.positions.size(), {0, 0});
+      mesh.materials.assign(mesh.triangles.size(), scene::kUntextured);
+    } else {
+      out_.flat.mesh.colors.clear();
+      out_.flat.opacity.clear();
+    }
+    return std::move(out_);
+  }
+
+ private:
+  void children(const std::vector<NodePtr>& list, const Mat4& m, int depth) {
+    for (const NodePtr& c : list) node(c, m, depth + 1);
+  }
+
+  void lod(const Node& n, const Mat4& m, int depth) {
+    std::vector<NodePtr> levels = nodes_of(n, "level");
+    if (levels.empty()) levels = nodes_of(n, "children");  // X3D
+    if (levels.empty()) return;
+    const auto k = std::size_t(std::clamp(options_.lod_level, 0, int(levels.size()) - 1));
+    node(levels[k], m, depth + 1);
+  }
+
+  void choice(const Node& n, const Mat4& m, int depth) {
+    std::vector<NodePtr> choices = nodes_of(n, "choice");
+    if (choices.empty()) choices = nodes_of(n, "children");  // X3D
+    const int k = int_of(n, "whichChoice", -1);
+    if (k >= 0 && std::size_t(k) < choices.size()) node(choices[std::size_t(k)], m, depth + 1);
+  }
+
+  void shape(const Node& s, const Mat4& m) {
+    const std::vector<NodePtr> g = nodes_of(s, "geometry");
+    if (g.empty() || !g[0]) return;
+    const Node& geometry = *g[0];
+    vrml97_geometry::ShapeMesh piece;
+    const FieldValue* colors = nullptr;
+    std::size_t stride = 3;
+    if (is_primitive(geometry.type)) {
+      piece.mesh = scene::tessellate_primitive(*as_vrml1_primitive(geometry));
+    } else if (vrml97_geometry::is_supported_geometry(geometry.type)) {
+      // The reader's warnings speak of levels (an attribute dropped from
+      // them, a shape left without LOD): here only an undrawn shape matters.
+      Log reader_log;
+      vrml97_geometry::GeometryReader reader(geometry, reader_log,
+                                             fmt::format("line {}", geometry.first_line));
+      vrml97_geometry::Polygons polygons;
+      if (!reader.read(polygons)) {
+        ++out_.skipped[geometry.type];
+        for (const auto& d : reader_log.entries())
+          log_.warn(LogCategory::kParse, fmt::format("{} (not drawn)", d.text));
+        return;
+      }
+      vrml97_geometry::build_mesh(polygons, reader, options_.triangulation, piece);
+      if (const NodePtr& c = reader.color().node) {
+        colors = c->value("color");
+        stride = c->type == "ColorRGBA" ? 4 : 3;
+      }
+    } else {
+      ++out_.skipped[geometry.type];
+      return;
+    }
+    ++out_.shapes;
+    append(piece, m, appearance_of(s), colors, stride);
+  }
+
+  struct Look {
+    Vec3 diffuse = kDefaultGrey;
+    float opacity = 1;
+    bool material = false;
+  };
+
+  static Look appearance_of(const Node& s) {
+    Look look;
+    const std::vector<NodePtr> a = nodes_of(s, "appearance");
+    if (a.empty() || !a[0]) return look;
+    const std::vector<NodePtr> mat = nodes_of(*a[0], "material");
+    if (mat.empty() || !mat[0]) return look;
+    look.material = true;
+    look.diffuse = vec3_of(*mat[0], "diffuseColor", look.diffuse);
+    look.opacity = 1 - std::clamp(float_of(*mat[0], "transparency", 0), 0.f, 1.f);
+    return look;
+  }
+
+  // Appends a shape's mesh in world space, with its colours: the Color
+  // node's per vertex where the corner has one (`stride` floats a colour),
+  // else the material's.
+  void append(const vrml97_geometry::ShapeMesh& piece, const Mat4& m, const Look& look,
+              const FieldValue* colors, std::size_t stride) {
+    auto& mesh = out_.flat.mesh;
+    const auto base = std::uint32_t(mesh.positions.size());
+    for (const Vec3& p : piece.mesh.positions) {
+      const Vec3 q = m.transform_point(p);
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+        throw DataError("a coordinate is not finite (after its transforms)");
+      mesh.positions.push_back(q);
+    }
+    for (const Triangle& t : piece.mesh.triangles)
+      mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    has_color_ = has_color_ || look.material || colors;
+    for (std::size_t v = 0; v < piece.mesh.positions.size(); ++v) {
+      Vec3 c = look.diffuse;
+      if (colors && v < piece.vertex_corner.size()) {
+        const std::uint32_t i = piece.vertex_corner[v][3];
+        const std::size_t at = stride * std::size_t(i);
+        if (i != kNone && at + 2 < colors->floats.size())
+          c = {colors->floats[at], colors->floats[at + 1], colors->floats[at + 2]};
+      }
+      mesh.colors.push_back(c);
+      out_.flat.opacity.push_back(look.opacity);
+    }
+  }
+
+  const FlattenVrml97Options& options_;
+  Log& log_;
+  FlatVrml97 out_;
+  bool has_color_ = false;
+};
+
+}  // namespace
+
+FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options& options,
+                          Log& log) {
+  Flattener f(options, log);
+  for (const NodePtr& root : scene.roots) f.node(root, Mat4{}, 0);
+  return f.result();
+}
+
+}  // namespace lodforge

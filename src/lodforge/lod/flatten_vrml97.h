@@ -1,0 +1,40 @@
+#pragma once
+/// A VRML97 / X3D (classic encoding) scene as one triangle mesh in world
+/// space, for the commands that work on one surface (info, render, compare,
+/// simplify): every Shape reached through the grouping nodes (Transform,
+/// Group, Anchor, Billboard, Collision and any node with `children`; a LOD's
+/// chosen level; a Switch's chosen choice), each USE again in its own place.
+/// Geometry: IndexedFaceSet, IndexedTriangleSet, TriangleSet, IndexedQuadSet,
+/// ElevationGrid and the primitives Box, Sphere, Cone, Cylinder. Shapes inside
+/// PROTO bodies, Inline scenes and other geometry are not drawn (counted in
+/// FlatVrml97::skipped).
+#include <cstddef>
+#include <map>
+#include <string>
+
+#include "lodforge/core/log.h"
+#include "lodforge/mesh/triangulate_polygon.h"
+#include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/node.h"
+
+namespace lodforge {
+
+struct FlattenVrml97Options {
+  int lod_level = 0;  ///< which level of every LOD (clamped to its last)
+  TriangulateOptions triangulation;
+};
+
+struct FlatVrml97 {
+  /// The mesh; with colours (per vertex: the Shape's Color node, else its
+  /// Material's diffuseColor, else 0.8 grey) and opacity when some Shape has
+  /// a Material or a Color node (FlatScene's layout, without textures).
+  scene::FlatScene flat;
+  std::size_t shapes = 0;                      ///< Shapes drawn (each occurrence)
+  std::map<std::string, std::size_t> skipped;  ///< geometry or nodes not drawn, by type
+};
+
+/// Throws DataError for a coordinate that is not finite or a primitive size
+/// that is not. Warnings (bad indices) go to `log`.
+FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options& options, Log& log);
+
+}  // namespace lodforge

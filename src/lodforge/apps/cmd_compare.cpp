@@ -99,7 +99,9 @@ void add_compare_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<Settings>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "Measure the geometric and normal deviation between two surfaces (A: reference)");
-  cmd->add_option("A", s->a, "Reference: mesh (PLY, OBJ, OFF, STL) or VRML 1.0 / Inventor scene")
+  cmd->add_option("A", s->a,
+                  "Reference: mesh (PLY, OBJ, OFF, STL) or scene (VRML 1.0, Inventor, VRML97, X3D "
+                  "classic, glTF)")
       ->required();
   cmd->add_option("B", s->b, "Mesh or scene to measure against A")->required();
   cmd->add_option("--level", s->level_b, "LOD level of B when B is a scene (default 0)")

@@ -294,7 +294,8 @@ void add_render_command(CLI::App& app, Runner& run) {
   CLI::App* cmd =
       app.add_subcommand("render", "Render a mesh or a scene to a PNG picture (headless)");
   cmd->add_option("SCENE_OR_MESH", s->input,
-                  "VRML 1.0 or Open Inventor scene, or mesh file (PLY, OBJ, OFF, STL)")
+                  "VRML 1.0, Open Inventor, VRML97, X3D classic or glTF scene, or mesh file "
+                  "(PLY, OBJ, OFF, STL)")
       ->required();
   auto* level = cmd->add_option("--level", s->level, "LOD level to render (scenes; 0 = finest)")
                     ->check(kFiniteNumber)

@@ -306,7 +306,9 @@ int run_simplify(const SimplifySettings& s) {
 void add_simplify_command(CLI::App& app, Runner& run) {
   auto s = std::make_shared<SimplifySettings>();
   CLI::App* cmd = app.add_subcommand(
-      "simplify", "Simplify one surface (mesh file or VRML 1.0 scene flattened in world space)");
+      "simplify",
+      "Simplify one surface (mesh file, or a VRML 1.0, Inventor, VRML97, X3D classic or glTF "
+      "scene flattened in world space)");
   cmd->footer(
       "Targets: exactly one count (--ratio or --triangles) and/or --error; with a count and\n"
       "--error both limits apply and the first one met stops. Stopping short of the target\n"
@@ -330,7 +332,8 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       "(streamed: the passes over the input are the simplification and count).\n"
       "Exit codes: 0 done, 1 bad input (unreadable, empty surface), 2 bad usage.\n");
   cmd->add_option("MESH", s->input,
-                  "Input: PLY, OBJ, OFF, STL (optionally .gz) or VRML 1.0 (.wrl); - = stdin")
+                  "Input: PLY, OBJ, OFF, STL (optionally .gz), VRML 1.0 / Inventor, VRML97 / X3D "
+                  "classic (.wrl, .x3dv) or glTF scene; - = stdin")
       ->required();
   cmd->add_option(
          "-o,--output", s->output,

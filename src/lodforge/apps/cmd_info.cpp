@@ -41,13 +41,7 @@ int mesh_info(const std::string& path, bool json) {
     j["normals"] = mesh.has_normals();
     j["colors"] = mesh.has_colors();
     j["texcoords"] = !mesh.texcoords.empty();
-    if (!bounds.empty()) {
-      j["bounds"]["min"] = {bounds.lo.x, bounds.lo.y, bounds.lo.z};
-      j["bounds"]["max"] = {bounds.hi.x, bounds.hi.y, bounds.hi.z};
-      j["bounds"]["diagonal"] = bounds.diagonal();
-    } else {
-      j["bounds"] = nullptr;
-    }
+    j["bounds"] = bounds_json(bounds);
     fmt::print("{}\n", j.dump(2));
     return 0;
   }
@@ -120,13 +114,7 @@ void add_info_command(CLI::App& app, Runner& run) {
         j["coordinate_points"] = st.coordinate_points;
         j["triangles"] = st.total_triangles;
         j["vertices"] = st.total_vertices;
-        if (!st.bounds.empty()) {
-          j["bounds"]["min"] = {st.bounds.lo.x, st.bounds.lo.y, st.bounds.lo.z};
-          j["bounds"]["max"] = {st.bounds.hi.x, st.bounds.hi.y, st.bounds.hi.z};
-          j["bounds"]["diagonal"] = st.bounds.diagonal();
-        } else {
-          j["bounds"] = nullptr;
-        }
+        j["bounds"] = bounds_json(st.bounds);
         std::vector<std::string> warnings;
         for (const auto& d : r.log.entries()) warnings.push_back(d.text);
         for (const auto& p : st.problems) warnings.push_back(p);

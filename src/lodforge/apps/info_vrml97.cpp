@@ -42,6 +42,13 @@ Read read(const std::string& path, int lod_level) {
 
 }  // namespace
 
+nlohmann::ordered_json bounds_json(const Box3& bounds) {
+  if (bounds.empty()) return nullptr;
+  return {{"min", {bounds.lo.x, bounds.lo.y, bounds.lo.z}},
+          {"max", {bounds.hi.x, bounds.hi.y, bounds.hi.z}},
+          {"diagonal", bounds.diagonal()}};
+}
+
 FlatVrml97 load_vrml97(const std::string& path, int lod_level, bool quiet) {
   Read r = read(path, lod_level);
   if (!quiet)
@@ -83,13 +90,7 @@ int print_vrml97_info(const std::string& path, bool json, bool quiet) {
     j["shapes_traversed"] = r.flat.shapes;
     j["triangles"] = mesh.triangle_count();
     j["vertices"] = mesh.vertex_count();
-    if (!bounds.empty()) {
-      j["bounds"]["min"] = {bounds.lo.x, bounds.lo.y, bounds.lo.z};
-      j["bounds"]["max"] = {bounds.hi.x, bounds.hi.y, bounds.hi.z};
-      j["bounds"]["diagonal"] = bounds.diagonal();
-    } else {
-      j["bounds"] = nullptr;
-    }
+    j["bounds"] = bounds_json(bounds);
     j["warnings"] = r.warnings;
     fmt::print("{}\n", j.dump(2));
     return 0;

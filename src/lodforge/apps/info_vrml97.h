@@ -2,11 +2,15 @@
 /// `lodforge info` and the one-surface commands (render, compare, simplify)
 /// for VRML97 and X3D classic scenes: the scene read and flattened into one
 /// world-space mesh (lod/flatten_vrml97.h).
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "lodforge/lod/flatten_vrml97.h"
 
 namespace lodforge::apps {
+
+/// Bounds as `info --json` gives them: {min, max, diagonal}, or null when empty.
+nlohmann::ordered_json bounds_json(const Box3& bounds);
 
 /// The scene at `path` (VRML97 or X3D classic; gzip allowed) flattened at
 /// `lod_level`; the reader's and the flattening's warnings, and what was

@@ -167,6 +167,17 @@ TEST_F(LodVrml97Corpus, RenderSimplifyAndCompareReadTheScene) {
   ASSERT_EQ(pic.exit_code, 0) << pic.err;
   EXPECT_NE(pic.err.find(std::to_string(triangles) + " triangles"), std::string::npos) << pic.err;
   EXPECT_GT(fs::file_size(dir_ / "t.png"), 2000u);
+  // The output's levels side by side, and as a browser switches them.
+  const CommandResult sheet =
+      run_lodforge("render " + out + " -o " + (dir_ / "levels.png").string() + " --levels");
+  ASSERT_EQ(sheet.exit_code, 0) << sheet.err;
+  EXPECT_NE(sheet.err.find(std::to_string(st["shapes"][0]["ranges"].size() + 1) + " levels"),
+            std::string::npos)
+      << sheet.err;
+  const CommandResult far =
+      run_lodforge("render " + out + " -o " + (dir_ / "far.png").string() + " --distances 5,200");
+  ASSERT_EQ(far.exit_code, 0) << far.err;
+  EXPECT_NE(far.err.find("2 distances"), std::string::npos) << far.err;
 
   const CommandResult half =
       run_lodforge("simplify '" + in + "' -o " + (dir_ / "half.ply").string() + " --ratio 0.5 -q");

@@ -15,6 +15,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -174,11 +175,6 @@ scene::Scene read_lod_scene(const std::string& path, std::string_view option,
   if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
     throw DataError(
         fmt::format("{}: {} needs a VRML 1.0 or Inventor scene with LOD nodes", path, option));
-  if (is_vrml97_input(path))
-    throw DataError(fmt::format(
-        "{}: {} reads VRML 1.0 and Inventor scenes; a VRML97 / X3D scene's levels are drawn "
-        "with --levels or --level K",
-        path, option));
   return read_scene(path, read).scene;
 }
 
@@ -204,7 +200,8 @@ int render_levels(const std::string& input, const std::string& output, const Ren
   if (is_vrml97_input(input)) {
     const std::size_t count = vrml97_lod_level_count(input);
     for (std::size_t k = 0; k < count; ++k)
-      levels.push_back(drawing(load_vrml97(input, int(k), read.quiet || k > 0).flat, loader));
+      levels.push_back(
+          drawing(load_vrml97(input, {.lod_level = int(k)}, read.quiet || k > 0).flat, loader));
   } else {
     const scene::Scene scene = read_lod_scene(input, "--levels", read);
     const std::size_t count = scene::lod_level_count(scene);
@@ -242,21 +239,34 @@ float height_angle(const scene::Scene& scene) {
 int render_distances(const std::string& input, const std::string& output,
                      const std::vector<double>& distances, const RenderOptions& options,
                      const SceneReadSettings& read, TextureLoader& loader) {
-  const scene::Scene scene = read_lod_scene(input, "--distances", read);
-  const Drawing level0 = drawing(scene::flatten_scene_appearance(scene, {.lod_level = 0}), loader);
+  // The scene flattened with every LOD at child 0 (no eye) or as seen from
+  // an eye, and its angle of view.
+  std::function<scene::FlatScene(std::optional<Vec3>)> flat;
+  float angle = 0;
+  if (is_vrml97_input(input)) {
+    flat = [&](std::optional<Vec3> eye) {
+      return load_vrml97(input, {.viewpoint = eye}, read.quiet || eye).flat;
+    };
+    angle = vrml97_field_of_view(input);
+  } else {
+    auto scene = std::make_shared<scene::Scene>(read_lod_scene(input, "--distances", read));
+    flat = [scene](std::optional<Vec3> eye) {
+      return scene::flatten_scene_appearance(*scene, {.lod_level = 0, .viewpoint = eye});
+    };
+    angle = height_angle(*scene);
+  }
+  const Drawing level0 = drawing(flat(std::nullopt), loader);
   const FrameSphere bounds = bounding_sphere(level0.flat.mesh);
   if (bounds.radius <= 0)
     throw DataError(fmt::format("{}: the scene has no triangles or lines to render", input));
   const Vec3 towards_eye = view_direction(options.azimuth, options.elevation);
-  const float angle = height_angle(scene);
   std::vector<Drawing> chosen;
   std::vector<LookAt> cameras;
   for (const double d : distances) {
     cameras.push_back({.eye = bounds.center + towards_eye * float(d),
                        .target = bounds.center,
                        .height_angle = angle});
-    chosen.push_back(
-        drawing(scene::flatten_scene_appearance(scene, {.viewpoint = cameras.back().eye}), loader));
+    chosen.push_back(drawing(flat(cameras.back().eye), loader));
   }
   std::vector<ContactSheetPanel> panels;
   for (std::size_t i = 0; i < distances.size(); ++i) {

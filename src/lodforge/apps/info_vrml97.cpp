@@ -27,11 +27,11 @@ struct Read {
   std::vector<std::string> warnings;
 };
 
-Read read(const std::string& path, int lod_level) {
+Read read(const std::string& path, const FlattenVrml97Options& options) {
   Read r;
   r.scene = vrml97::read_vrml97_file(path, {.source_name = path});
   Log log;
-  r.flat = flatten_vrml97(r.scene.scene, {.lod_level = lod_level}, log);
+  r.flat = flatten_vrml97(r.scene.scene, options, log);
   for (const auto& d : r.scene.log.entries()) r.warnings.push_back(d.text);
   for (const auto& d : log.entries()) r.warnings.push_back(d.text);
   for (const auto& [type, n] : r.flat.skipped)
@@ -49,8 +49,8 @@ nlohmann::ordered_json bounds_json(const Box3& bounds) {
           {"diagonal", bounds.diagonal()}};
 }
 
-FlatVrml97 load_vrml97(const std::string& path, int lod_level, bool quiet) {
-  Read r = read(path, lod_level);
+FlatVrml97 load_vrml97(const std::string& path, const FlattenVrml97Options& options, bool quiet) {
+  Read r = read(path, options);
   if (!quiet)
     for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}: {}\n", path, w);
   return std::move(r.flat);
@@ -70,8 +70,22 @@ std::size_t vrml97_lod_level_count(const std::string& path) {
   return count;
 }
 
+float vrml97_field_of_view(const std::string& path) {
+  const vrml97::ReadResult r = vrml97::read_vrml97_file(path, {.source_name = path});
+  float angle = 0;
+  scene::for_each_node(
+      r.scene,
+      [&](const scene::Node& n) {
+        const scene::FieldValue* v = n.type == "Viewpoint" ? n.value("fieldOfView") : nullptr;
+        if (!angle && v && !v->floats.empty() && v->floats[0] > 0 && v->floats[0] < kPi)
+          angle = v->floats[0];
+      },
+      {.field_nodes = true});
+  return angle > 0 ? angle : float(kPi / 4);
+}
+
 int print_vrml97_info(const std::string& path, bool json, bool quiet) {
-  const Read r = read(path, 0);
+  const Read r = read(path, {});
   std::map<std::string, std::size_t> counts;
   scene::for_each_node(r.scene.scene, [&](const scene::Node& n) { ++counts[n.type]; },
                        {.field_nodes = true});

@@ -15,7 +15,10 @@ nlohmann::ordered_json bounds_json(const Box3& bounds);
 /// The scene at `path` (VRML97 or X3D classic; gzip allowed) flattened at
 /// `lod_level`; the reader's and the flattening's warnings, and what was
 /// not drawn, on stderr unless `quiet`. Throws ParseError / DataError.
-FlatVrml97 load_vrml97(const std::string& path, int lod_level, bool quiet);
+FlatVrml97 load_vrml97(const std::string& path, const FlattenVrml97Options& options, bool quiet);
+
+/// The first Viewpoint's fieldOfView in the scene at `path` (π/4 if none).
+float vrml97_field_of_view(const std::string& path);
 
 /// The number of LOD levels of the scene at `path`: the most levels of any
 /// LOD node (1 if there is none). Throws ParseError / DataError.

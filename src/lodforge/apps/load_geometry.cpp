@@ -50,7 +50,7 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
   if (is_vrml97_input(path)) {
     // A VRML97 / X3D classic scene: its shapes in world space, with their
     // materials' colours.
-    scene::FlatScene flat = load_vrml97(path, lod_level, read.quiet).flat;
+    scene::FlatScene flat = load_vrml97(path, {.lod_level = lod_level}, read.quiet).flat;
     check_coordinate_range(flat.mesh, name);
     if (!appearance) {  // the surface alone, as for the other scene kinds
       flat.mesh.colors.clear();

@@ -137,8 +137,16 @@ class Flattener {
     std::vector<NodePtr> levels = nodes_of(n, "level");
     if (levels.empty()) levels = nodes_of(n, "children");  // X3D
     if (levels.empty()) return;
-    const auto k = std::size_t(std::clamp(options_.lod_level, 0, int(levels.size()) - 1));
-    node(levels[k], m, depth + 1);
+    std::size_t k = std::size_t(std::max(options_.lod_level, 0));
+    if (options_.viewpoint) {
+      // `range` ascends: the level is the number of ranges <= the distance.
+      const float d = length(m.transform_point(vec3_of(n, "center", {})) - *options_.viewpoint);
+      const FieldValue* range = n.value("range");
+      k = range ? std::size_t(std::upper_bound(range->floats.begin(), range->floats.end(), d) -
+                              range->floats.begin())
+                : 0;
+    }
+    node(levels[std::min(k, levels.size() - 1)], m, depth + 1);
   }
 
   void choice(const Node& n, const Mat4& m, int depth) {

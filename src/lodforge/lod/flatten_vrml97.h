@@ -10,6 +10,7 @@
 /// FlatVrml97::skipped).
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "lodforge/core/log.h"
@@ -21,6 +22,9 @@ namespace lodforge {
 
 struct FlattenVrml97Options {
   int lod_level = 0;  ///< which level of every LOD (clamped to its last)
+  /// The eye in world space: each LOD shows the level its `range` gives for
+  /// the distance from the eye to its `center` (as in scene::TraverseOptions).
+  std::optional<Vec3> viewpoint;
   TriangulateOptions triangulation;
 };
 

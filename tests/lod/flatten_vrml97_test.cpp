@@ -1,0 +1,68 @@
+// A VRML97 scene as one world-space surface: transforms (scale about a
+// centre, rotation), a LOD's chosen level, Switch, primitives and colours.
+#include "lodforge/lod/flatten_vrml97.h"
+
+#include <gtest/gtest.h>
+
+#include "lodforge/io/vrml97/read_vrml97.h"
+
+namespace lodforge {
+namespace {
+
+FlatVrml97 flat(const std::string& body, const FlattenVrml97Options& options = {}) {
+  Log log;
+  return flatten_vrml97(vrml97::read_vrml97("#VRML V2.0 utf8\n" + body).scene, options, log);
+}
+
+constexpr const char* kQuad =
+    "Shape { appearance Appearance { material Material { diffuseColor 1 0 0 } } "
+    "geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] } "
+    "coordIndex [0 1 2 3 -1] } }";
+
+TEST(FlattenVrml97, TransformsScaleAboutTheirCentreAndTranslate) {
+  const FlatVrml97 f = flat(std::string("Transform { translation 10 0 0 scale 2 2 2 center 1 1 0 "
+                                        "children [") +
+                            kQuad + "] }");
+  EXPECT_EQ(f.shapes, 1u);
+  ASSERT_EQ(f.flat.mesh.triangle_count(), 2u);
+  const Box3 b = f.flat.mesh.bounds();
+  // x: (0..1 - 1) * 2 + 1 + 10 = 9..11; y: -1..1.
+  EXPECT_FLOAT_EQ(b.lo.x, 9);
+  EXPECT_FLOAT_EQ(b.hi.x, 11);
+  EXPECT_FLOAT_EQ(b.lo.y, -1);
+  EXPECT_FLOAT_EQ(b.hi.y, 1);
+  ASSERT_EQ(f.flat.mesh.colors.size(), 4u);
+  EXPECT_EQ(f.flat.mesh.colors[0], (Vec3{1, 0, 0}));
+}
+
+TEST(FlattenVrml97, LodLevelSwitchChoiceAndPrimitives) {
+  const std::string lod =
+      std::string("LOD { range [10] level [ Shape { geometry Box {} } ") + kQuad + " ] }";
+  EXPECT_EQ(flat(lod).flat.mesh.triangle_count(), 12u);  // the Box: level 0
+  EXPECT_EQ(flat(lod, {.lod_level = 1}).flat.mesh.triangle_count(), 2u);
+  EXPECT_EQ(flat(lod, {.viewpoint = Vec3{0, 0, 5}}).flat.mesh.triangle_count(), 12u);
+  EXPECT_EQ(flat(lod, {.viewpoint = Vec3{0, 0, 50}}).flat.mesh.triangle_count(), 2u);
+  const std::string sw =
+      std::string("Switch { whichChoice 1 choice [ Shape { geometry Sphere {} } ") + kQuad + " ] }";
+  EXPECT_EQ(flat(sw).flat.mesh.triangle_count(), 2u);
+  EXPECT_EQ(flat("Switch { choice [ Shape { geometry Box {} } ] }").flat.mesh.triangle_count(), 0u);
+  const FlatVrml97 cone = flat("Shape { geometry Cone { bottom FALSE } }");
+  const FlatVrml97 closed = flat("Shape { geometry Cone {} }");
+  EXPECT_GT(cone.flat.mesh.triangle_count(), 0u);
+  EXPECT_LT(cone.flat.mesh.triangle_count(), closed.flat.mesh.triangle_count());
+  EXPECT_TRUE(closed.flat.mesh.colors.empty());  // no Material, no Color: a plain mesh
+}
+
+TEST(FlattenVrml97, WhatIsNotDrawnIsCounted) {
+  const FlatVrml97 f = flat(
+      "Inline { url \"x.wrl\" } Shape { geometry Text { string \"a\" } } "
+      "Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0] } coordIndex [0 1 2 -1] "
+      "} }");
+  EXPECT_EQ(f.shapes, 0u);
+  EXPECT_EQ(f.skipped.at("Inline"), 1u);
+  EXPECT_EQ(f.skipped.at("Text"), 1u);
+  EXPECT_EQ(f.skipped.at("IndexedFaceSet"), 1u);  // an index out of range
+}
+
+}  // namespace
+}  // namespace lodforge

@@ -53,6 +53,45 @@ TEST(FlattenVrml97, LodLevelSwitchChoiceAndPrimitives) {
   EXPECT_TRUE(closed.flat.mesh.colors.empty());  // no Material, no Color: a plain mesh
 }
 
+// Colours per face (colorPerVertex FALSE): each face in its own colour,
+// also where faces share a corner.
+TEST(FlattenVrml97, ColoursPerFace) {
+  const FlatVrml97 f = flat(
+      "Shape { geometry IndexedFaceSet { colorPerVertex FALSE "
+      "color Color { color [1 0 0, 0 0 1] } colorIndex [1 0] "
+      "coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] } coordIndex [0 1 2 -1 0 2 3 -1] } }");
+  ASSERT_EQ(f.flat.mesh.triangle_count(), 2u);
+  const auto& c = f.flat.mesh.colors;
+  ASSERT_EQ(c.size(), f.flat.mesh.vertex_count());
+  for (std::uint32_t v : f.flat.mesh.triangles[0]) EXPECT_EQ(c[v], (Vec3{0, 0, 1}));
+  for (std::uint32_t v : f.flat.mesh.triangles[1]) EXPECT_EQ(c[v], (Vec3{1, 0, 0}));
+}
+
+// An ImageTexture: its first URL, once per node, its texture coordinates,
+// and VRML97's default mapping where the geometry has none.
+TEST(FlattenVrml97, TexturesAndTheirCoordinates) {
+  const std::string face =
+      "coord Coordinate { point [0 0 0, 2 0 0, 2 1 0, 0 1 0] } coordIndex [0 1 2 3 -1]";
+  const FlatVrml97 f = flat(
+      "Shape { appearance Appearance { texture DEF T ImageTexture { url [\"a.png\" \"b.png\"] "
+      "repeatS FALSE } } geometry IndexedFaceSet { " +
+      face +
+      " texCoord TextureCoordinate { point [0 0, 1 0, 1 1, 0 1] } } } "
+      "Shape { appearance Appearance { texture USE T } geometry IndexedFaceSet { " +
+      face + " } }");
+  ASSERT_EQ(f.flat.textures.size(), 1u);
+  EXPECT_EQ(f.flat.textures[0].filename, "a.png");
+  EXPECT_FALSE(f.flat.textures[0].repeat_s);
+  EXPECT_TRUE(f.flat.textures[0].repeat_t);
+  const TriangleMesh& m = f.flat.mesh;
+  ASSERT_EQ(m.materials.size(), 4u);
+  for (std::uint32_t t : m.materials) EXPECT_EQ(t, 0u);
+  ASSERT_EQ(m.texcoords.size(), 8u);
+  EXPECT_EQ(m.texcoords[2], (Vec2{1, 1}));
+  // The default mapping: s along x (the longest side, 2), t along y in the same units.
+  EXPECT_EQ(m.texcoords[6], (Vec2{1, 0.5f}));
+}
+
 TEST(FlattenVrml97, WhatIsNotDrawnIsCounted) {
   const FlatVrml97 f = flat(
       "Inline { url \"x.wrl\" } Shape { geometry Text { string \"a\" } } "

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <unordered_map>
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/math.h"
@@ -94,6 +95,28 @@ NodePtr as_vrml1_primitive(const Node& g) {
   return n;
 }
 
+// A shape coloured per face: every triangle gets vertices of its own whose
+// colour slot holds its polygon's colour index.
+vrml97_geometry::ShapeMesh unshared_by_face(const vrml97_geometry::ShapeMesh& in,
+                                            const std::vector<std::uint32_t>& face_color) {
+  vrml97_geometry::ShapeMesh out;
+  for (std::size_t t = 0; t < in.mesh.triangles.size(); ++t) {
+    const std::uint32_t polygon = in.triangle_polygon[t];
+    Triangle tri;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = in.mesh.triangles[t][k];
+      tri[k] = std::uint32_t(out.mesh.positions.size());
+      out.mesh.positions.push_back(in.mesh.positions[v]);
+      vrml97_geometry::Corner c = in.vertex_corner[v];
+      c[3] = polygon < face_color.size() ? face_color[polygon] : kNone;
+      out.vertex_corner.push_back(c);
+    }
+    out.mesh.triangles.push_back(tri);
+    out.triangle_polygon.push_back(polygon);
+  }
+  return out;
+}
+
 class Flattener {
  public:
   Flattener(const FlattenVrml97Options& options, Log& log) : options_(options), log_(log) {}
@@ -117,12 +140,10 @@ class Flattener {
   }
 
   FlatVrml97 result() {
-    if (has_color_) {
-      auto& mesh = out_.flat.mesh;
-      mesh.texcoords.assign(mesh.positions.size(), {0, 0});
-      mesh.materials.assign(mesh.triangles.size(), scene::kUntextured);
-    } else {
+    if (!has_color_ && out_.flat.textures.empty()) {  // a plain mesh
       out_.flat.mesh.colors.clear();
+      out_.flat.mesh.texcoords.clear();
+      out_.flat.mesh.materials.clear();
       out_.flat.opacity.clear();
     }
     return std::move(out_);
@@ -161,8 +182,7 @@ class Flattener {
     if (g.empty() || !g[0]) return;
     const Node& geometry = *g[0];
     vrml97_geometry::ShapeMesh piece;
-    const FieldValue* colors = nullptr;
-    std::size_t stride = 3;
+    Attributes from;
     if (is_primitive(geometry.type)) {
       piece.mesh = scene::tessellate_primitive(*as_vrml1_primitive(geometry));
     } else if (vrml97_geometry::is_supported_geometry(geometry.type)) {
@@ -180,27 +200,32 @@ class Flattener {
       }
       vrml97_geometry::build_mesh(polygons, reader, options_.triangulation, piece);
       if (const NodePtr& c = reader.color().node) {
-        colors = c->value("color");
-        stride = c->type == "ColorRGBA" ? 4 : 3;
+        from.colors = c->value("color");
+        from.stride = c->type == "ColorRGBA" ? 4 : 3;
+        if (!reader.color().per_vertex) piece = unshared_by_face(piece, polygons.face_color);
       }
+      if (const NodePtr& t = reader.tex().node) from.texcoords = t->value("point");
     } else {
       ++out_.skipped[geometry.type];
       return;
     }
     ++out_.shapes;
-    append(piece, m, appearance_of(s), colors, stride);
+    append(piece, m, appearance_of(s), from);
   }
 
   struct Look {
     Vec3 diffuse = kDefaultGrey;
     float opacity = 1;
     bool material = false;
+    std::uint32_t texture = scene::kUntextured;  ///< index into FlatScene::textures
   };
 
-  static Look appearance_of(const Node& s) {
+  Look appearance_of(const Node& s) {
     Look look;
     const std::vector<NodePtr> a = nodes_of(s, "appearance");
     if (a.empty() || !a[0]) return look;
+    const std::vector<NodePtr> tex = nodes_of(*a[0], "texture");
+    if (!tex.empty() && tex[0] && tex[0]->type == "ImageTexture") look.texture = texture(*tex[0]);
     const std::vector<NodePtr> mat = nodes_of(*a[0], "material");
     if (mat.empty() || !mat[0]) return look;
     look.material = true;
@@ -209,11 +234,46 @@ class Flattener {
     return look;
   }
 
-  // Appends a shape's mesh in world space, with its colours: the Color
-  // node's per vertex where the corner has one (`stride` floats a colour),
-  // else the material's.
+  // An ImageTexture's first URL (a file relative to the scene's folder),
+  // once per node.
+  std::uint32_t texture(const Node& t) {
+    auto [it, fresh] = texture_of_.try_emplace(&t, scene::kUntextured);
+    if (!fresh) return it->second;
+    const scene::Field* url = t.find("url");
+    std::string file;
+    if (url && !url->is_raw && !url->value.strings.empty()) {
+      file = url->value.strings[0];
+    } else if (url && url->is_raw) {  // ["a.png" "b.jpg"] kept as text: the first
+      const auto open = url->raw.find('"');
+      const auto close = open == std::string::npos ? open : url->raw.find('"', open + 1);
+      if (close != std::string::npos) file = url->raw.substr(open + 1, close - open - 1);
+    }
+    if (file.empty()) return it->second;
+    auto repeat = [&](const char* field) {
+      const scene::Field* f = t.find(field);
+      return !f || (f->is_raw ? f->raw.find("FALSE") == std::string::npos
+                              : f->value.ints.empty() || f->value.ints[0]);
+    };
+    it->second = std::uint32_t(out_.flat.textures.size());
+    out_.flat.textures.push_back({.filename = file,
+                                  .repeat_s = repeat("repeatS"),
+                                  .repeat_t = repeat("repeatT"),
+                                  .line = t.first_line});
+    return it->second;
+  }
+
+  // Where a shape's per-vertex colours and texture coordinates come from.
+  struct Attributes {
+    const FieldValue* colors = nullptr;  ///< the Color / ColorRGBA node's
+    std::size_t stride = 3;              ///< floats a colour
+    const FieldValue* texcoords = nullptr;
+  };
+
+  // Appends a shape's mesh in world space, with its colours (the Color
+  // node's where the corner has one, else the material's) and, when it is
+  // textured, its texture coordinates.
   void append(const vrml97_geometry::ShapeMesh& piece, const Mat4& m, const Look& look,
-              const FieldValue* colors, std::size_t stride) {
+              const Attributes& from) {
     auto& mesh = out_.flat.mesh;
     const auto base = std::uint32_t(mesh.positions.size());
     for (const Vec3& p : piece.mesh.positions) {
@@ -222,26 +282,59 @@ class Flattener {
         throw DataError("a coordinate is not finite (after its transforms)");
       mesh.positions.push_back(q);
     }
-    for (const Triangle& t : piece.mesh.triangles)
+    for (const Triangle& t : piece.mesh.triangles) {
       mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-    has_color_ = has_color_ || look.material || colors;
+      mesh.materials.push_back(look.texture);
+    }
+    has_color_ = has_color_ || look.material || from.colors;
+    const std::vector<Vec2> uv = texture_coordinates(piece, from.texcoords);
     for (std::size_t v = 0; v < piece.mesh.positions.size(); ++v) {
       Vec3 c = look.diffuse;
-      if (colors && v < piece.vertex_corner.size()) {
+      if (from.colors && v < piece.vertex_corner.size()) {
         const std::uint32_t i = piece.vertex_corner[v][3];
-        const std::size_t at = stride * std::size_t(i);
-        if (i != kNone && at + 2 < colors->floats.size())
-          c = {colors->floats[at], colors->floats[at + 1], colors->floats[at + 2]};
+        const std::size_t at = from.stride * std::size_t(i);
+        if (i != kNone && at + 2 < from.colors->floats.size())
+          c = {from.colors->floats[at], from.colors->floats[at + 1], from.colors->floats[at + 2]};
       }
       mesh.colors.push_back(c);
+      mesh.texcoords.push_back(look.texture == scene::kUntextured ? Vec2{} : uv[v]);
       out_.flat.opacity.push_back(look.opacity);
     }
+  }
+
+  // A shape's texture coordinates: its TextureCoordinate node's, a
+  // primitive's own, or else VRML97's default mapping (s along the bounding
+  // box's longest side, t along the second, both in units of the longest).
+  static std::vector<Vec2> texture_coordinates(const vrml97_geometry::ShapeMesh& piece,
+                                               const FieldValue* points) {
+    const std::size_t n = piece.mesh.positions.size();
+    if (piece.mesh.texcoords.size() == n) return piece.mesh.texcoords;
+    std::vector<Vec2> uv(n);
+    if (points) {
+      for (std::size_t v = 0; v < n && v < piece.vertex_corner.size(); ++v) {
+        const std::uint32_t i = piece.vertex_corner[v][2];
+        if (i != kNone && 2 * std::size_t(i) + 1 < points->floats.size())
+          uv[v] = {points->floats[2 * i], points->floats[2 * i + 1]};
+      }
+      return uv;
+    }
+    const Box3 box = piece.mesh.bounds();
+    const Vec3 size = box.size();
+    int axis[3] = {0, 1, 2};
+    std::sort(axis, axis + 3, [&](int a, int b) { return size[a] > size[b]; });
+    const float longest = size[axis[0]] > 0 ? size[axis[0]] : 1;
+    for (std::size_t v = 0; v < n; ++v) {
+      const Vec3 p = piece.mesh.positions[v] - box.lo;
+      uv[v] = {p[axis[0]] / longest, p[axis[1]] / longest};
+    }
+    return uv;
   }
 
   const FlattenVrml97Options& options_;
   Log& log_;
   FlatVrml97 out_;
   bool has_color_ = false;
+  std::unordered_map<const Node*, std::uint32_t> texture_of_;
 };
 
 }  // namespace

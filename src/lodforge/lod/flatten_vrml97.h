@@ -29,7 +29,8 @@ struct FlattenVrml97Options {
 };
 
 struct FlatVrml97 {
-  /// The mesh; with colours (per vertex: the Shape's Color node, else its
+  /// The mesh; with colours (per vertex: the Shape's Color node, per vertex or
+  /// per face, else its
   /// Material's diffuseColor, else 0.8 grey) and opacity when some Shape has
   /// a Material or a Color node (FlatScene's layout, without textures).
   scene::FlatScene flat;

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <functional>
+#include <map>
+#include <set>
+#include <sstream>
 #include <unordered_set>
 
 #include "lodforge/core/error.h"
@@ -28,9 +31,10 @@ constexpr std::pair<std::string_view, std::string_view> kAccessNames[] = {
     {"eventOut", "outputOnly"},
 };
 
-// `text` (a PROTO or EXTERNPROTO kept verbatim) with the VRML97 access
-// keywords outside strings and comments replaced by X3D's.
-std::string x3d_access_names(std::string_view text) {
+// `text` (a PROTO or EXTERNPROTO kept verbatim) with the access keywords
+// outside strings and comments replaced: VRML97's by X3D's (`to_x3d`), or
+// X3D's by VRML97's.
+std::string access_names(std::string_view text, bool to_x3d) {
   std::string out;
   out.reserve(text.size());
   auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
@@ -52,7 +56,10 @@ std::string x3d_access_names(std::string_view text) {
       while (end < text.size() && word_char(text[end])) ++end;
       std::string_view word = text.substr(i, end - i);
       for (const auto& [vrml, x3d] : kAccessNames)
-        if (word == vrml) word = x3d;
+        if (word == (to_x3d ? vrml : x3d)) {
+          word = to_x3d ? x3d : vrml;
+          break;
+        }
       out.append(word);
       i = end;
       continue;
@@ -61,6 +68,18 @@ std::string x3d_access_names(std::string_view text) {
     ++i;
   }
   return out;
+}
+
+// A node's interface declarations (PROTO bodies, Script and shader fields)
+// in X3D's access names (`to_x3d`) or VRML97's.
+void rename_access(scene::Node& n, bool to_x3d) {
+  if (n.statement && (n.type == "PROTO" || n.type == "EXTERNPROTO"))
+    n.raw_body = access_names(n.raw_body, to_x3d);
+  for (auto& f : n.fields)
+    if (f.name.find(' ') != std::string::npos || f.name == "PROTO" || f.name == "EXTERNPROTO") {
+      f.name = access_names(f.name, to_x3d);
+      f.raw = access_names(f.raw, to_x3d);
+    }
 }
 
 // A VRML97 scene as X3D classic: the header and profile X3D requires, LOD's
@@ -75,18 +94,162 @@ void vrml97_to_x3d(scene::Scene& s) {
   std::unordered_set<const scene::Node*> done;
   std::function<void(const scene::NodePtr&)> walk = [&](const scene::NodePtr& n) {
     if (!n || !done.insert(n.get()).second) return;
-    if (n->statement && (n->type == "PROTO" || n->type == "EXTERNPROTO"))
-      n->raw_body = x3d_access_names(n->raw_body);
+    rename_access(*n, true);
     for (auto& f : n->fields) {
       if (n->type == "LOD" && f.name == "level") f.name = "children";
-      if (f.name.find(' ') != std::string::npos || f.name == "PROTO" || f.name == "EXTERNPROTO") {
-        f.name = x3d_access_names(f.name);
-        f.raw = x3d_access_names(f.raw);
-      }
       for (const auto& c : f.value.nodes) walk(c);
     }
   };
   for (const auto& r : s.roots) walk(r);
+}
+
+// VRML97's 54 node types (ISO/IEC 14772-1, 6).
+constexpr std::string_view kVrml97Nodes[] = {"Anchor",
+                                             "Appearance",
+                                             "AudioClip",
+                                             "Background",
+                                             "Billboard",
+                                             "Box",
+                                             "Collision",
+                                             "Color",
+                                             "ColorInterpolator",
+                                             "Cone",
+                                             "Coordinate",
+                                             "CoordinateInterpolator",
+                                             "Cylinder",
+                                             "CylinderSensor",
+                                             "DirectionalLight",
+                                             "ElevationGrid",
+                                             "Extrusion",
+                                             "Fog",
+                                             "FontStyle",
+                                             "Group",
+                                             "ImageTexture",
+                                             "IndexedFaceSet",
+                                             "IndexedLineSet",
+                                             "Inline",
+                                             "LOD",
+                                             "Material",
+                                             "MovieTexture",
+                                             "NavigationInfo",
+                                             "Normal",
+                                             "NormalInterpolator",
+                                             "OrientationInterpolator",
+                                             "PixelTexture",
+                                             "PlaneSensor",
+                                             "PointLight",
+                                             "PointSet",
+                                             "PositionInterpolator",
+                                             "ProximitySensor",
+                                             "ScalarInterpolator",
+                                             "Script",
+                                             "Shape",
+                                             "Sound",
+                                             "Sphere",
+                                             "SphereSensor",
+                                             "SpotLight",
+                                             "Switch",
+                                             "Text",
+                                             "TextureCoordinate",
+                                             "TextureTransform",
+                                             "TimeSensor",
+                                             "TouchSensor",
+                                             "Transform",
+                                             "Viewpoint",
+                                             "VisibilitySensor",
+                                             "WorldInfo"};
+
+// An X3D IndexedTriangleSet, TriangleSet or IndexedQuadSet made the
+// IndexedFaceSet that draws the same faces (its attributes, indexed like the
+// coordinates, need no index of their own); false for any other node.
+bool as_indexed_face_set(scene::Node& n) {
+  const std::size_t per = n.type == "IndexedQuadSet" ? 4 : 3;
+  if (n.type != "IndexedTriangleSet" && n.type != "TriangleSet" && n.type != "IndexedQuadSet")
+    return false;
+  std::vector<std::int32_t> order;
+  if (const scene::FieldValue* index = n.value("index")) {
+    order = index->ints;
+  } else if (n.type == "TriangleSet") {
+    const scene::Field* coord = n.find("coord");
+    const std::size_t points = coord && !coord->value.nodes.empty() && coord->value.nodes[0] &&
+                                       coord->value.nodes[0]->value("point")
+                                   ? coord->value.nodes[0]->value("point")->count()
+                                   : 0;
+    for (std::size_t i = 0; i < points; ++i) order.push_back(std::int32_t(i));
+  }
+  std::vector<std::int32_t> faces;
+  for (std::size_t f = 0; f + per <= order.size(); f += per) {
+    faces.insert(faces.end(), order.begin() + std::ptrdiff_t(f),
+                 order.begin() + std::ptrdiff_t(f + per));
+    faces.push_back(-1);
+  }
+  std::erase_if(n.fields, [](const scene::Field& f) { return f.name == "index"; });
+  n.type = "IndexedFaceSet";
+  n.set("coordIndex", scene::make_longs(std::move(faces)));
+  return true;
+}
+
+// An X3D classic scene as VRML97: the header, LOD's `children` as `level`
+// and Switch's as `choice`, VRML97's access names, and without the header
+// statements VRML97 has not (PROFILE, COMPONENT, META, UNIT, IMPORT,
+// EXPORT) and `metadata` fields, and its triangle and quad sets as
+// IndexedFaceSets. Other node types VRML97 has not (and no PROTO of the file declares) are
+// kept and named in a warning: a VRML97 reader will not know them.
+void x3d_to_vrml97(scene::Scene& s, Log& log) {
+  s.header = "#VRML V2.0 utf8";
+  std::map<std::string, std::size_t> dropped, unknown, converted;
+  std::set<std::string> protos;
+  std::erase_if(s.roots, [&](const scene::NodePtr& n) {
+    static constexpr std::string_view kHeaderStatements[] = {"PROFILE", "COMPONENT", "META",
+                                                             "UNIT",    "IMPORT",    "EXPORT"};
+    if (!n->statement) return false;
+    if (n->type == "PROTO" || n->type == "EXTERNPROTO") {
+      std::istringstream body(n->raw_body);
+      std::string name;
+      body >> name;
+      protos.insert(name);
+    }
+    const bool header = std::find(std::begin(kHeaderStatements), std::end(kHeaderStatements),
+                                  n->type) != std::end(kHeaderStatements);
+    if (header) ++dropped[n->type];
+    return header;
+  });
+  std::unordered_set<const scene::Node*> done;
+  std::function<void(const scene::NodePtr&)> walk = [&](const scene::NodePtr& n) {
+    if (!n || !done.insert(n.get()).second) return;
+    rename_access(*n, false);
+    const std::string type = n->type;
+    if (as_indexed_face_set(*n)) ++converted[type];
+    if (std::erase_if(n->fields, [](const scene::Field& f) { return f.name == "metadata"; }))
+      ++dropped["metadata field"];
+    if (!n->statement && !protos.count(n->type) &&
+        std::find(std::begin(kVrml97Nodes), std::end(kVrml97Nodes), n->type) ==
+            std::end(kVrml97Nodes))
+      ++unknown[n->type];
+    for (auto& f : n->fields) {
+      if (n->type == "LOD" && f.name == "children") f.name = "level";
+      if (n->type == "Switch" && f.name == "children") f.name = "choice";
+      for (const auto& c : f.value.nodes) walk(c);
+    }
+  };
+  for (const auto& r : s.roots) walk(r);
+  auto list = [](const std::map<std::string, std::size_t>& m) {
+    std::string out;
+    for (const auto& [type, n] : m)
+      out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", type, n);
+    return out;
+  };
+  if (!dropped.empty())
+    log.warn(LogCategory::kParse,
+             fmt::format("X3D statements and fields VRML97 has not, left out: {}", list(dropped)));
+  if (!converted.empty())
+    log.warn(LogCategory::kParse,
+             fmt::format("X3D geometry written as VRML97 IndexedFaceSets: {}", list(converted)));
+  if (!unknown.empty())
+    log.warn(LogCategory::kParse,
+             fmt::format("X3D node types VRML97 has not, kept as they are (a VRML97 reader may "
+                         "refuse them): {}",
+                         list(unknown)));
 }
 
 }  // namespace
@@ -108,8 +271,7 @@ vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& o
   if (to.empty()) to = ends_with(output, ".x3dv") ? "x3dv" : ends_with(output, ".x3d") ? "x3d" : "";
   if (to == "x3d")
     throw DataError("writing X3D XML encoding (.x3d) is not supported yet; use .x3dv");
-  if (to == "vrml97" && x3d_in)  // .wrl without --format keeps X3D
-    throw DataError("writing an X3D scene as VRML97 is not supported; use .x3dv");
+  if (to == "vrml97" && x3d_in) x3d_to_vrml97(r.scene, r.log);  // .wrl alone keeps X3D
   if (to == "x3dv" && !x3d_in) vrml97_to_x3d(r.scene);
   return r;
 }

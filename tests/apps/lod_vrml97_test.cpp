@@ -53,6 +53,10 @@ TEST_F(LodVrml97Corpus, EveryFileGetsLodsThatItsReadersRead) {
       fs::create_symlink(e.path(), beside / e.path().filename());
     std::set<std::string> castle_on_input;
     if (castle) castle_on_input = castle_errors(in, dir_ / "home");
+    // `info` reads every file, also those `lod` refuses.
+    const CommandResult info = run_lodforge("info --json -q '" + in + "'");
+    ASSERT_EQ(info.exit_code, 0) << in << ": " << info.err;
+    const auto triangles = nlohmann::json::parse(info.out).at("triangles").get<std::size_t>();
     for (const std::string ext :
          wrl ? std::vector<std::string>{"wrl", "x3dv"} : std::vector<std::string>{"x3dv"}) {
       ++runs;
@@ -73,6 +77,12 @@ TEST_F(LodVrml97Corpus, EveryFileGetsLodsThatItsReadersRead) {
       // Our reader reads it back, in the encoding asked for.
       const auto back = vrml97::read_vrml97_file(out);
       EXPECT_EQ(vrml97::is_x3d_header(back.scene.header), ext == "x3dv") << in;
+      // Level 0 of what lod wrote draws the triangles info counts in the
+      // input (every USE in its place, each LOD at its finest level).
+      const CommandResult written = run_lodforge("info --json -q " + out);
+      ASSERT_EQ(written.exit_code, 0) << out << ": " << written.err;
+      EXPECT_EQ(nlohmann::json::parse(written.out).at("triangles").get<std::size_t>(), triangles)
+          << in << " -> " << out;
       // Castle complains of nothing it does not complain of in the input
       // (its own limits: glTF skins, Castle extensions it dropped).
       if (ext == "x3dv" && castle) {

@@ -103,5 +103,20 @@ TEST(FlattenVrml97, WhatIsNotDrawnIsCounted) {
   EXPECT_EQ(f.skipped.at("IndexedFaceSet"), 1u);  // an index out of range
 }
 
+// A skinned mesh is drawn in the pose its coordinates hold: Castle's Skin's
+// shapes, an HAnimHumanoid's skin.
+TEST(FlattenVrml97, SkinnedShapesAreDrawnInTheirStoredPose) {
+  Log log;
+  const auto x3d = [&](const std::string& body) {
+    return flatten_vrml97(vrml97::read_vrml97("#X3D V4.0 utf8\nPROFILE Full\n" + body).scene, {},
+                          log);
+  };
+  const FlatVrml97 skin = x3d(std::string("Skin { shapes [") + kQuad + "] }");
+  EXPECT_EQ(skin.shapes, 1u);
+  EXPECT_EQ(skin.flat.mesh.triangle_count(), 2u);
+  const FlatVrml97 humanoid = x3d(std::string("HAnimHumanoid { skin [") + kQuad + "] }");
+  EXPECT_EQ(humanoid.flat.mesh.triangle_count(), 2u);
+}
+
 }  // namespace
 }  // namespace lodforge

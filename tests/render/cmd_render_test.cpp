@@ -397,5 +397,46 @@ TEST_F(CmdRender, InventorWindmillIsDrawnInItsColours) {
   EXPECT_LT(test::fraction_shaded_like(load(png), {0.72f, 0.74f, 0.80f}, 0.01), 0.05);
 }
 
+// ---- VRML97 / X3D classic scenes, flattened, in their own colours ----
+
+TEST_F(CmdRender, Vrml97AndX3dScenesShowTheirTexturesAndColourNodes) {
+  const std::string demo = std::string(LODFORGE_SHARED_DATA) + "/";
+  const std::string oak =
+      demo + "vrml2/castle-engine__demo-models/shadow_maps/castle_with_trees/oaktree.wrl";
+  const std::string colors =
+      demo + "x3d/castle-engine__demo-models/x3d/indexed_face_set_colors.x3dv";
+  const std::string grid = demo + "x3d/castle-engine__demo-models/x3d/elevation_grid_texture.x3dv";
+  for (const std::string& f : {oak, colors, grid})
+    if (!fs::exists(f)) GTEST_SKIP() << "no shared corpus: " << f;
+  const auto picture = [&](const std::string& in, const std::string& name,
+                           const std::string& args) {
+    const std::string png = dir_ + "/" + name + ".png";
+    EXPECT_EQ(lodforge_render(in + " -o " + png + " --size 320x240 " + args), 0) << in;
+    return load(png);
+  };
+  // The oak's leaves and bark are its ImageTextures (browns and greens);
+  // without them, its Materials' 0.8 grey.
+  const auto oak_textured = test::pixel_stats(picture(oak, "oak", ""));
+  EXPECT_GT(oak_textured.covered_fraction, 0.1);
+  EXPECT_LT(oak_textured.mean_b, 0.7 * oak_textured.mean_r);
+  EXPECT_GT(oak_textured.distinct_colors, 2000u);
+  const auto oak_plain = test::pixel_stats(picture(oak, "oak_plain", "--no-textures"));
+  EXPECT_NEAR(oak_plain.mean_b, oak_plain.mean_r, 5);
+  EXPECT_NEAR(oak_plain.covered_fraction, oak_textured.covered_fraction, 0.08);
+
+  // Color nodes per vertex and per face: yellow faces among them, none
+  // when drawn without colours.
+  EXPECT_GT(test::fraction_shaded_like(picture(colors, "colors", ""), {1, 1, 0}), 0.005);
+  EXPECT_LT(test::fraction_shaded_like(picture(colors, "colors_grey", "--no-colors"), {1, 1, 0}),
+            0.001);
+
+  // The ElevationGrid's Color node: green hills.
+  const auto hills = test::pixel_stats(picture(grid, "grid", ""));
+  EXPECT_GT(hills.covered_fraction, 0.05);
+  EXPECT_GT(hills.mean_g, 1.3 * hills.mean_r);
+  const auto grey_hills = test::pixel_stats(picture(grid, "grid_grey", "--no-colors"));
+  EXPECT_LT(grey_hills.mean_g, 1.1 * grey_hills.mean_r);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -136,6 +136,10 @@ class Flattener {
       ++out_.skipped[t];
       return;
     }
+    // A skinned mesh (Castle's Skin, an HAnimHumanoid's skin) is drawn in the
+    // pose its coordinates hold, in the humanoid's own transform.
+    if (t == "Skin") return children(nodes_of(*n, "shapes"), m, depth);
+    if (t == "HAnimHumanoid") return children(nodes_of(*n, "skin"), m * transform_of(*n), depth);
     children(nodes_of(*n, "children"), m, depth);
   }
 

@@ -3,7 +3,9 @@
 /// space, for the commands that work on one surface (info, render, compare,
 /// simplify): every Shape reached through the grouping nodes (Transform,
 /// Group, Anchor, Billboard, Collision and any node with `children`; a LOD's
-/// chosen level; a Switch's chosen choice), each USE again in its own place.
+/// chosen level; a Switch's chosen choice; a Skin's shapes and an
+/// HAnimHumanoid's skin in the pose their coordinates hold), each USE again in
+/// its own place.
 /// Geometry: IndexedFaceSet, IndexedTriangleSet, TriangleSet, IndexedQuadSet,
 /// ElevationGrid and the primitives Box, Sphere, Cone, Cylinder. Shapes inside
 /// PROTO bodies, Inline scenes and other geometry are not drawn (counted in

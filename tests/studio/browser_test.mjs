@@ -10,6 +10,7 @@
 import { execFileSync, spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
+import { gzipSync } from 'node:zlib';
 import { join } from 'node:path';
 import { launchChromium } from '../tools/launch_chromium.mjs';
 
@@ -284,6 +285,20 @@ try {
       levels.every(([t, d], i) => t === tenPercent[k][i][0] && (i === 0 || close(tenPercent[k][i][1], d))));
     if (!same) fail(`the page shows ${JSON.stringify(tenPercent)}, lod writes ${JSON.stringify(written)}`);
     console.log(`bunny: ${tenPercent[0].length} levels at error range 10 %, as lod --error-range 10 writes (${JSON.stringify(tenPercent[0])})`);
+  }
+  // Gzip-compressed uploads (.wrl.gz, .wrz) load as the plain file does: the
+  // same shape and triangle counts in the file list.
+  const rowOf = (name) => page.$$eval('#files tbody tr', (r, n) =>
+    (r.map((x) => [...x.cells].map((c) => c.textContent)).find((c) => c[0] === n) || []).slice(2, 4), name);
+  const plain = await rowOf(scenePath.split('/').pop());
+  for (const name of ['example.wrl.gz', 'example.wrz']) {
+    const packed = join(work, name);
+    writeFileSync(packed, gzipSync(readFileSync(scenePath)));
+    await (await page.$('#upload-file')).uploadFile(packed);
+    await page.waitForFunction((n) => window.studio.current && window.studio.current.endsWith(n), { timeout: 60000 }, name);
+    const row = await rowOf(name);
+    if (JSON.stringify(row) !== JSON.stringify(plain)) fail(`the upload ${name} lists ${row}, the plain file ${plain}`);
+    console.log(`upload ${name}: ${row.join(', ')}`);
   }
   if (errors.length) fail(`console errors: ${errors.join(' | ')}`);
 } catch (e) {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/traverse.h"
@@ -276,6 +277,49 @@ TEST_F(StudioServerTest, UploadStaysInTheServersFolder) {
   if (thread_.joinable()) thread_.join();
   server_.reset();
   EXPECT_FALSE(fs::exists(path.parent_path())) << "the upload folder outlives the server";
+}
+
+// Gzip-compressed scenes (.wrl.gz, .wrz, .iv.gz) open as the CLI reads them:
+// the same shape and triangle counts as the plain file. An upload named .gz
+// is stored gzip-compressed and loads the same way.
+TEST_F(StudioServerTest, GzippedScenesOpenAndUploadLikeThePlainFile) {
+  const std::string quads = std::string(LODFORGE_SHARED_DATA) +
+                            "/inventor/coin3d__coin/models/oiv_compliance/quadmesh.iv";
+  ASSERT_TRUE(fs::exists(quads)) << quads;
+  fs::copy_file(quads, dir_ / "quadmesh.iv");
+  const std::string example = read_file((dir_ / "scene.wrl").string());
+  const auto gzip = [&](const std::string& text, const std::string& name) {
+    write_file_atomic((dir_ / (name + ".gz")).string(), text);  // a .gz name writes gzip
+    fs::rename(dir_ / (name + ".gz"), dir_ / name);
+  };
+  gzip(example, "packed.wrl.gz");
+  gzip(example, "packed.wrz");
+  gzip(read_file(quads), "quadmesh.iv.gz");
+  const auto counts = [](const json& f) {
+    EXPECT_FALSE(f.contains("error")) << f;
+    return json{f["shapes"], f["triangles"]};
+  };
+  const json plain = counts(post("/api/open", {{"path", (dir_ / "scene.wrl").string()}}));
+  ASSERT_GT(plain[1].get<int>(), 0);
+  for (const char* name : {"packed.wrl.gz", "packed.wrz"})
+    EXPECT_EQ(counts(post("/api/open", {{"path", (dir_ / name).string()}})), plain) << name;
+  const json iv = counts(post("/api/open", {{"path", (dir_ / "quadmesh.iv").string()}}));
+  ASSERT_GT(iv[1].get<int>(), 0);
+  EXPECT_EQ(counts(post("/api/open", {{"path", (dir_ / "quadmesh.iv.gz").string()}})), iv);
+
+  // Make LOD on the compressed scene names a compressed output beside it.
+  const json run = run_lod((dir_ / "packed.wrl.gz").string(), json::object());
+  EXPECT_EQ(run["state"], "done") << run;
+  EXPECT_NE(run["command_line"].get<std::string>().find((dir_ / "packed_lod.wrl.gz").string()),
+            std::string::npos)
+      << run["command_line"];
+
+  const json up = post("/api/upload", {{"name", "up.wrl.gz"}, {"text", example}});
+  EXPECT_EQ(counts(up), plain);
+  std::ifstream stored(up["path"].get<std::string>(), std::ios::binary);
+  std::string magic(2, '\0');
+  stored.read(magic.data(), 2);
+  EXPECT_EQ(magic, "\x1f\x8b") << "the .gz upload is not stored gzip-compressed";
 }
 
 // A scene's texture file is served from its folder with its image type;

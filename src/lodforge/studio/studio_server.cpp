@@ -100,6 +100,19 @@ struct LoadedScene {
   std::optional<std::string> edited;  // the text re-parsed in place of the file's
 };
 
+// The default LOD output beside a scene: NAME_lod.EXT, a gzip suffix kept
+// last (packed.wrl.gz gives packed_lod.wrl.gz, written gzip-compressed).
+std::string lod_output_name(const fs::path& in) {
+  const std::string ext = in.extension().string();
+  std::string lower = ext;
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool gz = lower == ".gz";
+  const fs::path base = gz ? in.parent_path() / in.stem() : in;
+  return (base.parent_path() /
+          (base.stem().string() + "_lod" + base.extension().string() + (gz ? ext : "")))
+      .string();
+}
+
 bool is_under(const fs::path& path, const fs::path& folder) {
   auto p = path.begin();
   for (auto f = folder.begin(); f != folder.end(); ++f, ++p)
@@ -302,9 +315,7 @@ struct StudioServer::Impl {
     LoadedScene& s = scene_of(body.value("path", ""));
     if (!s.scene) throw ApiError(400, s.path + " did not parse: " + s.error);
     if (running_job) throw ApiError(409, "a LOD run is going on already");
-    const fs::path in(s.path);
-    const std::string output =
-        (in.parent_path() / (in.stem().string() + "_lod" + in.extension().string())).string();
+    const std::string output = lod_output_name(s.path);
     LodRequest request;
     try {
       request = lod_request(body.contains("options") ? body["options"] : json(), s.path, output);

@@ -125,12 +125,25 @@ $('open-form').addEventListener('submit', async (e) => {
   } catch (err) { $('open-error').textContent = err.message; }
 });
 
+// A scene file's text. Gzip-compressed data (.wrl.gz, .wrz, .iv.gz: known by
+// the gzip magic bytes, as the CLI's reader knows it) is inflated here, so the
+// upload carries the scene's text whatever the file's compression.
+async function sceneText(file) {
+  const head = new Uint8Array(await file.slice(0, 2).arrayBuffer());
+  if (head[0] !== 0x1f || head[1] !== 0x8b) return file.text();
+  try {
+    return await new Response(file.stream().pipeThrough(new DecompressionStream('gzip'))).text();
+  } catch (err) {
+    throw new Error(`${file.name}: corrupt gzip data (${err.message})`);
+  }
+}
+
 $('upload-file').addEventListener('change', async (e) => {
   const file = e.target.files[0];
   if (!file) return;
   $('open-error').textContent = '';
   try {
-    const f = await api('POST', '/api/upload', { name: file.name, text: await file.text() });
+    const f = await api('POST', '/api/upload', { name: file.name, text: await sceneText(file) });
     await loadFiles();
     await select(f.path);
   } catch (err) { $('open-error').textContent = err.message; }

@@ -92,6 +92,21 @@ TEST(FlattenVrml97, TexturesAndTheirCoordinates) {
   EXPECT_EQ(m.texcoords[6], (Vec2{1, 0.5f}));
 }
 
+// An ElevationGrid's default texture coordinates (made by the geometry
+// reader): s along x, t along z.
+TEST(FlattenVrml97, ElevationGridTextureCoordinates) {
+  const FlatVrml97 f = flat(
+      "Shape { appearance Appearance { texture ImageTexture { url \"g.png\" } } "
+      "geometry ElevationGrid { xDimension 3 zDimension 2 height [0 0 0 0 0 0] } }");
+  const TriangleMesh& m = f.flat.mesh;
+  ASSERT_EQ(m.triangle_count(), 4u);
+  ASSERT_EQ(m.texcoords.size(), m.vertex_count());
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+    EXPECT_FLOAT_EQ(m.texcoords[v].x, m.positions[v].x / 2) << v;
+    EXPECT_FLOAT_EQ(m.texcoords[v].y, m.positions[v].z) << v;
+  }
+}
+
 TEST(FlattenVrml97, WhatIsNotDrawnIsCounted) {
   const FlatVrml97 f = flat(
       "Inline { url \"x.wrl\" } Shape { geometry Text { string \"a\" } } "

@@ -204,11 +204,15 @@ class Flattener {
       }
       vrml97_geometry::build_mesh(polygons, reader, options_.triangulation, piece);
       if (const NodePtr& c = reader.color().node) {
+        from.color_node = c;
         from.colors = c->value("color");
         from.stride = c->type == "ColorRGBA" ? 4 : 3;
         if (!reader.color().per_vertex) piece = unshared_by_face(piece, polygons.face_color);
       }
-      if (const NodePtr& t = reader.tex().node) from.texcoords = t->value("point");
+      if (const NodePtr& t = reader.tex().node) {
+        from.texcoord_node = t;
+        from.texcoords = t->value("point");
+      }
     } else {
       ++out_.skipped[geometry.type];
       return;
@@ -271,6 +275,9 @@ class Flattener {
     const FieldValue* colors = nullptr;  ///< the Color / ColorRGBA node's
     std::size_t stride = 3;              ///< floats a colour
     const FieldValue* texcoords = nullptr;
+    /// The nodes they are held by: an ElevationGrid's texture coordinates
+    /// are made by the reader, which is gone when they are used.
+    NodePtr color_node, texcoord_node;
   };
 
   // Appends a shape's mesh in world space, with its colours (the Color

@@ -51,7 +51,8 @@ struct ClosestPoint {
 /// order. Queries: stack traversal, nearer child
 /// first, subtrees pruned when their box is farther than the best distance so
 /// far; with a hint, from the hint's leaf up through the other children of its
-/// ancestors (so a query that may stop early stops near the hint). Degenerate triangles take part as the segments or points they are.
+/// ancestors (so a query that may stop early stops near the hint). Degenerate triangles take part
+/// as the segments or points they are.
 class TriangleBvh {
  public:
   /// Preconditions: triangle indices < #V (assert). A mesh without triangles

@@ -198,10 +198,12 @@ int render_levels(const std::string& input, const std::string& output, const Ren
                   const SceneReadSettings& read, TextureLoader& loader) {
   std::vector<Drawing> levels;
   if (is_vrml97_input(input)) {
-    const std::size_t count = vrml97_lod_level_count(input);
+    const vrml97::ReadResult scene = read_vrml97_input(input);
+    const std::size_t count = vrml97_lod_level_count(scene.scene);
     for (std::size_t k = 0; k < count; ++k)
-      levels.push_back(
-          drawing(load_vrml97(input, {.lod_level = int(k)}, read.quiet || k > 0).flat, loader));
+      levels.push_back(drawing(
+          flatten_vrml97_input(scene, input, {.lod_level = int(k)}, read.quiet || k > 0).flat,
+          loader));
   } else {
     const scene::Scene scene = read_lod_scene(input, "--levels", read);
     const std::size_t count = scene::lod_level_count(scene);
@@ -244,10 +246,11 @@ int render_distances(const std::string& input, const std::string& output,
   std::function<scene::FlatScene(std::optional<Vec3>)> flat;
   float angle = 0;
   if (is_vrml97_input(input)) {
-    flat = [&](std::optional<Vec3> eye) {
-      return load_vrml97(input, {.viewpoint = eye}, read.quiet || eye).flat;
+    auto scene = std::make_shared<vrml97::ReadResult>(read_vrml97_input(input));
+    flat = [&, scene](std::optional<Vec3> eye) {
+      return flatten_vrml97_input(*scene, input, {.viewpoint = eye}, read.quiet || eye).flat;
     };
-    angle = vrml97_field_of_view(input);
+    angle = viewpoint_field_of_view(scene->scene).value_or(kDefaultFieldOfView);
   } else {
     auto scene = std::make_shared<scene::Scene>(read_lod_scene(input, "--distances", read));
     flat = [scene](std::optional<Vec3> eye) {

@@ -21,23 +21,16 @@ constexpr const char* kGeometry[] = {"IndexedFaceSet", "IndexedTriangleSet",
                                      "Cylinder",       "IndexedLineSet",
                                      "PointSet"};
 
-struct Read {
-  vrml97::ReadResult scene;
-  FlatVrml97 flat;
-  std::vector<std::string> warnings;
-};
-
-Read read(const std::string& path, const FlattenVrml97Options& options) {
-  Read r;
-  r.scene = vrml97::read_vrml97_file(path, {.source_name = path});
-  Log log;
-  r.flat = flatten_vrml97(r.scene.scene, options, log);
-  for (const auto& d : r.scene.log.entries()) r.warnings.push_back(d.text);
-  for (const auto& d : log.entries()) r.warnings.push_back(d.text);
-  for (const auto& [type, n] : r.flat.skipped)
-    r.warnings.push_back(fmt::format("{} {} node{} not drawn (not flattened into the surface)", n,
-                                     type, n == 1 ? "" : "s"));
-  return r;
+// The reader's and the flattening's warnings, and what was not drawn.
+std::vector<std::string> warnings_of(const vrml97::ReadResult& scene, const Log& log,
+                                     const FlatVrml97& flat) {
+  std::vector<std::string> out;
+  for (const auto& d : scene.log.entries()) out.push_back(d.text);
+  for (const auto& d : log.entries()) out.push_back(d.text);
+  for (const auto& [type, n] : flat.skipped)
+    out.push_back(fmt::format("{} {} node{} not drawn (not flattened into the surface)", n, type,
+                              n == 1 ? "" : "s"));
+  return out;
 }
 
 }  // namespace
@@ -49,17 +42,27 @@ nlohmann::ordered_json bounds_json(const Box3& bounds) {
           {"diagonal", bounds.diagonal()}};
 }
 
-FlatVrml97 load_vrml97(const std::string& path, const FlattenVrml97Options& options, bool quiet) {
-  Read r = read(path, options);
-  if (!quiet)
-    for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}: {}\n", path, w);
-  return std::move(r.flat);
+vrml97::ReadResult read_vrml97_input(const std::string& path) {
+  return vrml97::read_vrml97_file(path, {.source_name = path});
 }
 
-std::size_t vrml97_lod_level_count(const std::string& path) {
-  const vrml97::ReadResult r = vrml97::read_vrml97_file(path, {.source_name = path});
+FlatVrml97 flatten_vrml97_input(const vrml97::ReadResult& scene, const std::string& path,
+                                const FlattenVrml97Options& options, bool quiet) {
+  Log log;
+  FlatVrml97 flat = flatten_vrml97(scene.scene, options, log);
+  if (!quiet)
+    for (const auto& w : warnings_of(scene, log, flat))
+      fmt::print(stderr, "warning: {}: {}\n", path, w);
+  return flat;
+}
+
+FlatVrml97 load_vrml97(const std::string& path, const FlattenVrml97Options& options, bool quiet) {
+  return flatten_vrml97_input(read_vrml97_input(path), path, options, quiet);
+}
+
+std::size_t vrml97_lod_level_count(const scene::Scene& scene) {
   std::size_t count = 1;
-  scene::for_each_node(r.scene,
+  scene::for_each_node(scene,
                        [&](const scene::Node& n) {
                          if (n.type != "LOD") return;
                          for (const char* field : {"level", "children"})
@@ -70,53 +73,42 @@ std::size_t vrml97_lod_level_count(const std::string& path) {
   return count;
 }
 
-float vrml97_field_of_view(const std::string& path) {
-  const vrml97::ReadResult r = vrml97::read_vrml97_file(path, {.source_name = path});
-  float angle = 0;
-  scene::for_each_node(
-      r.scene,
-      [&](const scene::Node& n) {
-        const scene::FieldValue* v = n.type == "Viewpoint" ? n.value("fieldOfView") : nullptr;
-        if (!angle && v && !v->floats.empty() && v->floats[0] > 0 && v->floats[0] < kPi)
-          angle = v->floats[0];
-      },
-      {.field_nodes = true});
-  return angle > 0 ? angle : float(kPi / 4);
-}
-
 int print_vrml97_info(const std::string& path, bool json, bool quiet) {
-  const Read r = read(path, {});
+  const vrml97::ReadResult scene = read_vrml97_input(path);
+  Log log;
+  const FlatVrml97 flat = flatten_vrml97(scene.scene, {}, log);
+  const std::vector<std::string> warnings = warnings_of(scene, log, flat);
   std::map<std::string, std::size_t> counts;
-  scene::for_each_node(r.scene.scene, [&](const scene::Node& n) { ++counts[n.type]; },
+  scene::for_each_node(scene.scene, [&](const scene::Node& n) { ++counts[n.type]; },
                        {.field_nodes = true});
   auto count = [&](const char* t) {
     auto it = counts.find(t);
     return it == counts.end() ? std::size_t(0) : it->second;
   };
-  const TriangleMesh& mesh = r.flat.flat.mesh;
+  const TriangleMesh& mesh = flat.flat.mesh;
   const Box3 bounds = mesh.bounds();
   if (json) {
     nlohmann::ordered_json j;
     j["file"] = path;
-    j["header"] = r.scene.scene.header;
+    j["header"] = scene.scene.header;
     j["node_counts"] = counts;
     for (const char* t : kGeometry) j["shapes"][t] = count(t);
-    j["shapes_traversed"] = r.flat.shapes;
+    j["shapes_traversed"] = flat.shapes;
     j["triangles"] = mesh.triangle_count();
     j["vertices"] = mesh.vertex_count();
     j["bounds"] = bounds_json(bounds);
-    j["warnings"] = r.warnings;
+    j["warnings"] = warnings;
     fmt::print("{}\n", j.dump(2));
     return 0;
   }
   if (!quiet)
-    for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}: {}\n", path, w);
-  fmt::print("{} ({})\n", path, r.scene.scene.header);
+    for (const auto& w : warnings) fmt::print(stderr, "warning: {}: {}\n", path, w);
+  fmt::print("{} ({})\n", path, scene.scene.header);
   std::string shapes;
   for (const char* t : kGeometry)
     if (count(t)) shapes += fmt::format("{}{} {}", shapes.empty() ? "" : ", ", t, count(t));
   fmt::print("  geometry: {}\n", shapes.empty() ? "none" : shapes);
-  fmt::print("  shapes drawn {}, triangles {}, vertices {}\n", r.flat.shapes, mesh.triangle_count(),
+  fmt::print("  shapes drawn {}, triangles {}, vertices {}\n", flat.shapes, mesh.triangle_count(),
              mesh.vertex_count());
   if (!bounds.empty())
     fmt::print("  bounds [{} {} {}] .. [{} {} {}], diagonal {}\n", bounds.lo.x, bounds.lo.y,

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/lod/flatten_vrml97.h"
 
 namespace lodforge::apps {
@@ -12,17 +13,21 @@ namespace lodforge::apps {
 /// Bounds as `info --json` gives them: {min, max, diagonal}, or null when empty.
 nlohmann::ordered_json bounds_json(const Box3& bounds);
 
-/// The scene at `path` (VRML97 or X3D classic; gzip allowed) flattened at
-/// `lod_level`; the reader's and the flattening's warnings, and what was
-/// not drawn, on stderr unless `quiet`. Throws ParseError / DataError.
+/// The scene at `path` (VRML97 or X3D classic; gzip allowed). Throws
+/// ParseError / DataError.
+vrml97::ReadResult read_vrml97_input(const std::string& path);
+
+/// `scene` (read from `path`) flattened; the reader's and the flattening's
+/// warnings, and what was not drawn, on stderr unless `quiet`.
+FlatVrml97 flatten_vrml97_input(const vrml97::ReadResult& scene, const std::string& path,
+                                const FlattenVrml97Options& options, bool quiet);
+
+/// read_vrml97_input, then flatten_vrml97_input.
 FlatVrml97 load_vrml97(const std::string& path, const FlattenVrml97Options& options, bool quiet);
 
-/// The first Viewpoint's fieldOfView in the scene at `path` (π/4 if none).
-float vrml97_field_of_view(const std::string& path);
-
-/// The number of LOD levels of the scene at `path`: the most levels of any
-/// LOD node (1 if there is none). Throws ParseError / DataError.
-std::size_t vrml97_lod_level_count(const std::string& path);
+/// The number of LOD levels of `scene`: the most levels of any LOD node (1
+/// if there is none).
+std::size_t vrml97_lod_level_count(const scene::Scene& scene);
 
 /// Prints node counts per type, geometry counts per type, shapes drawn,
 /// triangles, vertices and bounds (text on stdout, or JSON with `json`).

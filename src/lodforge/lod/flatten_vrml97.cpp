@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/math.h"
@@ -349,6 +350,24 @@ class Flattener {
 };
 
 }  // namespace
+
+std::optional<float> viewpoint_field_of_view(const scene::Scene& scene) {
+  std::unordered_set<const Node*> seen;
+  std::function<const Node*(const NodePtr&)> first = [&](const NodePtr& n) -> const Node* {
+    if (!n || n->statement || !seen.insert(n.get()).second) return nullptr;
+    if (n->type == "Viewpoint") return n.get();
+    for (const auto& f : n->fields)
+      for (const auto& c : f.value.nodes)
+        if (const Node* v = first(c)) return v;
+    return nullptr;
+  };
+  for (const NodePtr& r : scene.roots)
+    if (const Node* v = first(r)) {
+      const float fov = float_of(*v, "fieldOfView", 0);
+      return fov > 0 && fov < 3.1f ? fov : kDefaultFieldOfView;
+    }
+  return std::nullopt;
+}
 
 FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options& options,
                           Log& log) {

@@ -40,6 +40,14 @@ struct FlatVrml97 {
   std::map<std::string, std::size_t> skipped;  ///< geometry or nodes not drawn, by type
 };
 
+/// The VRML97 / X3D Viewpoint's default fieldOfView, π/4.
+inline constexpr float kDefaultFieldOfView = 0.785398f;
+
+/// The first Viewpoint's fieldOfView, in file order (depth first through the
+/// fields; statements skipped): its value when within (0, 3.1), else
+/// kDefaultFieldOfView; nullopt when the scene has no Viewpoint.
+std::optional<float> viewpoint_field_of_view(const scene::Scene& scene);
+
 /// Throws DataError for a coordinate that is not finite or a primitive size
 /// that is not. Warnings (bad indices) go to `log`.
 FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options& options, Log& log);

@@ -18,6 +18,7 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/math.h"
 #include "lodforge/lod/choose_levels.h"
+#include "lodforge/lod/flatten_vrml97.h"
 #include "lodforge/lod/vrml97_geometry.h"
 #include "lodforge/scene/face_set_mesh.h"
 
@@ -28,8 +29,6 @@ using scene::FieldKind;
 using scene::Node;
 using scene::NodePtr;
 using namespace vrml97_geometry;
-
-constexpr float kDefaultFieldOfView = 0.785398f;  // VRML97 / X3D Viewpoint default, π/4
 
 // One distinct shape: its mesh and what its levels are made of.
 struct Job {
@@ -133,7 +132,8 @@ class Pipeline {
     x3d_ = s.header.starts_with("#X3D");
     camera_angle_ = opt_.range.camera_angle;
     for (const auto& r : s.roots) collect(r, 1.0, "children");
-    if (!opt_.camera_angle_given && found_viewpoint_) camera_angle_ = viewpoint_angle_;
+    if (const auto fov = viewpoint_field_of_view(s); fov && !opt_.camera_angle_given)
+      camera_angle_ = *fov;
     result_.camera_angle = camera_angle_;
     for (Job& j : jobs_) make_lod(j);
     std::unordered_map<const Node*, NodePtr> lods;
@@ -151,13 +151,6 @@ class Pipeline {
   // (of a grouping node, a LOD or a Switch) can be replaced by a LOD.
   void collect(const NodePtr& n, double scale, std::string_view via) {
     if (!n || n->statement) return;
-    if (n->type == "Viewpoint" && !found_viewpoint_) {
-      found_viewpoint_ = true;
-      const scene::FieldValue* fov = n->value("fieldOfView");
-      viewpoint_angle_ = fov && !fov->floats.empty() && fov->floats[0] > 0 && fov->floats[0] < 3.1
-                             ? fov->floats[0]
-                             : kDefaultFieldOfView;
-    }
     if (n->type == "Shape") {
       NodePtr g = node_of(*n, "geometry");
       if (!g || !is_supported_geometry(g->type)) return;
@@ -267,8 +260,6 @@ class Pipeline {
   LodResult& result_;
   bool x3d_ = false;
   double camera_angle_ = kDefaultFieldOfView;
-  bool found_viewpoint_ = false;
-  double viewpoint_angle_ = kDefaultFieldOfView;
   std::vector<Job> jobs_;
   std::unordered_map<const Node*, std::size_t> job_of_;
   std::unordered_map<const Node*, double> seen_scale_;

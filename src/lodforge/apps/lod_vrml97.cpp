@@ -15,6 +15,7 @@
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
+#include "lodforge/lod/vrml97_geometry.h"
 
 namespace lodforge::apps {
 namespace {
@@ -163,20 +164,10 @@ constexpr std::string_view kVrml97Nodes[] = {"Anchor",
 // IndexedFaceSet that draws the same faces (its attributes, indexed like the
 // coordinates, need no index of their own); false for any other node.
 bool as_indexed_face_set(scene::Node& n) {
-  const std::size_t per = n.type == "IndexedQuadSet" ? 4 : 3;
   if (n.type != "IndexedTriangleSet" && n.type != "TriangleSet" && n.type != "IndexedQuadSet")
     return false;
-  std::vector<std::int32_t> order;
-  if (const scene::FieldValue* index = n.value("index")) {
-    order = index->ints;
-  } else if (n.type == "TriangleSet") {
-    const scene::Field* coord = n.find("coord");
-    const std::size_t points = coord && !coord->value.nodes.empty() && coord->value.nodes[0] &&
-                                       coord->value.nodes[0]->value("point")
-                                   ? coord->value.nodes[0]->value("point")->count()
-                                   : 0;
-    for (std::size_t i = 0; i < points; ++i) order.push_back(std::int32_t(i));
-  }
+  const std::size_t per = vrml97_geometry::corners_per_face(n);
+  const std::vector<std::int32_t> order = vrml97_geometry::set_corner_order(n);
   std::vector<std::int32_t> faces;
   for (std::size_t f = 0; f + per <= order.size(); f += per) {
     faces.insert(faces.end(), order.begin() + std::ptrdiff_t(f),

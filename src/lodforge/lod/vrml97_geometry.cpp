@@ -95,14 +95,22 @@ void GeometryReader::read_indexed_face_set(Polygons& out) {
     add_face(out, *ci, face, runs[face].first, runs[face].second);
 }
 
-void GeometryReader::read_triangle_sets(Polygons& out) {
-  const std::size_t per = g_.type == "IndexedQuadSet" ? 4 : 3;
+std::size_t corners_per_face(const Node& set) {
+  return set.type == "IndexedQuadSet" ? 4 : 3;
+}
+
+std::vector<std::int32_t> set_corner_order(const Node& set) {
+  if (const auto* index = ints_of(set, "index")) return *index;
   std::vector<std::int32_t> order;
-  if (const auto* index = ints_of(g_, "index")) {
-    order = *index;
-  } else if (g_.type == "TriangleSet") {
-    for (std::size_t i = 0; i < coords_; ++i) order.push_back(std::int32_t(i));
-  }
+  if (set.type == "TriangleSet")
+    for (std::size_t i = 0, n = attribute_count(node_of(set, "coord"), "point"); i < n; ++i)
+      order.push_back(std::int32_t(i));
+  return order;
+}
+
+void GeometryReader::read_triangle_sets(Polygons& out) {
+  const std::size_t per = corners_per_face(g_);
+  const std::vector<std::int32_t> order = set_corner_order(g_);
   for (std::size_t f = 0; f + per <= order.size(); f += per)
     add_face(out, order, f / per, f, f + per);
 }

@@ -60,6 +60,14 @@ struct Attribute {
   std::string error;  ///< the first bad index found (the attribute is dropped)
 };
 
+/// Corners a face of an IndexedTriangleSet / TriangleSet (3) or an
+/// IndexedQuadSet (4).
+std::size_t corners_per_face(const Node& set);
+
+/// The coordinate indices of such a set's corners, face after face: its
+/// `index`, or for a TriangleSet without one its coordinates in order.
+std::vector<std::int32_t> set_corner_order(const Node& set);
+
 class GeometryReader {
  public:
   GeometryReader(const Node& g, Log& log, const std::string& where);

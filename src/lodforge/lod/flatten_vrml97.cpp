@@ -183,9 +183,9 @@ class Flattener {
   }
 
   void shape(const Node& s, const Mat4& m) {
-    const std::vector<NodePtr> g = nodes_of(s, "geometry");
-    if (g.empty() || !g[0]) return;
-    const Node& geometry = *g[0];
+    const NodePtr g = vrml97_geometry::node_of(s, "geometry");
+    if (!g) return;
+    const Node& geometry = *g;
     vrml97_geometry::ShapeMesh piece;
     Attributes from;
     if (is_primitive(geometry.type)) {
@@ -231,15 +231,15 @@ class Flattener {
 
   Look appearance_of(const Node& s) {
     Look look;
-    const std::vector<NodePtr> a = nodes_of(s, "appearance");
-    if (a.empty() || !a[0]) return look;
-    const std::vector<NodePtr> tex = nodes_of(*a[0], "texture");
-    if (!tex.empty() && tex[0] && tex[0]->type == "ImageTexture") look.texture = texture(*tex[0]);
-    const std::vector<NodePtr> mat = nodes_of(*a[0], "material");
-    if (mat.empty() || !mat[0]) return look;
+    const NodePtr a = vrml97_geometry::node_of(s, "appearance");
+    if (!a) return look;
+    const NodePtr tex = vrml97_geometry::node_of(*a, "texture");
+    if (tex && tex->type == "ImageTexture") look.texture = texture(*tex);
+    const NodePtr mat = vrml97_geometry::node_of(*a, "material");
+    if (!mat) return look;
     look.material = true;
-    look.diffuse = vec3_of(*mat[0], "diffuseColor", look.diffuse);
-    look.opacity = 1 - std::clamp(float_of(*mat[0], "transparency", 0), 0.f, 1.f);
+    look.diffuse = vec3_of(*mat, "diffuseColor", look.diffuse);
+    look.opacity = 1 - std::clamp(float_of(*mat, "transparency", 0), 0.f, 1.f);
     return look;
   }
 

@@ -10,7 +10,7 @@ packages=(
   libtbb-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcoin-dev libmeshoptimizer-dev
-  libosmesa6-dev libstb-dev libtinygltf-dev
+  libosmesa6-dev libstb-dev libtinygltf-dev libpugixml-dev
   view3dscene xvfb xauth
   nodejs
   parallel

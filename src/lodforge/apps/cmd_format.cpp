@@ -35,17 +35,17 @@ void add_format_command(CLI::App& app, Runner& run) {
       "Read a VRML 1.0 or Inventor scene and write it back formatted, or as VRML97, X3D classic "
       "or glTF; a VRML97 or X3D classic scene as VRML97 or X3D classic");
   cmd->add_option("SCENE", s->input,
-                  "VRML 1.0, Inventor, VRML97 or X3D classic file (.wrl, .iv, .x3dv, optionally "
+                  "VRML 1.0, Inventor, VRML97 or X3D file (.wrl, .iv, .x3dv, .x3d, optionally "
                   ".gz; - = stdin for VRML 1.0 / Inventor)")
       ->required();
   cmd->add_option("-o,--output", s->output,
                   "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF; "
-                  ".x3dv: to X3D classic)")
+                  ".x3dv: to X3D classic; .x3d: to X3D XML)")
       ->required();
   cmd->add_option("--format", s->format,
-                  "Convert to vrml97 (VRML97) or x3dv (X3D classic encoding) (default: from the "
+                  "Convert to vrml97 (VRML97), x3dv (X3D classic) or x3d (X3D XML) (default: from the "
                   "output name, else VRML 1.0 / Inventor as read)")
-      ->check(CLI::IsMember({"vrml97", "x3dv"}));
+      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d"}));
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {
@@ -55,18 +55,18 @@ void add_format_command(CLI::App& app, Runner& run) {
       if (is_vrml97_input(s->input)) {
         if (gltf::is_gltf_path(s->output))
           throw DataError(fmt::format(
-              "{}: a VRML97 / X3D scene is written as VRML97 (.wrl) or X3D classic (.x3dv), "
+              "{}: a VRML97 / X3D scene is written as VRML97 (.wrl) or X3D (.x3dv, .x3d), "
               "not glTF",
               s->input));
         vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
         if (!s->read.quiet) print_diagnostics(r.log.entries());
-        vrml97::write_vrml97_file(r.scene, s->output);
+        write_vrml97_as(r.scene, s->output, s->format);
         return 0;
       }
       vrml1::ReadResult r = read_scene(s->input, s->read);
       const std::string as_vrml97 = vrml97_format_of(s->format, s->output);
       if (!as_vrml97.empty()) {
-        write_scene_vrml97(r.scene, s->output, as_vrml97 == "x3dv", s->read.quiet);
+        write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet);
       } else if (gltf::is_gltf_path(s->output)) {
         const std::filesystem::path in(s->input);
         write_scene_gltf(r.scene, s->output,

@@ -75,7 +75,7 @@ void add_info_command(CLI::App& app, Runner& run) {
       "holds");
   cmd->add_option("SCENE", s->input,
                   "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), VRML97 or X3D "
-                  "classic (.wrl, .x3dv, optionally .gz), glTF (.gltf, .glb), or a mesh (.ply, "
+                  "classic or XML (.wrl, .x3dv, .x3d, optionally .gz), glTF (.gltf, .glb), or a mesh (.ply, "
                   ".obj, .off, .stl)")
       ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");

@@ -274,7 +274,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                          s.format.empty() ? gltf_binary_name(target) : s.format == "glb",
                          s.read.quiet);
       else if (!as_vrml97.empty())
-        write_scene_vrml97(result.scene, target, as_vrml97 == "x3dv", s.read.quiet);
+        write_scene_vrml97(result.scene, target, as_vrml97, s.read.quiet);
       else
         vrml1::write_vrml1_file(result.scene, target, s.write);
     }
@@ -405,11 +405,11 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "Write the batch report (JSON: every scene's outcome, sizes, triangles, time) "
                   "to this file; `lodforge report` merges the reports of shards");
   cmd->add_option("--format", s->format,
-                  "Output encoding of a VRML97 / X3D scene (default: from the output name, .x3dv "
-                  "X3D classic, else the input's), or of a glTF scene: gltf or glb (default: "
+                  "Output encoding of a VRML97 / X3D scene: vrml97, x3dv or x3d (default: from "
+                  "the output name, .x3dv X3D classic, .x3d X3D XML, else the input's), or of a glTF scene: gltf or glb (default: "
                   "from the output name, else the input's); a VRML 1.0 / Inventor scene is "
-                  "converted to vrml97, x3dv, gltf or glb (default: from the output name, .x3dv, "
-                  ".glb, .gltf, else VRML 1.0)")
+                  "converted to vrml97, x3dv, x3d, gltf or glb (default: from the output name, "
+                  ".x3dv, .x3d, .glb, .gltf, else VRML 1.0)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));
   cmd->add_option("--method", s->method, "Simplifier: cluster, decimate or qem")
       ->capture_default_str()

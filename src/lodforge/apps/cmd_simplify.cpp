@@ -333,7 +333,7 @@ void add_simplify_command(CLI::App& app, Runner& run) {
       "Exit codes: 0 done, 1 bad input (unreadable, empty surface), 2 bad usage.\n");
   cmd->add_option("MESH", s->input,
                   "Input: PLY, OBJ, OFF, STL (optionally .gz), VRML 1.0 / Inventor, VRML97 / X3D "
-                  "classic (.wrl, .x3dv) or glTF scene; - = stdin")
+                  "classic or XML (.wrl, .x3dv, .x3d) or glTF scene; - = stdin")
       ->required();
   cmd->add_option(
          "-o,--output", s->output,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lodforge/io/vrml97/read_vrml97.h"
+#include "lodforge/io/vrml97/read_x3d_xml.h"
 #include "lodforge/scene/traverse.h"
 
 namespace lodforge::apps {
@@ -43,6 +44,7 @@ nlohmann::ordered_json bounds_json(const Box3& bounds) {
 }
 
 vrml97::ReadResult read_vrml97_input(const std::string& path) {
+  if (vrml97::is_x3d_xml_path(path)) return vrml97::read_x3d_xml_file(path);
   return vrml97::read_vrml97_file(path, {.source_name = path});
 }
 

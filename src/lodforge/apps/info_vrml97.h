@@ -13,7 +13,8 @@ namespace lodforge::apps {
 /// Bounds as `info --json` gives them: {min, max, diagonal}, or null when empty.
 nlohmann::ordered_json bounds_json(const Box3& bounds);
 
-/// The scene at `path` (VRML97 or X3D classic; gzip allowed). Throws
+/// The scene at `path` (VRML97, X3D classic, or X3D XML when the name says
+/// .x3d, .x3d.gz or .x3dz; gzip allowed). Throws
 /// ParseError / DataError.
 vrml97::ReadResult read_vrml97_input(const std::string& path);
 

@@ -14,6 +14,9 @@
 #include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
+#include "lodforge/io/vrml97/read_x3d_xml.h"
+#include "lodforge/io/vrml97/write_x3d_xml.h"
+#include "lodforge/apps/info_vrml97.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
 #include "lodforge/lod/vrml97_geometry.h"
 
@@ -247,24 +250,35 @@ void x3d_to_vrml97(scene::Scene& s, Log& log) {
 
 bool is_vrml97_input(const std::string& path) {
   if (path == "-") return false;
-  if (ends_with(path, ".x3dv") || ends_with(path, ".x3d")) return true;
+  if (ends_with(path, ".x3dv") || vrml97::is_x3d_xml_path(path)) return true;
   // (Of a gzip file, .wrl.gz or .wrz, the header of what it holds.)
   return vrml97::is_vrml97_header(read_head(path, 16));
 }
 
+bool writes_x3d_xml(const std::string& output, const std::string& format) {
+  return format == "x3d" || (format.empty() && vrml97::is_x3d_xml_path(output));
+}
+
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
                                   const std::string& format) {
-  if (ends_with(input, ".x3d"))
-    throw DataError("X3D XML encoding (.x3d) is not read yet; convert it to .x3dv");
-  vrml97::ReadResult r = vrml97::read_vrml97_file(input);
+  vrml97::ReadResult r = read_vrml97_input(input);
   const bool x3d_in = vrml97::is_x3d_header(r.scene.header);
   std::string to = format;
-  if (to.empty()) to = ends_with(output, ".x3dv") ? "x3dv" : ends_with(output, ".x3d") ? "x3d" : "";
-  if (to == "x3d")
-    throw DataError("writing X3D XML encoding (.x3d) is not supported yet; use .x3dv");
+  if (to.empty())
+    to = ends_with(output, ".x3dv") || ends_with(output, ".x3dv.gz") ? "x3dv"
+         : writes_x3d_xml(output, format)                            ? "x3d"
+                                                                     : "";
   if (to == "vrml97" && x3d_in) x3d_to_vrml97(r.scene, r.log);  // .wrl alone keeps X3D
-  if (to == "x3dv" && !x3d_in) vrml97_to_x3d(r.scene);
+  if ((to == "x3dv" || to == "x3d") && !x3d_in) vrml97_to_x3d(r.scene);
   return r;
+}
+
+void write_vrml97_as(const scene::Scene& scene, const std::string& output,
+                     const std::string& format) {
+  if (writes_x3d_xml(output, format))
+    vrml97::write_x3d_xml_file(scene, output);
+  else
+    vrml97::write_vrml97_file(scene, output);
 }
 
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
@@ -272,7 +286,7 @@ LodResult lod_vrml97_file(const std::string& input, const std::string& output,
   vrml97::ReadResult r = read_vrml97_as(input, output, format);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
-  vrml97::write_vrml97_file(result.scene, output);
+  write_vrml97_as(result.scene, output, format);
   return result;
 }
 

@@ -12,19 +12,28 @@ namespace lodforge::apps {
 /// ends in .x3dv / .x3d.
 bool is_vrml97_input(const std::string& path);
 
-/// Reads `input` and sets the scene's encoding for `output` (`format`:
-/// "vrml97", "x3dv", or empty: from `output`'s name, .x3dv = X3D classic,
-/// otherwise the input's). Throws DataError for a parse error or an encoding
-/// it cannot write (X3D XML). X3D written as VRML97 (`format` "vrml97") loses
-/// the statements VRML97 has not, with a warning in the result's log.
+/// True if `output` is to be written in the X3D XML encoding: `format` is
+/// "x3d", or it is empty and the name ends in .x3d, .x3d.gz or .x3dz.
+bool writes_x3d_xml(const std::string& output, const std::string& format);
+
+/// Reads `input` (VRML97, X3D classic or X3D XML) and sets the scene's
+/// encoding for `output` (`format`: "vrml97", "x3dv", "x3d", or empty: from
+/// `output`'s name, .x3dv = X3D classic, .x3d = X3D XML, otherwise the
+/// input's). Throws DataError for a parse error. X3D written as VRML97
+/// (`format` "vrml97") loses the statements VRML97 has not, with a warning
+/// in the result's log; VRML97 written as X3D gets X3D's header and names.
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
                                   const std::string& format);
 
-/// Reads `input`, sets the output encoding (`format`: "vrml97", "x3dv", or
-/// empty: from `output`'s name, .x3dv = X3D classic, otherwise the input's),
-/// runs generate_lod_vrml97 and writes `output` atomically. Throws DataError
-/// (nothing written) for a parse error or an encoding it cannot write
-/// (X3D XML).
+/// Writes a scene read by read_vrml97_as to `output` atomically, in X3D XML
+/// when writes_x3d_xml, else in the classic encoding its header names.
+void write_vrml97_as(const scene::Scene& scene, const std::string& output,
+                     const std::string& format);
+
+/// Reads `input` and sets the output encoding as read_vrml97_as, runs
+/// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as).
+/// Throws DataError (nothing written) for a parse error or a scene the
+/// output encoding cannot hold.
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
                           const std::string& format, const LodOptions& options);
 

@@ -106,7 +106,8 @@ bool field_type_of(std::string_view name, FieldType& out) {
   return false;
 }
 
-// The typed field `field` of `type`, if the table lists it.
+}  // namespace
+
 bool typed_field(std::string_view type, std::string_view field, FieldType& out) {
   for (const auto& t : kTypedNodes) {
     if (t.type != type) continue;
@@ -125,6 +126,8 @@ bool typed_field(std::string_view type, std::string_view field, FieldType& out) 
   }
   return false;
 }
+
+namespace {
 
 bool is_number_start(std::string_view w) {
   if (w.empty()) return false;
@@ -283,7 +286,7 @@ class Parser {
                  (lex_.peek().text.starts_with("SF") || lex_.peek().text.starts_with("MF"))) {
         parse_declaration(f, word, depth);
       } else if (lex_.peek().kind == TokenKind::kWord && lex_.peek().text == "IS") {
-        lex_.fail(word, fmt::format("IS outside a PROTO body (field '{}')", word.text));
+        parse_is(f, word);
       } else {
         FieldType ftype;
         if (typed_field(node->type, word.text, ftype))
@@ -298,6 +301,18 @@ class Parser {
     return node;
   }
 
+  // `field IS name` (the field's name read, IS next): a raw field "IS name"
+  // in a PROTO body, an error elsewhere.
+  void parse_is(scene::Field& f, const Token& field) {
+    if (!options_.proto_body)
+      lex_.fail(field, fmt::format("IS outside a PROTO body (field '{}')", field.text));
+    lex_.next();
+    Token name = lex_.next();
+    if (name.kind != TokenKind::kWord) lex_.expected(name, "an interface field name after IS");
+    f.is_raw = true;
+    f.raw = fmt::format("IS {}", name.text);
+  }
+
   // `access TYPE name [value]`: the name of the field holds all three words.
   void parse_declaration(scene::Field& f, const Token& access, int depth) {
     Token type = lex_.next();
@@ -306,6 +321,10 @@ class Parser {
     f.name = fmt::format("{} {} {}", access.text, type.text, name.text);
     const bool has_value = access.text == "field" || access.text == "exposedField" ||
                            access.text == "initializeOnly" || access.text == "inputOutput";
+    if (lex_.peek().kind == TokenKind::kWord && lex_.peek().text == "IS") {
+      parse_is(f, name);
+      return;
+    }
     FieldType ftype;
     if (has_value && field_type_of(type.text, ftype) && ftype.kind == FieldKind::kNode) {
       f.value = parse_node_value(ftype, name, depth);

@@ -37,6 +37,10 @@ struct ReadOptions {
   /// Deeper nesting than this is an error: the parser, the writer and the
   /// traversals recurse once per level.
   int max_depth = 256;
+  /// The text is a PROTO's body: a field may be `NAME IS INTERFACE_FIELD`
+  /// (kept as a raw field whose raw text is "IS INTERFACE_FIELD"), which is
+  /// an error elsewhere.
+  bool proto_body = false;
 };
 
 struct ReadResult {
@@ -48,6 +52,10 @@ struct ReadResult {
 bool is_vrml97_header(std::string_view header);
 /// True if `header` is an X3D classic header ("#X3D V...").
 bool is_x3d_header(std::string_view header);
+
+/// The type of field `field` of node type `node_type` if the reader types it
+/// (the fields of the nodes the LOD pipeline interprets); false for any other.
+bool typed_field(std::string_view node_type, std::string_view field, scene::FieldType& out);
 
 /// Parses VRML97 / X3D classic text. Throws ParseError ("file:line:col:
 /// expected X, got Y") on a syntax error, a wrong header, a USE of an

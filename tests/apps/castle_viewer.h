@@ -49,4 +49,15 @@ inline std::set<std::string> castle_errors(const std::string& path,
   return found;
 }
 
+/// Castle Model Viewer's own conversion of `path` to the X3D XML encoding,
+/// written to `out`; true if it wrote one.
+inline bool castle_to_xml(const std::string& path, const std::string& out,
+                          const std::filesystem::path& home) {
+  std::filesystem::remove_all(home);
+  std::filesystem::create_directories(home);
+  const std::string cmd = "HOME=" + home.string() + " timeout 120 view3dscene '" + path +
+                          "' --write --write-encoding xml > '" + out + "' 2>/dev/null";
+  return std::system(cmd.c_str()) == 0 && std::filesystem::file_size(out) > 0;
+}
+
 }  // namespace lodforge::testing

@@ -12,6 +12,8 @@
 #include "apps/castle_viewer.h"
 #include "apps/run_command.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
+#include "lodforge/io/vrml97/read_x3d_xml.h"
+#include "lodforge/io/vrml97/write_x3d_xml.h"
 #include "tools/coin_probe_runner.h"
 
 namespace lodforge::testing {
@@ -56,11 +58,19 @@ TEST_F(WriteSceneVrml97, FormatAndNameChooseTheEncoding) {
   // A plain VRML 1.0 output stays VRML 1.0.
   ASSERT_EQ(run_lodforge("lod -q " + in + " -o " + path("d.wrl")).exit_code, 0);
   EXPECT_TRUE(read_text(path("d.wrl")).starts_with("#VRML V1.0 ascii"));
-  // The XML encoding is not written from VRML 1.0: exit 1, nothing written.
-  const CommandResult x = run_lodforge("lod -q " + in + " --format x3d -o " + path("e.x3d"));
-  EXPECT_EQ(x.exit_code, 1);
-  EXPECT_NE(x.err.find("--format x3dv"), std::string::npos) << x.err;
-  EXPECT_FALSE(fs::exists(path("e.x3d")));
+  // X3D's XML encoding, by name or by --format: the scene the X3D classic
+  // output holds, and Castle loads it with no complaint it has not of that one.
+  ASSERT_EQ(run_lodforge("lod -q " + in + " -o " + path("e.x3d")).exit_code, 0);
+  ASSERT_EQ(run_lodforge("lod -q " + in + " --format x3d -o " + path("f.out")).exit_code, 0);
+  EXPECT_TRUE(read_text(path("e.x3d")).starts_with("<?xml"));
+  EXPECT_EQ(read_text(path("e.x3d")), read_text(path("f.out")));
+  const scene::Scene e = vrml97::read_x3d_xml_file(path("e.x3d")).scene;
+  const scene::Scene b = vrml97::read_vrml97_file(path("b.x3dv")).scene;
+  // (Field order aside: the XML lists a node's fields before its nodes.)
+  EXPECT_TRUE(vrml97::write_x3d_xml(e) == vrml97::write_x3d_xml(b));
+  EXPECT_EQ(info_triangles(path("e.x3d")), info_triangles(path("b.x3dv")));
+  if (kOutsideReaders && have_view3dscene())
+    EXPECT_EQ(castle_errors(path("e.x3d"), path("home")), castle_errors(path("b.x3dv"), path("home")));
 }
 
 TEST_F(WriteSceneVrml97, EveryVrml1CorpusFileIsReadByCastleAndCoin) {

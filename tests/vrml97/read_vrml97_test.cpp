@@ -9,6 +9,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
+#include "vrml97/vrml97_corpus.h"
 
 namespace lodforge::vrml97 {
 namespace {
@@ -117,29 +118,6 @@ TEST(ReadVrml97, DeepNestingIsAnError) {
   EXPECT_NE(error_of(text).find("nested deeper than 256"), std::string::npos);
 }
 
-// Every VRML97 file and X3D classic file of the corpus.
-std::vector<std::string> corpus_files() {
-  std::vector<std::string> out;
-  for (const char* dir : {"/vrml2", "/x3d"}) {
-    const std::string root = std::string(LODFORGE_SHARED_DATA) + dir;
-    std::error_code ec;
-    if (!std::filesystem::is_directory(root, ec)) continue;
-    for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
-      const auto ext = e.path().extension().string();
-      if (e.is_regular_file() && (ext == ".wrl" || ext == ".x3dv")) out.push_back(e.path());
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-std::string test_name(const std::string& path) {
-  std::string s = path.substr(std::string(LODFORGE_SHARED_DATA).size() + 1);
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return s;
-}
-
 class RoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RoundTrip, WriteThenReadGivesTheSameScene) {
@@ -151,12 +129,12 @@ TEST_P(RoundTrip, WriteThenReadGivesTheSameScene) {
   EXPECT_EQ(text, write_vrml97(second.scene));
 }
 
-INSTANTIATE_TEST_SUITE_P(Corpus, RoundTrip, ::testing::ValuesIn(corpus_files()),
-                         [](const auto& info) { return test_name(info.param); });
+INSTANTIATE_TEST_SUITE_P(Corpus, RoundTrip, ::testing::ValuesIn(testing::vrml97_corpus_files()),
+                         [](const auto& info) { return testing::corpus_test_name(info.param); });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(RoundTrip);
 
 TEST(RoundTripCorpus, CorpusIsPresent) {
-  EXPECT_GE(corpus_files().size(), 40u) << "expected the corpus at " << LODFORGE_SHARED_DATA;
+  EXPECT_GE(testing::vrml97_corpus_files().size(), 40u) << "expected the corpus at " << LODFORGE_SHARED_DATA;
 }
 
 }  // namespace

@@ -373,11 +373,14 @@ class XmlWriter {
           (f.name.find(' ') == std::string::npos ? f.name : declaration_of(f.name).name).c_str();
       c.append_attribute("protoField") = f.raw.substr(3).c_str();
     }
+    // Interface declarations come first, as the XML encoding lists them.
+    for (const auto& f : n.fields)
+      if (f.name.find(' ') != std::string::npos) declaration(e, f, *this);
     std::vector<const scene::Field*> statements;
     for (const auto& f : n.fields) {
       if (f.is_raw && f.raw.starts_with("IS ") && f.name.find(' ') == std::string::npos) continue;
       if (f.name.find(' ') != std::string::npos) {
-        declaration(e, f, *this);
+        continue;
       } else if (f.is_raw && (f.name == "ROUTE" || f.name == "PROTO" || f.name == "EXTERNPROTO" ||
                               f.name == "IMPORT" || f.name == "EXPORT")) {
         statements.push_back(&f);

@@ -53,14 +53,9 @@ void add_format_command(CLI::App& app, Runner& run) {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
       if (is_vrml97_input(s->input)) {
-        if (gltf::is_gltf_path(s->output))
-          throw DataError(fmt::format(
-              "{}: a VRML97 / X3D scene is written as VRML97 (.wrl) or X3D (.x3dv, .x3d), "
-              "not glTF",
-              s->input));
         vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
+        write_vrml97_as(r.scene, s->input, s->output, s->format, 0, r.log);
         if (!s->read.quiet) print_diagnostics(r.log.entries());
-        write_vrml97_as(r.scene, s->output, s->format);
         return 0;
       }
       vrml1::ReadResult r = read_scene(s->input, s->read);

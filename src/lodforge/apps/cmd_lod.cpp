@@ -232,7 +232,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     // A VRML 1.0 / Inventor scene may be written as VRML97 or X3D classic.
     const std::string as_vrml97 =
         !vrml97 && !gltf && !as_gltf ? vrml97_format_of(s.format, out.output) : "";
-    if (gltf) make_output_folder(out.output);
+    if (gltf || vrml97) make_output_folder(out.output);
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
                        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
                                 : LodResult{};

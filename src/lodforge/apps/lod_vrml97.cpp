@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -17,6 +18,10 @@
 #include "lodforge/io/vrml97/read_x3d_xml.h"
 #include "lodforge/io/vrml97/write_x3d_xml.h"
 #include "lodforge/apps/info_vrml97.h"
+#include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/scene_to_gltf.h"
+#include "lodforge/io/gltf/write_gltf.h"
+#include "lodforge/lod/flatten_vrml97.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
 #include "lodforge/lod/vrml97_geometry.h"
 
@@ -273,12 +278,38 @@ vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& o
   return r;
 }
 
-void write_vrml97_as(const scene::Scene& scene, const std::string& output,
-                     const std::string& format) {
-  if (writes_x3d_xml(output, format))
+bool writes_gltf(const std::string& output, const std::string& format) {
+  return format == "gltf" || format == "glb" || (format.empty() && gltf::is_gltf_path(output));
+}
+
+void write_vrml97_as(const scene::Scene& scene, const std::string& input,
+                     const std::string& output, const std::string& format, double camera_angle,
+                     Log& log) {
+  if (writes_gltf(output, format)) {
+    const Vrml97LodShapes shapes = vrml97_lod_shapes(scene, log);
+    if (!shapes.skipped.empty()) {
+      std::string list;
+      for (const auto& [type, n] : shapes.skipped)
+        list += fmt::format("{}{} ({})", list.empty() ? "" : ", ", type, n);
+      log.warn(LogCategory::kParse, fmt::format("not drawn, so not in the glTF output: {}", list));
+    }
+    if (camera_angle <= 0) camera_angle = viewpoint_field_of_view(scene).value_or(kDefaultFieldOfView);
+    const std::filesystem::path in(input), out(output);
+    const gltf::GltfScene g = gltf::lod_shapes_to_gltf(
+        shapes.shapes,
+        {.camera_angle = camera_angle,
+         .base_dir = input == "-" || !in.has_parent_path() ? "." : in.parent_path().string()},
+        log);
+    gltf::write_gltf_file(
+        g, output,
+        {.binary = format.empty() ? !output.ends_with(".gltf") && !output.ends_with(".gltf.gz")
+                                  : format == "glb",
+         .output_dir = output == "-" || !out.has_parent_path() ? "." : out.parent_path().string()});
+  } else if (writes_x3d_xml(output, format)) {
     vrml97::write_x3d_xml_file(scene, output);
-  else
+  } else {
     vrml97::write_vrml97_file(scene, output);
+  }
 }
 
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
@@ -286,7 +317,7 @@ LodResult lod_vrml97_file(const std::string& input, const std::string& output,
   vrml97::ReadResult r = read_vrml97_as(input, output, format);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
-  write_vrml97_as(result.scene, output, format);
+  write_vrml97_as(result.scene, input, output, format, result.camera_angle, result.log);
   return result;
 }
 

@@ -25,10 +25,20 @@ bool writes_x3d_xml(const std::string& output, const std::string& format);
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
                                   const std::string& format);
 
-/// Writes a scene read by read_vrml97_as to `output` atomically, in X3D XML
-/// when writes_x3d_xml, else in the classic encoding its header names.
-void write_vrml97_as(const scene::Scene& scene, const std::string& output,
-                     const std::string& format);
+/// True if `output` is to be written as glTF: `format` is "gltf" or "glb",
+/// or it is empty and the name ends in .gltf or .glb (optionally .gz).
+bool writes_gltf(const std::string& output, const std::string& format);
+
+/// Writes a scene read by read_vrml97_as (from `input`) to `output`
+/// atomically: as glTF when writes_gltf (every Shape drawn a primitive in
+/// world space, each LOD node a node with MSFT_lod, screen coverages for
+/// `camera_angle`, or the first Viewpoint's fieldOfView when it is <= 0;
+/// ImageTexture files resolved from the input's folder; what is not drawn
+/// named in a warning in `log`), in X3D XML when writes_x3d_xml, else in the
+/// classic encoding its header names. Throws DataError.
+void write_vrml97_as(const scene::Scene& scene, const std::string& input,
+                     const std::string& output, const std::string& format, double camera_angle,
+                     Log& log);
 
 /// Reads `input` and sets the output encoding as read_vrml97_as, runs
 /// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as).

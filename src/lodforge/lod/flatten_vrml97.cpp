@@ -122,6 +122,13 @@ class Flattener {
  public:
   Flattener(const FlattenVrml97Options& options, Log& log) : options_(options), log_(log) {}
 
+  /// Collects each Shape drawn as a shape of its own into `shapes` (by the
+  /// LOD node it is drawn under, every level of it) instead of the one mesh.
+  void collect(Vrml97LodShapes& shapes) {
+    collect_ = &shapes;
+    sink_ = &shapes.shapes.plain;
+  }
+
   void node(const NodePtr& n, const Mat4& m, int depth) {
     if (!n) return;
     if (depth > kMaxDepth)
@@ -163,6 +170,17 @@ class Flattener {
     std::vector<NodePtr> levels = nodes_of(n, "level");
     if (levels.empty()) levels = nodes_of(n, "children");  // X3D
     if (levels.empty()) return;
+    if (collect_ && sink_ == &collect_->shapes.plain) {  // every level, each a group of shapes
+      scene::LodGroup group{.lod = &n, .transform = m};
+      group.levels.resize(levels.size());
+      for (std::size_t k = 0; k < levels.size(); ++k) {
+        sink_ = &group.levels[k];
+        node(levels[k], m, depth + 1);
+      }
+      sink_ = &collect_->shapes.plain;
+      collect_->shapes.lods[{collect_->shapes.lods.size()}] = std::move(group);
+      return;
+    }
     std::size_t k = std::size_t(std::max(options_.lod_level, 0));
     if (options_.viewpoint) {
       // `range` ascends: the level is the number of ranges <= the distance.
@@ -219,7 +237,48 @@ class Flattener {
       return;
     }
     ++out_.shapes;
-    append(piece, m, appearance_of(s), from);
+    const std::size_t vertices = out_.flat.mesh.positions.size();
+    const std::size_t triangles = out_.flat.mesh.triangles.size();
+    const Look look = appearance_of(s);
+    append(piece, m, look, from);
+    if (sink_) sink_->push_back(take_shape(s, vertices, triangles, look.texture));
+  }
+
+  // The shape appended last (from `vertices`, `triangles` on) taken out of
+  // the mesh as a shape of its own, its texture as a Texture2 node.
+  scene::DrawnShape take_shape(const Node& s, std::size_t vertices, std::size_t triangles,
+                               std::uint32_t texture) {
+    auto& flat = out_.flat;
+    scene::DrawnShape d{.node = &s};
+    TriangleMesh& mesh = d.surface.mesh;
+    auto tail = [](auto& from, std::size_t at, auto& to) {
+      to.assign(from.begin() + std::ptrdiff_t(at), from.end());
+      from.resize(at);
+    };
+    tail(flat.mesh.positions, vertices, mesh.positions);
+    tail(flat.mesh.colors, vertices, mesh.colors);
+    tail(flat.mesh.texcoords, vertices, mesh.texcoords);
+    tail(flat.opacity, vertices, d.surface.opacity);
+    tail(flat.mesh.triangles, triangles, mesh.triangles);
+    flat.mesh.materials.resize(triangles);
+    const auto base = std::uint32_t(vertices);
+    for (Triangle& t : mesh.triangles) t = {t[0] - base, t[1] - base, t[2] - base};
+    if (texture == scene::kUntextured) {
+      mesh.texcoords.clear();
+    } else {
+      auto& nodes = collect_->textures;
+      if (nodes.size() <= texture) nodes.resize(flat.textures.size());
+      NodePtr& t = nodes[texture];
+      if (!t) {
+        const scene::SceneTexture& from = flat.textures[texture];
+        t = scene::make_node("Texture2");
+        t->set("filename", scene::make_string(from.filename));
+        t->set("wrapS", scene::make_enum(from.repeat_s ? "REPEAT" : "CLAMP"));
+        t->set("wrapT", scene::make_enum(from.repeat_t ? "REPEAT" : "CLAMP"));
+      }
+      d.surface.texture = t.get();
+    }
+    return d;
   }
 
   struct Look {
@@ -344,6 +403,8 @@ class Flattener {
 
   const FlattenVrml97Options& options_;
   Log& log_;
+  Vrml97LodShapes* collect_ = nullptr;
+  std::vector<scene::DrawnShape>* sink_ = nullptr;  ///< where a collected shape goes
   FlatVrml97 out_;
   bool has_color_ = false;
   std::unordered_map<const Node*, std::uint32_t> texture_of_;
@@ -374,6 +435,16 @@ FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options&
   Flattener f(options, log);
   for (const NodePtr& root : scene.roots) f.node(root, Mat4{}, 0);
   return f.result();
+}
+
+Vrml97LodShapes vrml97_lod_shapes(const scene::Scene& scene, Log& log) {
+  Vrml97LodShapes out;
+  const FlattenVrml97Options options;
+  Flattener f(options, log);
+  f.collect(out);
+  for (const NodePtr& root : scene.roots) f.node(root, Mat4{}, 0);
+  out.skipped = f.result().skipped;
+  return out;
 }
 
 }  // namespace lodforge

@@ -18,6 +18,7 @@
 #include "lodforge/core/log.h"
 #include "lodforge/mesh/triangulate_polygon.h"
 #include "lodforge/scene/flatten_scene.h"
+#include "lodforge/scene/lod_shapes.h"
 #include "lodforge/scene/node.h"
 
 namespace lodforge {
@@ -51,5 +52,20 @@ std::optional<float> viewpoint_field_of_view(const scene::Scene& scene);
 /// Throws DataError for a coordinate that is not finite or a primitive size
 /// that is not. Warnings (bad indices) go to `log`.
 FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options& options, Log& log);
+
+/// The shapes of a VRML97 / X3D scene one by one, in world space with their
+/// colours, texture coordinates and texture, grouped by the LOD node they are
+/// drawn under with every level's shapes (a LOD inside a level drawn at its
+/// first level): what gltf::lod_shapes_to_gltf makes a glTF model of.
+struct Vrml97LodShapes {
+  scene::LodShapes shapes;  ///< `camera` stays null: the angle is viewpoint_field_of_view's
+  /// The Texture2 nodes (filename, wrapS, wrapT) the shapes' textures point
+  /// to, one per ImageTexture drawn.
+  std::vector<scene::NodePtr> textures;
+  std::map<std::string, std::size_t> skipped;  ///< geometry or nodes not drawn, by type
+};
+
+/// Throws as flatten_vrml97.
+Vrml97LodShapes vrml97_lod_shapes(const scene::Scene& scene, Log& log);
 
 }  // namespace lodforge

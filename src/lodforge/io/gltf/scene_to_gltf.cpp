@@ -322,7 +322,11 @@ void add_lod(ModelBuilder& b, const LodGroup& g, double angle, std::size_t numbe
 }  // namespace
 
 GltfScene scene_to_gltf(const scene::Scene& s, const SceneToGltfOptions& options, Log& log) {
-  scene::LodShapes c = scene::collect_lod_shapes(s, log);
+  return lod_shapes_to_gltf(scene::collect_lod_shapes(s, log), options, log);
+}
+
+GltfScene lod_shapes_to_gltf(const scene::LodShapes& c, const SceneToGltfOptions& options,
+                             Log& log) {
   const double angle = camera_angle(options, c.camera);
   ModelBuilder b(options.base_dir.empty() ? "." : options.base_dir);
   for (std::size_t i = 0; i < c.plain.size(); ++i) {

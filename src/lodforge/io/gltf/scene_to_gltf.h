@@ -28,6 +28,7 @@
 
 #include "lodforge/core/log.h"
 #include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/scene/lod_shapes.h"
 #include "lodforge/scene/node.h"
 
 namespace lodforge::gltf {
@@ -45,5 +46,12 @@ struct SceneToGltfOptions {
 /// could not be read) go to `log`. Throws DataError for a shape whose
 /// indices are out of range, as scene::shape_mesh does.
 GltfScene scene_to_gltf(const scene::Scene& scene, const SceneToGltfOptions& options, Log& log);
+
+/// The shapes of a scene as collect_lod_shapes gives them (or a VRML97 /
+/// X3D scene's, lod/flatten_vrml97.h), as scene_to_gltf makes them a glTF
+/// model. Each LodGroup's `lod` node gives its name and `range`; a
+/// DrawnShape's texture is a Texture2 node (`filename`, `wrapS`, `wrapT`).
+GltfScene lod_shapes_to_gltf(const scene::LodShapes& shapes, const SceneToGltfOptions& options,
+                             Log& log);
 
 }  // namespace lodforge::gltf

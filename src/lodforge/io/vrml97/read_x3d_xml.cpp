@@ -7,7 +7,7 @@
 //  | input                                   | what the reader does                        |
 //  |-----------------------------------------|---------------------------------------------|
 //  | attribute of a field whose type is known | written in its classic form (x3d_fields.h)  |
-//  | other attribute                         | by its form: numbers (bracketed if several), |
+//  | other attribute                         | by its form: numbers (bracketed if over 4), |
 //  |                                         | booleans, a quoted list (MFString), else one |
 //  |                                         | string                                      |
 //  | `class`, `id`, `xmlns...`, `a:b`        | left out (XML-only attributes)              |
@@ -367,8 +367,10 @@ class Converter {
     if (v.empty()) return "[]";
     if (v.front() == '"') return fmt::format("[ {} ]", v);
     const auto t = tokens(v);
+    // Up to four numbers: a single value (SFVec3f, SFRotation, ...) of a
+    // field no table names; more: a list.
     if (std::all_of(t.begin(), t.end(), [](auto x) { return is_number_token(x) || is_bool_token(x); }))
-      return numbers(v, t.size() > 1, at, field);
+      return numbers(v, t.size() > 4 || (t.size() > 1 && is_bool_token(t[0])), at, field);
     return quote_classic(value);
   }
 

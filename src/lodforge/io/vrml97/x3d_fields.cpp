@@ -57,6 +57,18 @@ constexpr std::string_view kSFNumberFields[] = {
     "skyColorRGB",   "groundColorRGB", "mediumColor",    "backgroundColor",
 };
 
+// Lists of numbers in the standard nodes (and Castle Game Engine's).
+constexpr std::string_view kMFNumberFields[] = {
+    "key",           "keyValue",       "keyVelocity",     "range",         "height",
+    "coordIndex",    "colorIndex",     "normalIndex",     "texCoordIndex", "index",
+    "point",         "vector",         "skyColor",        "groundColor",   "skyAngle",
+    "groundAngle",   "crossSection",   "spine",           "stripCount",    "fanCount",
+    "vertexCount",   "avatarSize",     "weight",          "knot",          "uKnot",
+    "vKnot",         "skinCoordIndex", "skinCoordWeight", "value",         "lineSegments",
+    "dimensions",    "inverseBindMatrices", "keyValueQuaternions", "depthMap", "fieldOfView",
+    "jointBindingPositions", "jointBindingRotations", "jointBindingScales", "llimit", "ulimit",
+};
+
 struct Container {
   std::string_view field;
   std::string_view types;  // space-separated node types
@@ -82,9 +94,20 @@ constexpr Container kContainers[] = {
     {"color", " Color ColorRGBA "},
     {"texCoord",
      " TextureCoordinate TextureCoordinate3D TextureCoordinate4D MultiTextureCoordinate "
-     "TextureCoordinateGenerator "},
+     "TextureCoordinateGenerator NurbsTextureCoordinate "},
+    {"tangent", " Tangent "},
+    {"source", " AudioClip "},
+    {"geoOrigin", " GeoOrigin "},
+    {"trimmingContour", " Contour2D "},
+    {"emitter",
+     " ConeEmitter ExplosionEmitter PointEmitter PolylineEmitter SurfaceEmitter VolumeEmitter "},
+    {"physics", " BoundedPhysicsModel ForcePhysicsModel WindPhysicsModel "},
+    {"bodies", " RigidBody "},
+    {"layers", " Layer LayoutLayer "},
+    {"viewport", " Viewport "},
+    {"layout", " Layout "},
     {"fontStyle", " FontStyle ScreenFontStyle "},
-    {"shaders", " ComposedShader PackagedShader ProgramShader "},
+    {"shaders", " ComposedShader PackagedShader ProgramShader CommonSurfaceShader "},
     {"parts", " ShaderPart EffectPart "},
     {"programs", " ShaderProgram "},
     {"metadata",
@@ -122,6 +145,7 @@ ValueShape x3d_value_shape(std::string_view node_type, std::string_view field) {
   if (listed(kMFStringFields, field)) return ValueShape::kMFString;
   if (listed(kSFStringFields, field)) return ValueShape::kSFString;
   if (listed(kSFNumberFields, field)) return ValueShape::kSFNumbers;
+  if (listed(kMFNumberFields, field)) return ValueShape::kMFNumbers;
   return ValueShape::kUnknown;
 }
 

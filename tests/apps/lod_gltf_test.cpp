@@ -4,6 +4,7 @@
 // per level), and the input's materials, textures and images.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,7 @@
 #include "core/temp_dir.h"
 #include "gltf/gltf_corpus.h"
 #include "lodforge/io/gltf/read_gltf.h"
+#include "vrml97/vrml97_corpus.h"
 
 namespace lodforge::testing {
 namespace {
@@ -177,6 +179,43 @@ TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {
   EXPECT_NE(r.err.find(bad + ": node 0 refers to mesh 3, but there are 0"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(path("out.glb")));
+}
+
+// VRML97 and X3D scenes (classic and XML) written as glTF: every corpus
+// scene gives a file without a validator error whose level 0 draws the
+// triangles `info` counts in the input; the LOD nodes `lod` writes become
+// MSFT_lod nodes; PNG / JPEG ImageTextures are carried as images.
+using LodVrml97ToGltf = LodGltf;
+TEST_F(LodVrml97ToGltf, EveryCorpusSceneBecomesValidGltf) {
+  const auto files = vrml97_corpus_files(true);
+  ASSERT_GE(files.size(), 50u) << "expected the corpus at " << LODFORGE_SHARED_DATA;
+  std::size_t with_lod = 0, with_images = 0, drawing = 0;
+  for (const std::string& input : files) {
+    const std::string output = path("out.glb");
+    fs::remove(output);
+    const CommandResult r = run_lodforge("lod -q '" + input + "' -o " + output);
+    ASSERT_EQ(r.exit_code, 0) << input << ": " << r.err;
+    const nlohmann::json report = validate(output);
+    EXPECT_EQ(report["errors"], 0) << input << ": " << report.dump(1);
+    auto triangles = [](const std::string& file) {
+      const CommandResult info = run_lodforge("info --json -q '" + file + "'");
+      EXPECT_EQ(info.exit_code, 0) << file << ": " << info.err;
+      return info.exit_code ? SIZE_MAX : nlohmann::json::parse(info.out)["triangles"].get<std::size_t>();
+    };
+    const std::size_t drawn = triangles(input);
+    EXPECT_EQ(triangles(output), drawn) << input;
+    drawing += drawn > 0;
+    const auto out = gltf::read_gltf_file(output).scene.model;
+    const bool lod = std::any_of(out.nodes.begin(), out.nodes.end(), [](const auto& n) {
+      return n.extensions.count("MSFT_lod") > 0;
+    });
+    with_lod += lod;
+    with_images += !out.images.empty();
+  }
+  // Most scenes that draw get LODs (the rest are too small to simplify);
+  // the textured ones keep their images.
+  EXPECT_GE(with_lod * 2, drawing) << with_lod << " of " << drawing;
+  EXPECT_GE(with_images, 10u);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <map>
 
 #include "lodforge/core/error.h"
+#include "lodforge/core/file_io.h"
 #include "lodforge/mesh/vertex_normals.h"
 #include "lodforge/scene/flatten_scene.h"
 #include "lodforge/scene/lod_shapes.h"
@@ -76,6 +77,8 @@ class ModelBuilder {
   std::size_t inline_images() const { return inline_images_; }
   /// Texture2 file names that name no file relative to the base folder.
   const std::vector<std::string>& missing_textures() const { return missing_; }
+  /// Texture files that are no PNG or JPEG image (glTF's image formats).
+  const std::vector<std::string>& unsupported_textures() const { return unsupported_; }
 
  private:
   template <class T>
@@ -165,6 +168,8 @@ class ModelBuilder {
       ++inline_images_;
     } else if (!readable_file(name)) {
       missing_.push_back(name);
+    } else if (!png_or_jpeg(name)) {
+      unsupported_.push_back(name);
     } else {
       tinygltf::Image image;
       image.uri = uri_of(name);
@@ -240,8 +245,15 @@ class ModelBuilder {
   std::map<const Node*, int> textures_;
   std::map<std::pair<int, bool>, int> materials_;
   std::size_t inline_images_ = 0;
-  std::vector<std::string> missing_;
+  std::vector<std::string> missing_, unsupported_;
   std::string base_dir_;
+
+  // True if the file starts as a PNG or a JPEG image does.
+  bool png_or_jpeg(const std::string& name) const {
+    const std::string head =
+        read_head((std::filesystem::path(base_dir_) / std::filesystem::path(name)).string(), 4);
+    return head.starts_with("\x89PNG") || head.starts_with("\xFF\xD8\xFF");
+  }
 
   // A relative file name of an existing file under the base folder (a glTF
   // URI may not be absolute, and a missing image makes the file invalid).
@@ -341,6 +353,11 @@ GltfScene lod_shapes_to_gltf(const scene::LodShapes& c, const SceneToGltfOptions
              fmt::format("{} Texture2 images are given inline in the file; the glTF output "
                          "leaves them out (their shapes keep their colours)",
                          inline_images));
+  for (const std::string& name : b.unsupported_textures())
+    log.warn(LogCategory::kTexCoord,
+             fmt::format("texture file \"{}\" is no PNG or JPEG image, the formats glTF "
+                         "takes; the glTF output leaves it out (its shapes keep their colours)",
+                         name));
   for (const std::string& name : b.missing_textures())
     log.warn(LogCategory::kTexCoord,
              fmt::format("Texture2 file \"{}\" is not a file beside the scene; the glTF output "

@@ -250,6 +250,26 @@ try {
   const command = await page.$eval('#command-line', (e) => e.value);
   if (!command.includes('--quality cone=2')) fail(`the Cone tab's quality is not in the command line: ${command}`);
   console.log(`${textured} textured meshes; Cone tab: ${command}`);
+  // The reading, writing and message options go into the command line too.
+  await page.click('#options input[name="minimize"]');
+  await page.click('#options input[name="inline"]');
+  await page.click('#options input[name="verbose-join"]');
+  await page.click('#options input[name="verbose-face"]');
+  await page.select('#options select[name="format"]', 'x3dv');
+  await page.type('#options input[name="floats-per-line"]', '3');
+  await page.type('#options input[name="max-triangles"]', '500000');
+  const written = await page.$eval('#command-line', (e) => e.value);
+  for (const part of ['--floats-per-line 3 --format x3dv --inline', '--max-triangles 500000 --minimize',
+    '--verbose face --verbose join'])
+    if (!written.includes(part)) fail(`'${part}' is not in the command line: ${written}`);
+  console.log(`writing options: ${written}`);
+  // Back to the defaults for the runs below.
+  for (const name of ['minimize', 'inline', 'verbose-join', 'verbose-face']) await page.click(`#options input[name="${name}"]`);
+  await page.select('#options select[name="format"]', '');
+  await page.$eval('#options', (f) => {
+    for (const n of ['floats-per-line', 'max-triangles']) f.elements[n].value = '';
+    f.dispatchEvent(new Event('input', { bubbles: true }));
+  });
 
   if (process.env.STUDIO_SCREENSHOT) {  // the README's picture
     await page.evaluate((d) => window.studio.viewFrom(d), near * 1.5);

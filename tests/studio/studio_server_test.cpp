@@ -3,10 +3,12 @@
 // the refusal of paths outside the folders it was given.
 #include "lodforge/studio/studio_server.h"
 
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -165,6 +167,102 @@ TEST_F(StudioServerTest, LodRunEqualsThePipelineAndSaves) {
     lods += std::count_if(v.path.begin(), v.path.end(), [](auto* n) { return n->type == "LOD"; });
   });
   EXPECT_EQ(lods, direct.shapes.size());
+}
+
+TEST_F(StudioServerTest, WriterOptionsAndFormatTakeEffectOnSave) {
+  const auto save = [&](const json& options, const std::string& name) {
+    json status = run_lod(kRocket, options);
+    EXPECT_EQ(status["state"], "done") << status.dump();
+    const fs::path out = dir_ / name;
+    json saved = post("/api/save", {{"path", kRocket}, {"output", out.string()}});
+    EXPECT_EQ(saved["written"], out.string());
+    return std::make_pair(saved, read_file(out.string()));
+  };
+  const auto [plain_answer, plain] = save(json::object(), "plain.wrl");
+  EXPECT_EQ(plain_answer["format"], "vrml1");
+  const auto [minimized_answer, minimized] = save({{"minimize", true}}, "minimized.wrl");
+  EXPECT_LT(minimized.size(), plain.size() * 9 / 10);
+  EXPECT_EQ(std::count(minimized.begin(), minimized.end(), '\n'), 3)
+      << "the header, a blank line and the scene on one line";
+  const auto [untabbed_answer, untabbed] = save({{"no-tabs", true}}, "untabbed.wrl");
+  EXPECT_LT(untabbed.size(), plain.size());
+  EXPECT_EQ(untabbed.find("\n "), std::string::npos);
+  EXPECT_EQ(untabbed.find("\n\t"), std::string::npos);
+  // One float per line: more lines than the default six.
+  const auto [narrow_answer, narrow] = save({{"floats-per-line", 1}}, "narrow.wrl");
+  EXPECT_GT(std::count(narrow.begin(), narrow.end(), '\n'),
+            std::count(plain.begin(), plain.end(), '\n'));
+  // The same LOD scene in each (the writer options change only the layout).
+  const auto lod_count = [](const std::string& path) {
+    std::size_t lods = 0;
+    scene::traverse(vrml1::read_vrml1_file(path).scene, [&](const scene::ShapeVisit& v) {
+      lods += std::count_if(v.path.begin(), v.path.end(), [](auto* n) { return n->type == "LOD"; });
+    });
+    return lods;
+  };
+  EXPECT_EQ(lod_count((dir_ / "minimized.wrl").string()), lod_count((dir_ / "plain.wrl").string()));
+  EXPECT_GT(lod_count((dir_ / "plain.wrl").string()), 0u);
+
+  // --format x3dv writes X3D classic whatever the name; an .x3dv name alone
+  // does too, and --format vrml97 / glb as the CLI.
+  const auto [x3d_answer, x3d] = save({{"format", "x3dv"}}, "rocket_x3d.wrl");
+  EXPECT_EQ(x3d_answer["format"], "x3dv");
+  EXPECT_TRUE(x3d.starts_with("#X3D V3.0 utf8")) << x3d.substr(0, 40);
+  const auto [named_answer, named] = save(json::object(), "rocket.x3dv");
+  EXPECT_TRUE(named.starts_with("#X3D V3.0 utf8")) << named.substr(0, 40);
+  const auto [vrml97_answer, vrml97] = save({{"format", "vrml97"}}, "rocket97.wrl");
+  EXPECT_TRUE(vrml97.starts_with("#VRML V2.0 utf8")) << vrml97.substr(0, 40);
+  const auto [glb_answer, glb] = save({{"format", "glb"}}, "rocket.glb");
+  EXPECT_EQ(glb_answer["format"], "glb");
+  EXPECT_TRUE(glb.starts_with("glTF")) << "binary glTF magic";
+
+  // Byte for byte what `lodforge lod` writes with the same options.
+  const auto cli = [&](const std::string& args, const std::string& name) {
+    const std::string out = (dir_ / name).string();
+    const std::string command =
+        fmt::format("{} lod '{}' -o '{}' -q {}", LODFORGE_EXE, kRocket, out, args);
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return read_file(out);
+  };
+  EXPECT_EQ(minimized, cli("--minimize", "cli_minimized.wrl"));
+  EXPECT_EQ(narrow, cli("--floats-per-line 1", "cli_narrow.wrl"));
+  EXPECT_EQ(x3d, cli("--format x3dv", "cli_x3d.wrl"));
+}
+
+TEST_F(StudioServerTest, ReadingOptionsRereadTheScene) {
+  // A scene whose only shape is in a WWWInline: without --inline the run
+  // sees no shape, with it the inlined cube set.
+  std::ofstream(dir_ / "part.wrl")
+      << "#VRML V1.0 ascii\nSeparator { Coordinate3 { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] }\n"
+         "IndexedFaceSet { coordIndex [0, 1, 2, 3, -1] } }\n";
+  std::ofstream(dir_ / "main.wrl")
+      << "#VRML V1.0 ascii\nSeparator { WWWInline { name \"part.wrl\" } }\n";
+  const std::string main_scene = (dir_ / "main.wrl").string();
+  post("/api/open", {{"path", main_scene}});
+  json plain = run_lod(main_scene, json::object());
+  ASSERT_EQ(plain["state"], "done") << plain.dump();
+  EXPECT_EQ(plain["result"]["shapes"].size(), 0u);
+  json inlined = run_lod(main_scene, {{"inline", true}});
+  ASSERT_EQ(inlined["state"], "done") << inlined.dump();
+  EXPECT_EQ(inlined["result"]["shapes"].size(), 1u);
+  EXPECT_NE(inlined["command_line"].get<std::string>().find("--inline"), std::string::npos);
+  // --max-triangles below the scene's count refuses it, as the CLI does.
+  json limited = run_lod(kRocket, {{"max-triangles", 1}});
+  ASSERT_EQ(limited["state"], "failed") << limited.dump();
+  EXPECT_NE(limited["error"].get<std::string>().find("triangles"), std::string::npos) << limited;
+  json instances = run_lod(kRocket, {{"max-instances", 2}});
+  ASSERT_EQ(instances["state"], "failed") << instances.dump();
+  EXPECT_NE(instances["error"].get<std::string>().find("instances"), std::string::npos)
+      << instances;
+}
+
+TEST_F(StudioServerTest, VerboseKeepsOnlyTheMessagesOfItsCategories) {
+  json status = run_lod(kRocket, {{"verbose", {"join"}}});
+  ASSERT_EQ(status["state"], "done") << status.dump();
+  for (const auto& m : status["result"]["messages"])
+    if (m["level"] == "message") EXPECT_EQ(m["category"], "join") << m;
+  json bad = post("/api/lod", {{"path", kRocket}, {"options", {{"verbose", {"colour"}}}}}, 400);
+  EXPECT_NE(bad["error"].get<std::string>().find("unknown category 'colour'"), std::string::npos);
 }
 
 TEST_F(StudioServerTest, BadOptionsAreRefusedWithTheOptionNamed) {

@@ -36,6 +36,15 @@ double number(const json& value, const std::string& key, double low, double high
   return v;
 }
 
+// A whole number in [low, high], as `lodforge lod` reads an integer option
+// (2.5 is refused, not truncated).
+long long whole(const json& value, const std::string& key, double low, double high) {
+  const double v = number(value, key, low, high);
+  if (v != std::floor(v))
+    throw DataError(fmt::format("option {}: expected a whole number, got {}", key, value.dump()));
+  return static_cast<long long>(v);
+}
+
 std::string text(const json& value, const std::string& key,
                  std::initializer_list<std::string_view> allowed) {
   if (!value.is_string())
@@ -183,6 +192,50 @@ LodRequest lod_request(const json& options, const std::string& scene, const std:
     } else if (key == "extract") {
       o.extract = int(number(value, key, -1, 1000));
       arg(key, std::to_string(*o.extract));
+    } else if (key == "format") {
+      if (value.is_string() && value.get<std::string>() == "x3d")
+        throw DataError(
+            "option format: a VRML 1.0 scene is written as X3D classic (x3dv), not in the XML "
+            "encoding (x3d)");
+      r.format = text(value, key, {"vrml97", "x3dv", "gltf", "glb"});
+      arg(key, r.format);
+    } else if (key == "inline") {
+      if (!flag(value, key)) continue;
+      r.read.read_inlines = true;
+      r.reread = true;
+      arg(key, "");
+    } else if (key == "max-instances" || key == "max-triangles") {
+      // 2^53: the largest whole number a JSON number carries exactly.
+      const auto v = std::uint64_t(whole(value, key, 0, 9007199254740992.0));
+      (key == "max-instances" ? r.read.max_instances : r.read.max_triangles) = v;
+      r.reread = true;
+      arg(key, std::to_string(v));
+    } else if (key == "floats-per-line" || key == "ints-per-line") {
+      const int v = int(whole(value, key, 1, 1000000));
+      (key == "floats-per-line" ? r.write.floats_per_line : r.write.ints_per_line) = v;
+      arg(key, std::to_string(v));
+    } else if (key == "no-tabs" || key == "minimize") {
+      if (!flag(value, key)) continue;
+      (key == "no-tabs" ? r.write.no_tabs : r.write.minimize) = true;
+      arg(key, "");
+    } else if (key == "verbose") {
+      for (const auto& item : strings(value, key)) {
+        r.verbose_given = true;
+        // "coord,face" as the command line's delimiter takes it.
+        for (std::size_t pos = 0; pos <= item.size();) {
+          const std::size_t comma = std::min(item.find(',', pos), item.size());
+          const std::string name = item.substr(pos, comma - pos);
+          LogCategory c;
+          if (!parse_category(name, c))
+            throw DataError(fmt::format(
+                "option verbose: unknown category '{}' (coord, material, normal, texcoord, "
+                "face, line, join, triangulator)",
+                name));
+          r.verbose.push_back(c);
+          pos = comma + 1;
+        }
+        arg(key, item);
+      }
     } else if (key == "threads") {
       o.threads = int(number(value, key, 0, 1024));
       arg(key, std::to_string(o.threads));
@@ -190,7 +243,12 @@ LodRequest lod_request(const json& options, const std::string& scene, const std:
       throw DataError(fmt::format("unknown option '{}' (the long options of `lodforge lod`)", key));
     }
   }
-  for (const auto& a : args) r.command_line += (r.command_line.empty() ? "" : " ") + shell_word(a);
+  // Appended piece by piece: `" " + word` makes GCC 12 warn of a memcpy
+  // overlap that cannot happen (GCC bug 105329).
+  for (const auto& a : args) {
+    if (!r.command_line.empty()) r.command_line += ' ';
+    r.command_line += shell_word(a);
+  }
   return r;
 }
 

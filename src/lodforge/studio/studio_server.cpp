@@ -16,8 +16,13 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/scene_to_gltf.h"
+#include "lodforge/io/gltf/write_gltf.h"
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
+#include "lodforge/io/vrml97/vrml1_to_vrml97.h"
+#include "lodforge/io/vrml97/write_vrml97.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 #include "lodforge/scene/statistics.h"
@@ -86,7 +91,48 @@ struct LodJob {
   std::uint64_t done = 0, total = 0;
   std::shared_ptr<LodResult> result;
   json result_json;
+  std::string format;         // LodRequest::format, for Save
+  vrml1::WriteOptions write;  // LodRequest::write, for Save
 };
+
+// The language Save writes, as `lodforge lod` decides it for a VRML 1.0
+// scene (apps/cmd_lod.cpp: vrml97_format_of, gltf_binary_name, which live in
+// the executable): --format, else the output's name (.glb / .gltf glTF,
+// .x3dv X3D classic, optionally .gz), else VRML 1.0.
+//   format given   | output name         | written as
+//   gltf / glb     | any                 | glTF JSON / binary glTF
+//   vrml97 / x3dv  | any                 | VRML97 / X3D classic
+//   none           | .glb / .gltf (.gz)  | binary glTF / glTF JSON
+//   none           | .x3dv (.gz)         | X3D classic
+//   none           | anything else       | VRML 1.0 (the writer options apply)
+std::string save_format(const std::string& format, const std::string& output) {
+  if (!format.empty()) return format;
+  std::string lower = output;
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (gltf::is_gltf_path(lower)) {
+    if (lower.ends_with(".gz")) lower.resize(lower.size() - 3);
+    return lower.ends_with(".glb") ? "glb" : "gltf";
+  }
+  if (output.ends_with(".x3dv") || output.ends_with(".x3dv.gz")) return "x3dv";
+  return "vrml1";
+}
+
+// Writes the LOD scene to `out` in `format` (save_format); the conversion's
+// warnings go to `log`.
+void write_lod_scene(const scene::Scene& scene, const fs::path& out, const std::string& format,
+                     const vrml1::WriteOptions& write, double camera_angle, Log& log) {
+  if (format == "gltf" || format == "glb") {
+    const std::string folder = out.parent_path().string();
+    const gltf::GltfScene g =
+        gltf::scene_to_gltf(scene, {.camera_angle = camera_angle, .base_dir = folder}, log);
+    gltf::write_gltf_file(g, out.string(), {.binary = format == "glb", .output_dir = folder});
+  } else if (format == "vrml97" || format == "x3dv") {
+    vrml97::write_vrml97_file(vrml97::vrml1_to_vrml97(scene, {.x3d = format == "x3dv"}, log),
+                              out.string());
+  } else {
+    vrml1::write_vrml1_file(scene, out.string(), write);
+  }
+}
 
 struct LoadedScene {
   std::string path;  // canonical
@@ -323,17 +369,23 @@ struct StudioServer::Impl {
       throw ApiError(400, e.what());
     }
     if (options.threads) request.options.threads = options.threads;
-    s.job = LodJob{.state = "running", .command_line = request.command_line};
+    s.job = LodJob{.state = "running",
+                   .command_line = request.command_line,
+                   .format = request.format,
+                   .write = request.write};
     running_job = true;
     for (auto& w : workers) w.join();
     workers.clear();
-    workers.emplace_back([this, &s, request, scene = *s.scene]() mutable {
-      run_job(s, std::move(request), std::move(scene));
+    workers.emplace_back([this, &s, request, scene = *s.scene, edited = s.edited]() mutable {
+      run_job(s, std::move(request), std::move(scene), std::move(edited));
     });
     return {{"state", "running"}, {"command_line", request.command_line}};
   }
 
-  void run_job(LoadedScene& s, LodRequest request, scene::Scene scene) {
+  // Runs the pipeline on `scene`, the loaded one, or on the scene read again
+  // (from `edited`, else the file) when the request has reading options.
+  void run_job(LoadedScene& s, LodRequest request, scene::Scene scene,
+               std::optional<std::string> edited) {
     request.options.progress = [this, &s](std::string_view stage, std::uint64_t done,
                                           std::uint64_t total) {
       std::lock_guard lock(mutex);
@@ -343,19 +395,38 @@ struct StudioServer::Impl {
     };
     std::shared_ptr<LodResult> result;
     std::string error;
+    std::optional<std::vector<Diagnostic>> read_warnings;
     try {
-      // The copy shares its nodes with the loaded scene, which the taking
-      // overload of generate_lod could change: the copying one is used.
-      const scene::Scene& shared = scene;
-      result = std::make_shared<LodResult>(generate_lod(shared, request.options));
+      if (request.reread) {
+        // Read with --inline / --max-instances / --max-triangles as the CLI
+        // reads the file; the result owns its nodes.
+        vrml1::ReadOptions read = request.read;
+        read.source_name = s.path;
+        read.base_dir = fs::path(s.path).parent_path().string();
+        vrml1::ReadResult r =
+            edited ? vrml1::read_vrml1(*edited, read) : vrml1::read_vrml1_file(s.path, read);
+        read_warnings = r.log.entries();
+        result = std::make_shared<LodResult>(generate_lod(std::move(r.scene), request.options));
+      } else {
+        // The copy shares its nodes with the loaded scene, which the taking
+        // overload of generate_lod could change: the copying one is used.
+        const scene::Scene& shared = scene;
+        result = std::make_shared<LodResult>(generate_lod(shared, request.options));
+      }
     } catch (const std::exception& e) {
       error = e.what();
     }
     std::lock_guard lock(mutex);
     if (result) {
       s.job.result_json = result_json(*result);
-      std::vector<Diagnostic> messages = s.warnings;
-      for (const auto& d : result->log.entries()) messages.push_back(d);
+      std::vector<Diagnostic> messages = read_warnings ? *read_warnings : s.warnings;
+      // With --verbose, the messages `lodforge lod` prints: warnings and
+      // errors, and plain messages of the categories given.
+      for (const auto& d : result->log.entries())
+        if (!request.verbose_given || d.level != LogLevel::kMessage ||
+            std::find(request.verbose.begin(), request.verbose.end(), d.category) !=
+                request.verbose.end())
+          messages.push_back(d);
       s.job.result_json["messages"] = diagnostics_json(messages);
       s.job.result = std::move(result);
       s.job.state = "done";
@@ -379,13 +450,16 @@ struct StudioServer::Impl {
 
   json save(const json& body) {
     std::shared_ptr<LodResult> result;
-    std::string input;
+    std::string input, format;
+    vrml1::WriteOptions write;
     {
       std::lock_guard lock(mutex);
       LoadedScene& s = scene_of(body.value("path", ""));
       if (s.job.state != "done") throw ApiError(400, s.path + ": no LOD result to save (Make LOD)");
       result = s.job.result;
       input = s.path;
+      format = s.job.format;
+      write = s.job.write;
     }
     const fs::path out = allowed(body.value("output", ""));
     if (out == fs::path(input)) throw ApiError(400, out.string() + ": the output is the input");
@@ -395,13 +469,18 @@ struct StudioServer::Impl {
     std::unordered_map<const scene::Node*, scene::NodePtr> done;
     for (auto& root : copy.roots) root = scene::copy_subtree(root, done);
     scene::relocate_references(copy, fs::path(input).parent_path(), out.parent_path());
+    const std::string as = save_format(format, out.string());
+    Log log;
     try {
-      vrml1::write_vrml1_file(copy, out.string());
+      write_lod_scene(copy, out, as, write, result->camera_angle, log);
     } catch (const DataError& e) {
       throw ApiError(400, e.what());
     }
     std::error_code ec;
-    return {{"written", out.string()}, {"bytes", fs::file_size(out, ec)}};
+    return {{"written", out.string()},
+            {"format", as},
+            {"bytes", fs::file_size(out, ec)},
+            {"messages", diagnostics_json(log.entries())}};
   }
 
   std::string geometry(const std::string& path, const std::string& which) {

@@ -19,7 +19,11 @@
 ///                                    failed), progress, command line, and
 ///                                    when done the statistics and messages
 ///   POST /api/save  {path, output}   writes the last result through the
-///                                    CLI's atomic writer
+///                                    CLI's atomic writer, in the language
+///                                    and with the writer options of its run
+///                                    (--format, else the output's name, as
+///                                    `lodforge lod`): {written, format,
+///                                    bytes, messages of the conversion}
 ///   GET  /api/texture?path=P&file=F  the image file F of a Texture2 of
 ///                                    scene P (relative to its folder)
 ///   GET  /api/text?path=P            {path, text, edited}: the scene's text

@@ -241,6 +241,8 @@ function options() {
   const defaults = { method: 'qem', export: 'spec' };
   for (const e of form.elements) {
     if (!e.name) continue;
+    // verbose-CATEGORY: one box per category of --verbose, in the page's order.
+    if (e.name.startsWith('verbose-')) { if (e.checked) (o.verbose ||= []).push(e.name.slice(8)); continue; }
     if (e.type === 'checkbox') { if (e.checked) o[e.name] = true; continue; }
     if (e.value === '' || defaults[e.name] === e.value) continue;
     if (e.name.startsWith('quality-')) (o.quality ||= []).push(`${e.name.slice(8)}=${e.value}`);
@@ -310,7 +312,7 @@ $('save').addEventListener('click', async () => {
   $('save-state').textContent = '';
   try {
     const r = await api('POST', '/api/save', { path: state.current, output: $('save-path').value });
-    $('save-state').textContent = `written ${r.written} (${r.bytes} bytes)`;
+    $('save-state').textContent = `written ${r.written} as ${r.format} (${r.bytes} bytes)`;
   } catch (err) { $('save-state').textContent = err.message; $('save-state').className = 'error'; }
 });
 

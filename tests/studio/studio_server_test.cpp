@@ -227,6 +227,11 @@ TEST_F(StudioServerTest, WriterOptionsAndFormatTakeEffectOnSave) {
   EXPECT_EQ(minimized, cli("--minimize", "cli_minimized.wrl"));
   EXPECT_EQ(narrow, cli("--floats-per-line 1", "cli_narrow.wrl"));
   EXPECT_EQ(x3d, cli("--format x3dv", "cli_x3d.wrl"));
+  // The XML encoding, by name or by --format, as the CLI writes it.
+  const auto [xml_answer, xml] = save(json::object(), "rocket.x3d");
+  EXPECT_EQ(xml_answer["format"], "x3d");
+  EXPECT_TRUE(xml.starts_with("<?xml")) << xml.substr(0, 40);
+  EXPECT_EQ(xml, cli("--format x3d", "cli_xml.out"));
 }
 
 TEST_F(StudioServerTest, ReadingOptionsRereadTheScene) {

@@ -193,11 +193,7 @@ LodRequest lod_request(const json& options, const std::string& scene, const std:
       o.extract = int(number(value, key, -1, 1000));
       arg(key, std::to_string(*o.extract));
     } else if (key == "format") {
-      if (value.is_string() && value.get<std::string>() == "x3d")
-        throw DataError(
-            "option format: a VRML 1.0 scene is written as X3D classic (x3dv), not in the XML "
-            "encoding (x3d)");
-      r.format = text(value, key, {"vrml97", "x3dv", "gltf", "glb"});
+      r.format = text(value, key, {"vrml97", "x3dv", "x3d", "gltf", "glb"});
       arg(key, r.format);
     } else if (key == "inline") {
       if (!flag(value, key)) continue;

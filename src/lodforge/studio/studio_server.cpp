@@ -23,6 +23,8 @@
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/io/vrml97/vrml1_to_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
+#include "lodforge/io/vrml97/read_x3d_xml.h"
+#include "lodforge/io/vrml97/write_x3d_xml.h"
 #include "lodforge/lod/generate_lod.h"
 #include "lodforge/scene/relocate_references.h"
 #include "lodforge/scene/statistics.h"
@@ -98,12 +100,13 @@ struct LodJob {
 // The language Save writes, as `lodforge lod` decides it for a VRML 1.0
 // scene (apps/cmd_lod.cpp: vrml97_format_of, gltf_binary_name, which live in
 // the executable): --format, else the output's name (.glb / .gltf glTF,
-// .x3dv X3D classic, optionally .gz), else VRML 1.0.
-//   format given   | output name         | written as
-//   gltf / glb     | any                 | glTF JSON / binary glTF
-//   vrml97 / x3dv  | any                 | VRML97 / X3D classic
-//   none           | .glb / .gltf (.gz)  | binary glTF / glTF JSON
-//   none           | .x3dv (.gz)         | X3D classic
+// .x3dv X3D classic, .x3d X3D XML, optionally .gz), else VRML 1.0.
+//   format given        | output name         | written as
+//   gltf / glb          | any                 | glTF JSON / binary glTF
+//   vrml97 / x3dv / x3d | any                 | VRML97 / X3D classic / X3D XML
+//   none                | .glb / .gltf (.gz)  | binary glTF / glTF JSON
+//   none                | .x3dv (.gz)         | X3D classic
+//   none                | .x3d (.gz), .x3dz   | X3D XML
 //   none           | anything else       | VRML 1.0 (the writer options apply)
 std::string save_format(const std::string& format, const std::string& output) {
   if (!format.empty()) return format;
@@ -114,6 +117,7 @@ std::string save_format(const std::string& format, const std::string& output) {
     return lower.ends_with(".glb") ? "glb" : "gltf";
   }
   if (output.ends_with(".x3dv") || output.ends_with(".x3dv.gz")) return "x3dv";
+  if (vrml97::is_x3d_xml_path(output)) return "x3d";
   return "vrml1";
 }
 
@@ -126,6 +130,8 @@ void write_lod_scene(const scene::Scene& scene, const fs::path& out, const std::
     const gltf::GltfScene g =
         gltf::scene_to_gltf(scene, {.camera_angle = camera_angle, .base_dir = folder}, log);
     gltf::write_gltf_file(g, out.string(), {.binary = format == "glb", .output_dir = folder});
+  } else if (format == "x3d") {
+    vrml97::write_x3d_xml_file(vrml97::vrml1_to_vrml97(scene, {.x3d = true}, log), out.string());
   } else if (format == "vrml97" || format == "x3dv") {
     vrml97::write_vrml97_file(vrml97::vrml1_to_vrml97(scene, {.x3d = format == "x3dv"}, log),
                               out.string());

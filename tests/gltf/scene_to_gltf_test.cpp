@@ -102,13 +102,14 @@ TEST(SceneToGltf, ShapesKeepTheirColoursAndWorldPlace) {
 }
 
 // Texture2 files beside the scene become images (file names as URIs); an
-// inline image or a missing file is left out with a warning, so the output
-// stays valid.
+// inline image, a missing file or one that is no PNG or JPEG is left out
+// with a warning, so the output stays valid.
 TEST(SceneToGltf, TextureFilesBecomeImagesTheRestIsLeftOutWithWarnings) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("lodforge_scene_to_gltf_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "maps");
-  std::ofstream(dir / "maps" / "wood grain.png") << "not decoded";
+  std::ofstream(dir / "maps" / "wood grain.png") << "\x89PNG\r\n\x1a\n, not decoded";
+  std::ofstream(dir / "maps" / "bark.tga") << "a Targa image";
   Log log;
   const tinygltf::Model m = scene_to_gltf(vrml1::read_vrml1(R"(#VRML V1.0 ascii
 Separator {
@@ -124,6 +125,10 @@ Separator {
   Separator {
     Texture2 { filename "no_such_file.png" }
     IndexedFaceSet { coordIndex [1, 2, 0, -1] }
+  }
+  Separator {
+    Texture2 { filename "maps/bark.tga" }
+    IndexedFaceSet { coordIndex [2, 0, 1, -1] }
   }
 })")
                                               .scene,
@@ -146,6 +151,7 @@ Separator {
   for (const auto& e : log.entries()) warnings += e.text + "\n";
   EXPECT_NE(warnings.find("inline"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("no_such_file.png"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("\"maps/bark.tga\" is no PNG or JPEG"), std::string::npos) << warnings;
 }
 
 }  // namespace

@@ -92,6 +92,21 @@ TEST(FlattenVrml97, TexturesAndTheirCoordinates) {
   EXPECT_EQ(m.texcoords[6], (Vec2{1, 0.5f}));
 }
 
+// A TextureTransform: Tc' = -C × S × R × C × T × Tc (ISO/IEC 14772-1 6.49,
+// X3D 18.4.8; as Castle Model Viewer draws it).
+TEST(FlattenVrml97, TextureTransformMovesTheTextureCoordinates) {
+  const FlatVrml97 f = flat(
+      "Shape { appearance Appearance { texture ImageTexture { url \"a.png\" } "
+      "textureTransform TextureTransform { translation 1 0 scale 2 3 center 0.5 0.5 } } "
+      "geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] } "
+      "coordIndex [0 1 2 -1] texCoord TextureCoordinate { point [0 0, 1 0, 0 1] } } }");
+  const TriangleMesh& m = f.flat.mesh;
+  ASSERT_EQ(m.texcoords.size(), 3u);
+  // (0, 0): T (1, 0), C (1.5, 0.5), S (3, 1.5), -C (2.5, 1), as the formula reads.
+  EXPECT_NEAR(m.texcoords[0].x, 2.5f, 1e-6f);
+  EXPECT_NEAR(m.texcoords[0].y, 1.0f, 1e-6f);
+}
+
 // An ElevationGrid's default texture coordinates (made by the geometry
 // reader): s along x, t along z.
 TEST(FlattenVrml97, ElevationGridTextureCoordinates) {

@@ -162,5 +162,43 @@ Separator {
   EXPECT_EQ(m.materials.back(), kUntextured);
 }
 
+// Texture2Transform moves the texture coordinates (scale and rotation about
+// the center, then translation), accumulating as transforms do, within its
+// Separator only.
+TEST(FlattenScene, Texture2TransformMovesTextureCoordinatesAndAccumulates) {
+  const vrml1::ReadResult r = vrml1::read_vrml1(R"(#VRML V1.0 ascii
+Separator {
+  Texture2 { filename "wood.jpg" }
+  Coordinate3 { point [0 0 0, 1 0 0, 0 1 0] }
+  TextureCoordinate2 { point [0 0, 1 0, 0 1] }
+  Separator {
+    Texture2Transform { translation 0.5 0.25 }
+    IndexedFaceSet { coordIndex [0, 1, 2, -1] }
+    Texture2Transform { scaleFactor 2 2 center 1 0 }
+    IndexedFaceSet { coordIndex [0, 1, 2, -1] }
+  }
+  Texture2Transform { rotation 1.5707963 }
+  IndexedFaceSet { coordIndex [0, 1, 2, -1] }
+})");
+  const FlatScene flat = flatten_scene_appearance(r.scene);
+  const TriangleMesh& m = flat.mesh;
+  ASSERT_EQ(m.triangle_count(), 3u);
+  auto uv_at = [&](std::size_t f, const Vec3& p) {
+    for (auto v : m.triangles[f])
+      if (m.positions[v] == p) return m.texcoords[v];
+    ADD_FAILURE() << "no corner at that point";
+    return Vec2{};
+  };
+  // Translated.
+  EXPECT_NEAR(uv_at(0, {1, 0, 0}).x, 1.5f, 1e-6f);
+  EXPECT_NEAR(uv_at(0, {1, 0, 0}).y, 0.25f, 1e-6f);
+  // Translated, then (first applied) scaled by 2 about (1, 0): (0, 1) -> (-1, 2) -> (-0.5, 2.25).
+  EXPECT_NEAR(uv_at(1, {0, 1, 0}).x, -0.5f, 1e-6f);
+  EXPECT_NEAR(uv_at(1, {0, 1, 0}).y, 2.25f, 1e-6f);
+  // Outside the Separator only the rotation by pi/2: (1, 0) -> (0, 1).
+  EXPECT_NEAR(uv_at(2, {1, 0, 0}).x, 0.0f, 1e-6f);
+  EXPECT_NEAR(uv_at(2, {1, 0, 0}).y, 1.0f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace lodforge::scene

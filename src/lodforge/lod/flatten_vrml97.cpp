@@ -46,6 +46,22 @@ Mat4 transform_of(const Node& n) {
          Mat4::translation(-c);
 }
 
+// A TextureTransform's matrix (ISO/IEC 14772-1, 6.49): Tc' = -C × S × R ×
+// C × T × Tc, in x and y.
+Mat4 texture_transform_of(const Node& t) {
+  auto vec2 = [&](std::string_view field, Vec3 fallback) {
+    const FieldValue* v = t.value(field);
+    return v && v->floats.size() >= 2 ? Vec3{v->floats[0], v->floats[1], 0} : fallback;
+  };
+  Vec3 scale = vec2("scale", {1, 1, 0});
+  scale.z = 1;
+  const Vec3 c = vec2("center", {});
+  const FieldValue* r = t.value("rotation");
+  return Mat4::translation(-c) * Mat4::scale(scale) *
+         Mat4::rotation({0, 0, 1}, r && !r->floats.empty() ? r->floats[0] : 0) *
+         Mat4::translation(c) * Mat4::translation(vec2("translation", {}));
+}
+
 std::vector<NodePtr> nodes_of(const Node& n, std::string_view field) {
   const FieldValue* v = n.value(field);
   return v && v->type.kind == FieldKind::kNode ? v->nodes : std::vector<NodePtr>{};
@@ -286,6 +302,7 @@ class Flattener {
     float opacity = 1;
     bool material = false;
     std::uint32_t texture = scene::kUntextured;  ///< index into FlatScene::textures
+    Mat4 texture_transform;                      ///< the Appearance's TextureTransform
   };
 
   Look appearance_of(const Node& s) {
@@ -294,6 +311,8 @@ class Flattener {
     if (!a) return look;
     const NodePtr tex = vrml97_geometry::node_of(*a, "texture");
     if (tex && tex->type == "ImageTexture") look.texture = texture(*tex);
+    if (const NodePtr tt = vrml97_geometry::node_of(*a, "textureTransform"))
+      if (tt->type == "TextureTransform") look.texture_transform = texture_transform_of(*tt);
     const NodePtr mat = vrml97_geometry::node_of(*a, "material");
     if (!mat) return look;
     look.material = true;
@@ -368,7 +387,12 @@ class Flattener {
           c = {from.colors->floats[at], from.colors->floats[at + 1], from.colors->floats[at + 2]};
       }
       mesh.colors.push_back(c);
-      mesh.texcoords.push_back(look.texture == scene::kUntextured ? Vec2{} : uv[v]);
+      Vec2 t = look.texture == scene::kUntextured ? Vec2{} : uv[v];
+      if (!(look.texture_transform == Mat4{})) {
+        const Vec3 q = look.texture_transform.transform_point({t.x, t.y, 0});
+        t = {q.x, q.y};
+      }
+      mesh.texcoords.push_back(t);
       out_.flat.opacity.push_back(look.opacity);
     }
   }

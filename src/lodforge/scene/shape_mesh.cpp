@@ -305,6 +305,11 @@ ShapeSurface surface(const ShapeVisit& visit, const ShapeMeshOptions& options, L
       out.opacity.assign(mesh.positions.size(), materials.opacity(0));
     }
   }
+  if (out.texture && !(visit.state.texture_transform == Mat4{}))
+    for (Vec2& t : mesh.texcoords) {
+      const Vec3 q = visit.state.texture_transform.transform_point({t.x, t.y, 0});
+      t = {q.x, q.y};
+    }
   if (options.world_space && !(visit.state.transform == Mat4{})) {
     for (auto& p : mesh.positions) p = visit.state.transform.transform_point(p);
     if (mesh.has_normals()) {

@@ -16,6 +16,22 @@
 namespace lodforge::scene {
 namespace {
 
+// A Texture2Transform's matrix (VRML 1.0, Inventor's SoTexture2Transform):
+// scale about the center, rotate about it, then translate.
+Mat4 texture2_transform_matrix(const Node& n) {
+  auto vec2 = [&](const char* field) {
+    const FieldValue* v = field_or_default(n, field);
+    return v && v->floats.size() >= 2 ? Vec3{v->floats[0], v->floats[1], 0} : Vec3{};
+  };
+  const FieldValue* r = field_or_default(n, "rotation");
+  const float angle = r && !r->floats.empty() ? r->floats[0] : 0;
+  Vec3 scale = vec2("scaleFactor");
+  scale.z = 1;
+  const Vec3 center = vec2("center");
+  return Mat4::translation(vec2("translation") + center) * Mat4::rotation({0, 0, 1}, angle) *
+         Mat4::scale(scale) * Mat4::translation(-1.0f * center);
+}
+
 constexpr std::array<std::string_view, 13> kShapes = {
     "IndexedFaceSet", "IndexedLineSet", "PointSet", "Cube", "Sphere", "Cone", "Cylinder",
     "AsciiText",
@@ -192,6 +208,8 @@ class Walker {
       state.shape_hints = &n;
     else if (t == "Texture2")
       state.texture2 = &n;
+    else if (t == "Texture2Transform")
+      state.texture_transform = state.texture_transform * texture2_transform_matrix(n);
     else if (t == "FontStyle")
       state.font_style = &n;
     else if (t == "PerspectiveCamera") {

@@ -49,6 +49,9 @@ struct TraversalState {
   const Node* normal_binding = nullptr;
   const Node* shape_hints = nullptr;
   const Node* texture2 = nullptr;
+  /// Texture coordinates' transform (the Texture2Transform nodes met, each
+  /// multiplied on the right as a Transform is; 2D in x and y).
+  Mat4 texture_transform;
   const Node* font_style = nullptr;
   const Node* complexity = nullptr;  ///< Inventor Complexity; nullptr: value 0.5
   /// Inventor Switch whichChild -2 takes this (the enclosing Switch's choice).

@@ -65,6 +65,7 @@ constexpr TypedNode kTypedNodes[] = {
     {"ElevationGrid",
      "SFInt32 xDimension SFInt32 zDimension SFFloat xSpacing SFFloat zSpacing MFFloat height "
      "SFFloat creaseAngle "},
+    {"TextureTransform", "SFVec2f center SFFloat rotation SFVec2f scale SFVec2f translation"},
     {"Coordinate", "MFVec3f point"},
     {"Normal", "MFVec3f vector"},
     {"TextureCoordinate", "MFVec2f point"},

@@ -207,7 +207,7 @@ section() {
     formats)  # VRML97 / X3D and glTF through lod, judged by their readers
       targets=(test_apps test_vrml97 test_gltf lodforge_cli)
       commands=(
-        "$B/tests/test_apps --gtest_filter='Corpus/LodGltf.*:LodVrml1ToGltf.*:LodVrml97Corpus.*'"
+        "$B/tests/test_apps --gtest_filter='Corpus/LodGltf.*:LodVrml1ToGltf.*:LodVrml97Corpus.*:LodVrml97ToGltf.*'"
         "$B/tests/test_vrml97"
         "$B/tests/test_gltf"
       ) ;;

@@ -200,15 +200,15 @@ TEST_F(LodVrml97ToGltf, EveryCorpusSceneBecomesValidGltf) {
     auto triangles = [](const std::string& file) {
       const CommandResult info = run_lodforge("info --json -q '" + file + "'");
       EXPECT_EQ(info.exit_code, 0) << file << ": " << info.err;
-      return info.exit_code ? SIZE_MAX : nlohmann::json::parse(info.out)["triangles"].get<std::size_t>();
+      return info.exit_code ? SIZE_MAX
+                            : nlohmann::json::parse(info.out)["triangles"].get<std::size_t>();
     };
     const std::size_t drawn = triangles(input);
     EXPECT_EQ(triangles(output), drawn) << input;
     drawing += drawn > 0;
     const auto out = gltf::read_gltf_file(output).scene.model;
-    const bool lod = std::any_of(out.nodes.begin(), out.nodes.end(), [](const auto& n) {
-      return n.extensions.count("MSFT_lod") > 0;
-    });
+    const bool lod = std::any_of(out.nodes.begin(), out.nodes.end(),
+                                 [](const auto& n) { return n.extensions.count("MSFT_lod") > 0; });
     with_lod += lod;
     with_images += !out.images.empty();
   }

@@ -83,7 +83,8 @@ TEST_F(LodVrml97Corpus, EveryFileGetsLodsThatItsReadersRead) {
         lods += s.at("ranges").empty() ? 0 : 1;
       with_lod += lods ? 1 : 0;
       // Our reader reads it back, in the encoding asked for.
-      const auto back = ext == "x3d" ? vrml97::read_x3d_xml_file(out) : vrml97::read_vrml97_file(out);
+      const auto back =
+          ext == "x3d" ? vrml97::read_x3d_xml_file(out) : vrml97::read_vrml97_file(out);
       EXPECT_EQ(vrml97::is_x3d_header(back.scene.header), ext != "wrl") << in;
       // Level 0 of what lod wrote draws the triangles info counts in the
       // input (every USE in its place, each LOD at its finest level).

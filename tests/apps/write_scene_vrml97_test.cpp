@@ -70,7 +70,8 @@ TEST_F(WriteSceneVrml97, FormatAndNameChooseTheEncoding) {
   EXPECT_TRUE(vrml97::write_x3d_xml(e) == vrml97::write_x3d_xml(b));
   EXPECT_EQ(info_triangles(path("e.x3d")), info_triangles(path("b.x3dv")));
   if (kOutsideReaders && have_view3dscene())
-    EXPECT_EQ(castle_errors(path("e.x3d"), path("home")), castle_errors(path("b.x3dv"), path("home")));
+    EXPECT_EQ(castle_errors(path("e.x3d"), path("home")),
+              castle_errors(path("b.x3dv"), path("home")));
 }
 
 TEST_F(WriteSceneVrml97, EveryVrml1CorpusFileIsReadByCastleAndCoin) {

@@ -134,7 +134,8 @@ INSTANTIATE_TEST_SUITE_P(Corpus, RoundTrip, ::testing::ValuesIn(testing::vrml97_
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(RoundTrip);
 
 TEST(RoundTripCorpus, CorpusIsPresent) {
-  EXPECT_GE(testing::vrml97_corpus_files().size(), 40u) << "expected the corpus at " << LODFORGE_SHARED_DATA;
+  EXPECT_GE(testing::vrml97_corpus_files().size(), 40u)
+      << "expected the corpus at " << LODFORGE_SHARED_DATA;
 }
 
 }  // namespace

@@ -82,7 +82,9 @@ ROUTE Clock.fraction_changed TO S.touched
 )";
 
 // The node of `scene` at the path of root and field indices.
-const scene::Node& root(const ReadResult& r, std::size_t i) { return *r.scene.roots.at(i); }
+const scene::Node& root(const ReadResult& r, std::size_t i) {
+  return *r.scene.roots.at(i);
+}
 
 TEST(X3dXml, ReadsTheSceneTheClassicEncodingGives) {
   const ReadResult xml = read_x3d_xml(kXml, {.source_name = "t.x3d"});
@@ -132,16 +134,19 @@ TEST(X3dXml, ErrorsNameTheLineAndColumnOfTheXml) {
   EXPECT_EQ(error_of("<X3D><Scene>\n<Transform\n  translation='1 x 3'/></Scene></X3D>"),
             "t.x3d:3:3: expected numbers for field 'translation', got 'x'");
   // A USE of a name never DEFined, found by the classic reader, reported at the element.
-  const std::string use = error_of("<X3D><Scene>\n<Group>\n <Shape USE='Nope'/></Group></Scene></X3D>");
+  const std::string use =
+      error_of("<X3D><Scene>\n<Group>\n <Shape USE='Nope'/></Group></Scene></X3D>");
   EXPECT_EQ(use.substr(0, 10), "t.x3d:3:3:") << use;
   EXPECT_NE(use.find("Nope"), std::string::npos) << use;
   // An element where a node is expected that is none.
   EXPECT_EQ(error_of("<X3D><Scene><connect/></Scene></X3D>"),
             "t.x3d:1:14: <connect> is not allowed here");
   // A <field> without its type.
-  EXPECT_NE(error_of("<X3D><Scene><Script><field name='a' accessType='inputOnly'/></Script></Scene></X3D>")
-                .find("<field> needs the attribute type"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(
+          "<X3D><Scene><Script><field name='a' accessType='inputOnly'/></Script></Scene></X3D>")
+          .find("<field> needs the attribute type"),
+      std::string::npos);
 }
 
 TEST(X3dXml, DeepNestingIsAnErrorNotACrash) {
@@ -169,8 +174,8 @@ std::size_t scene_roots(const scene::Scene& s) {
 class X3dXmlRoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(X3dXmlRoundTrip, WrittenAsXmlReadsBackToTheSameScene) {
-  ReadResult first = is_x3d_xml_path(GetParam()) ? read_x3d_xml_file(GetParam())
-                                                 : read_vrml97_file(GetParam());
+  ReadResult first =
+      is_x3d_xml_path(GetParam()) ? read_x3d_xml_file(GetParam()) : read_vrml97_file(GetParam());
   if (!is_x3d_header(first.scene.header)) first.scene.header = "#X3D V3.0 utf8";
   const std::string xml = write_x3d_xml(first.scene);
   const ReadResult second = read_x3d_xml(xml, {.source_name = "written.x3d"});

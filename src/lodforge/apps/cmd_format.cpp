@@ -42,9 +42,10 @@ void add_format_command(CLI::App& app, Runner& run) {
                   "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF; "
                   ".x3dv: to X3D classic; .x3d: to X3D XML)")
       ->required();
-  cmd->add_option("--format", s->format,
-                  "Convert to vrml97 (VRML97), x3dv (X3D classic) or x3d (X3D XML) (default: from the "
-                  "output name, else VRML 1.0 / Inventor as read)")
+  cmd->add_option(
+         "--format", s->format,
+         "Convert to vrml97 (VRML97), x3dv (X3D classic) or x3d (X3D XML) (default: from the "
+         "output name, else VRML 1.0 / Inventor as read)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d"}));
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);

@@ -73,10 +73,11 @@ void add_info_command(CLI::App& app, Runner& run) {
       "info",
       "Show what a VRML 1.0, Open Inventor, VRML97, X3D classic or glTF scene, or a mesh file, "
       "holds");
-  cmd->add_option("SCENE", s->input,
-                  "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), VRML97 or X3D "
-                  "classic or XML (.wrl, .x3dv, .x3d, optionally .gz), glTF (.gltf, .glb), or a mesh (.ply, "
-                  ".obj, .off, .stl)")
+  cmd->add_option(
+         "SCENE", s->input,
+         "VRML 1.0 or Inventor file (.wrl, .iv, optionally .gz; - = stdin), VRML97 or X3D "
+         "classic or XML (.wrl, .x3dv, .x3d, optionally .gz), glTF (.gltf, .glb), or a mesh (.ply, "
+         ".obj, .off, .stl)")
       ->required();
   cmd->add_flag("--json", s->json, "Print JSON on stdout");
   add_scene_read_options(*cmd, s->read);

@@ -406,7 +406,8 @@ void add_lod_command(CLI::App& app, Runner& run) {
                   "to this file; `lodforge report` merges the reports of shards");
   cmd->add_option("--format", s->format,
                   "Output encoding of a VRML97 / X3D scene: vrml97, x3dv or x3d (default: from "
-                  "the output name, .x3dv X3D classic, .x3d X3D XML, else the input's), or of a glTF scene: gltf or glb (default: "
+                  "the output name, .x3dv X3D classic, .x3d X3D XML, else the input's), or of a "
+                  "glTF scene: gltf or glb (default: "
                   "from the output name, else the input's); a VRML 1.0 / Inventor scene is "
                   "converted to vrml97, x3dv, x3d, gltf or glb (default: from the output name, "
                   ".x3dv, .x3d, .glb, .gltf, else VRML 1.0)")

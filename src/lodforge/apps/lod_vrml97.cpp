@@ -11,16 +11,16 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "lodforge/apps/info_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
-#include "lodforge/io/vrml97/read_vrml97.h"
-#include "lodforge/io/vrml97/write_vrml97.h"
-#include "lodforge/io/vrml97/read_x3d_xml.h"
-#include "lodforge/io/vrml97/write_x3d_xml.h"
-#include "lodforge/apps/info_vrml97.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/gltf/scene_to_gltf.h"
 #include "lodforge/io/gltf/write_gltf.h"
+#include "lodforge/io/vrml97/read_vrml97.h"
+#include "lodforge/io/vrml97/read_x3d_xml.h"
+#include "lodforge/io/vrml97/write_vrml97.h"
+#include "lodforge/io/vrml97/write_x3d_xml.h"
 #include "lodforge/lod/flatten_vrml97.h"
 #include "lodforge/lod/generate_lod_vrml97.h"
 #include "lodforge/lod/vrml97_geometry.h"
@@ -282,9 +282,8 @@ bool writes_gltf(const std::string& output, const std::string& format) {
   return format == "gltf" || format == "glb" || (format.empty() && gltf::is_gltf_path(output));
 }
 
-void write_vrml97_as(const scene::Scene& scene, const std::string& input,
-                     const std::string& output, const std::string& format, double camera_angle,
-                     Log& log) {
+void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
+                     const std::string& format, double camera_angle, Log& log) {
   if (writes_gltf(output, format)) {
     const Vrml97LodShapes shapes = vrml97_lod_shapes(scene, log);
     if (!shapes.skipped.empty()) {
@@ -293,7 +292,8 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input,
         list += fmt::format("{}{} ({})", list.empty() ? "" : ", ", type, n);
       log.warn(LogCategory::kParse, fmt::format("not drawn, so not in the glTF output: {}", list));
     }
-    if (camera_angle <= 0) camera_angle = viewpoint_field_of_view(scene).value_or(kDefaultFieldOfView);
+    if (camera_angle <= 0)
+      camera_angle = viewpoint_field_of_view(scene).value_or(kDefaultFieldOfView);
     const std::filesystem::path in(input), out(output);
     const gltf::GltfScene g = gltf::lod_shapes_to_gltf(
         shapes.shapes,

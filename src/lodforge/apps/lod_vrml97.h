@@ -36,9 +36,8 @@ bool writes_gltf(const std::string& output, const std::string& format);
 /// ImageTexture files resolved from the input's folder; what is not drawn
 /// named in a warning in `log`), in X3D XML when writes_x3d_xml, else in the
 /// classic encoding its header names. Throws DataError.
-void write_vrml97_as(const scene::Scene& scene, const std::string& input,
-                     const std::string& output, const std::string& format, double camera_angle,
-                     Log& log);
+void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
+                     const std::string& format, double camera_angle, Log& log);
 
 /// Reads `input` and sets the output encoding as read_vrml97_as, runs
 /// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as).

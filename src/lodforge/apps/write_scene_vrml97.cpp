@@ -4,8 +4,8 @@
 
 #include "lodforge/apps/common_options.h"
 #include "lodforge/core/error.h"
-#include "lodforge/io/vrml97/vrml1_to_vrml97.h"
 #include "lodforge/io/vrml97/read_x3d_xml.h"
+#include "lodforge/io/vrml97/vrml1_to_vrml97.h"
 #include "lodforge/io/vrml97/write_vrml97.h"
 #include "lodforge/io/vrml97/write_x3d_xml.h"
 

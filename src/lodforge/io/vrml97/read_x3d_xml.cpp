@@ -36,7 +36,9 @@ struct Position {
   int col = 1;
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ','; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',';
+}
 
 std::vector<std::string_view> tokens(std::string_view v) {
   std::vector<std::string_view> out;
@@ -76,7 +78,9 @@ bool is_word(std::string_view n) {
   });
 }
 
-bool is_name(std::string_view n) { return is_word(n) && !is_number_token(n); }
+bool is_name(std::string_view n) {
+  return is_word(n) && !is_number_token(n);
+}
 
 bool has_value_access(std::string_view access) {
   return access == "initializeOnly" || access == "inputOutput" || access == "field" ||
@@ -101,9 +105,8 @@ class Converter {
       fail(root ? root.offset_debug() : 0,
            fmt::format("expected the root element <X3D>, got <{}>", root.name()));
     const std::string_view version = root.attribute("version").as_string("3.0");
-    if (version.empty() || !std::all_of(version.begin(), version.end(), [](char c) {
-          return (c >= '0' && c <= '9') || c == '.';
-        }))
+    if (version.empty() || !std::all_of(version.begin(), version.end(),
+                                        [](char c) { return (c >= '0' && c <= '9') || c == '.'; }))
       fail(root.offset_debug(), fmt::format("expected a version such as 3.2, got '{}'", version));
     origin_.push_back(pos(root.offset_debug()));
     out_ = fmt::format("#X3D V{} utf8", version);
@@ -124,7 +127,8 @@ class Converter {
             item(e, 0, 0);
           }
       } else {
-        fail(part.offset_debug(), fmt::format("expected <head> or <Scene> in <X3D>, got <{}>", name));
+        fail(part.offset_debug(),
+             fmt::format("expected <head> or <Scene> in <X3D>, got <{}>", name));
       }
     }
     out_ += '\n';
@@ -134,14 +138,15 @@ class Converter {
   // The XML position the classic text's line `out_line` (1-based) came from.
   Position origin(int out_line) const {
     if (origin_.empty()) return {};
-    const std::size_t i = std::clamp<std::size_t>(std::size_t(std::max(out_line, 1)) - 1, 0,
-                                                  origin_.size() - 1);
+    const std::size_t i =
+        std::clamp<std::size_t>(std::size_t(std::max(out_line, 1)) - 1, 0, origin_.size() - 1);
     return origin_[i];
   }
 
  private:
   Position pos(std::ptrdiff_t offset) const {
-    const std::size_t o = std::size_t(std::clamp<std::ptrdiff_t>(offset, 0, std::ptrdiff_t(xml_.size())));
+    const std::size_t o =
+        std::size_t(std::clamp<std::ptrdiff_t>(offset, 0, std::ptrdiff_t(xml_.size())));
     const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), o) - 1;
     return {int(it - line_starts_.begin()) + 1, int(o - *it) + 1};
   }
@@ -184,8 +189,7 @@ class Converter {
   std::string_view required(const pugi::xml_node e, std::string_view attribute,
                             bool number = false) const {
     const pugi::xml_attribute a = e.attribute(std::string(attribute).c_str());
-    if (!a)
-      fail(e.offset_debug(), fmt::format("<{}> needs the attribute {}", e.name(), attribute));
+    if (!a) fail(e.offset_debug(), fmt::format("<{}> needs the attribute {}", e.name(), attribute));
     const std::string_view v = a.value();
     if (number && (!is_word(v) || !is_number_token(v)))
       fail(offset_of(e, attribute),
@@ -205,14 +209,16 @@ class Converter {
       out_ += fmt::format("UNIT {} {} {}", required(h, "category"), required(h, "name"),
                           required(h, "conversionFactor", true));
     } else {
-      fail(h.offset_debug(), fmt::format("expected <component>, <meta> or <unit> in <head>, got <{}>", name));
+      fail(h.offset_debug(),
+           fmt::format("expected <component>, <meta> or <unit> in <head>, got <{}>", name));
     }
   }
 
   // A node or a statement, written where the classic text stands.
   void item(const pugi::xml_node e, int depth, int indent) {
     if (depth >= options_.max_depth)
-      fail(e.offset_debug(), fmt::format("elements nested deeper than {} levels", options_.max_depth));
+      fail(e.offset_debug(),
+           fmt::format("elements nested deeper than {} levels", options_.max_depth));
     const std::string_view name = e.name();
     if (name == "ROUTE") {
       out_ += fmt::format("ROUTE {}.{} TO {}.{}", required(e, "fromNode"), required(e, "fromField"),
@@ -294,15 +300,20 @@ class Converter {
       const bool declaration = name == "field", value = name == "fieldValue" && instance;
       if (declaration || value || is_statement(name)) {
         line(c.offset_debug(), indent + 1);
-        if (declaration) field_declaration(c, true, connects, depth, indent + 1);
-        else if (value) field_value(c, type, depth, indent + 1);
-        else item(c, depth + 1, indent + 1);
+        if (declaration)
+          field_declaration(c, true, connects, depth, indent + 1);
+        else if (value)
+          field_value(c, type, depth, indent + 1);
+        else
+          item(c, depth + 1, indent + 1);
       } else {
         const std::string field = container_of(c);
         auto g = std::find_if(groups.begin(), groups.end(),
                               [&](const auto& p) { return p.first == field; });
-        if (g == groups.end()) groups.push_back({field, {c}});
-        else g->second.push_back(c);
+        if (g == groups.end())
+          groups.push_back({field, {c}});
+        else
+          g->second.push_back(c);
       }
     }
     for (const auto& [field, nodes] : groups) {
@@ -369,23 +380,31 @@ class Converter {
     const auto t = tokens(v);
     // Up to four numbers: a single value (SFVec3f, SFRotation, ...) of a
     // field no table names; more: a list.
-    if (std::all_of(t.begin(), t.end(), [](auto x) { return is_number_token(x) || is_bool_token(x); }))
+    if (std::all_of(t.begin(), t.end(),
+                    [](auto x) { return is_number_token(x) || is_bool_token(x); }))
       return numbers(v, t.size() > 4 || (t.size() > 1 && is_bool_token(t[0])), at, field);
     return quote_classic(value);
   }
 
   // Numbers and booleans (true/false made TRUE/FALSE), bracketed for a list.
-  std::string numbers(std::string_view v, bool list, std::ptrdiff_t at, std::string_view field) const {
+  std::string numbers(std::string_view v, bool list, std::ptrdiff_t at,
+                      std::string_view field) const {
     std::string out = list ? "[ " : "";
     for (const std::string_view t : tokens(v)) {
-      if (t == "true" || t == "TRUE") out += "TRUE";
-      else if (t == "false" || t == "FALSE") out += "FALSE";
-      else if (is_number_token(t)) out += t;
-      else fail(at, fmt::format("expected numbers for field '{}', got '{}'", field, t));
+      if (t == "true" || t == "TRUE")
+        out += "TRUE";
+      else if (t == "false" || t == "FALSE")
+        out += "FALSE";
+      else if (is_number_token(t))
+        out += t;
+      else
+        fail(at, fmt::format("expected numbers for field '{}', got '{}'", field, t));
       out += ' ';
     }
-    if (list) out += "]";
-    else if (!out.empty()) out.pop_back();
+    if (list)
+      out += "]";
+    else if (!out.empty())
+      out.pop_back();
     if (out.empty()) fail(at, fmt::format("expected a value for field '{}'", field));
     return out;
   }
@@ -410,8 +429,10 @@ class Converter {
       std::vector<pugi::xml_node> nodes;
       for (const pugi::xml_node c : f.children())
         if (c.type() == pugi::node_element) nodes.push_back(c);
-      if (nodes.empty()) out_ += type.starts_with("MF") ? " []" : " NULL";
-      else node_list(nodes, depth, indent);
+      if (nodes.empty())
+        out_ += type.starts_with("MF") ? " []" : " NULL";
+      else
+        node_list(nodes, depth, indent);
       return;
     }
     const pugi::xml_attribute value = f.attribute("value");
@@ -474,8 +495,8 @@ class Converter {
       types[f.attribute("name").value()] = f.attribute("type").value();
     }
     out_ += " ] ";
-    out_ += classic_value(ValueShape::kMFString, e.attribute("url").as_string(), offset_of(e, "url"),
-                          "url");
+    out_ += classic_value(ValueShape::kMFString, e.attribute("url").as_string(),
+                          offset_of(e, "url"), "url");
   }
 
   std::string_view xml_;
@@ -491,8 +512,9 @@ class Converter {
 bool is_x3d_xml_path(std::string_view path) {
   auto ends = [&](std::string_view e) {
     return path.size() >= e.size() &&
-           std::equal(e.begin(), e.end(), path.end() - std::ptrdiff_t(e.size()),
-                      [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
+           std::equal(
+               e.begin(), e.end(), path.end() - std::ptrdiff_t(e.size()),
+               [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
   };
   return ends(".x3d") || ends(".x3d.gz") || ends(".x3dz");
 }

@@ -88,8 +88,10 @@ std::string xml_value(std::string_view raw, ValueShape shape) {
   std::string out;
   for (const std::string_view x : t) {
     if (!out.empty()) out += ' ';
-    if (x == "TRUE" || x == "FALSE") out += x == "TRUE" ? "true" : "false";
-    else out += x;
+    if (x == "TRUE" || x == "FALSE")
+      out += x == "TRUE" ? "true" : "false";
+    else
+      out += x;
   }
   return out;
 }
@@ -149,7 +151,8 @@ Declaration declaration_of(std::string_view field_name) {
   return {std::string(x3d_access(t[0])), std::string(t[1]), std::string(t[2])};
 }
 
-using ProtoTypes = std::map<std::string, std::map<std::string, std::string, std::less<>>, std::less<>>;
+using ProtoTypes =
+    std::map<std::string, std::map<std::string, std::string, std::less<>>, std::less<>>;
 
 class XmlWriter {
  public:
@@ -158,12 +161,13 @@ class XmlWriter {
   void write_scene(const scene::Scene& s, pugi::xml_document& doc) {
     const std::string& h = s.header;
     if (!is_x3d_header(h))
-      throw DataError(fmt::format("cannot write a scene with header '{}' as X3D XML: make it X3D first",
-                                  h.substr(0, 40)));
+      throw DataError(fmt::format(
+          "cannot write a scene with header '{}' as X3D XML: make it X3D first", h.substr(0, 40)));
     const std::string version = h.substr(6, h.find(' ', 6) - 6);
     std::string profile = "Full";
     for (const auto& r : s.roots)
-      if (r->statement && r->type == "PROFILE") profile = std::string(classic_tokens(r->raw_body).at(0));
+      if (r->statement && r->type == "PROFILE")
+        profile = std::string(classic_tokens(r->raw_body).at(0));
     pugi::xml_node decl = doc.append_child(pugi::node_declaration);
     decl.append_attribute("version") = "1.0";
     decl.append_attribute("encoding") = "UTF-8";
@@ -237,7 +241,8 @@ class XmlWriter {
   // a statement field of a node body).
   void write_statement(pugi::xml_node parent, std::string_view type, std::string_view raw) {
     const auto t = classic_tokens(raw);
-    auto split = [&](std::string_view dotted, pugi::xml_node e, const char* node, const char* field) {
+    auto split = [&](std::string_view dotted, pugi::xml_node e, const char* node,
+                     const char* field) {
       const std::size_t dot = dotted.find('.');
       if (dot == std::string_view::npos)
         throw DataError(fmt::format("{} {}: expected NODE.FIELD, got '{}'", type, raw, dotted));
@@ -264,8 +269,8 @@ class XmlWriter {
   }
 
   void write_proto(pugi::xml_node parent, std::string_view raw, bool external) {
-    const std::string what = fmt::format("{} {}", external ? "EXTERNPROTO" : "PROTO",
-                                         classic_tokens(raw).at(0));
+    const std::string what =
+        fmt::format("{} {}", external ? "EXTERNPROTO" : "PROTO", classic_tokens(raw).at(0));
     const std::size_t open = raw.find('[');
     const std::size_t close = open == std::string_view::npos ? open : past_closing(raw, open);
     if (close == std::string_view::npos)
@@ -293,8 +298,9 @@ class XmlWriter {
     if (body_close == std::string_view::npos)
       throw DataError(fmt::format("cannot write {} as X3D XML: no body", what));
     try {
-      const ReadResult fields = read_vrml97(fmt::format("#X3D V3.2 utf8\nScript {{ {} \n}}", interface),
-                                            {.source_name = what + " interface"});
+      const ReadResult fields =
+          read_vrml97(fmt::format("#X3D V3.2 utf8\nScript {{ {} \n}}", interface),
+                      {.source_name = what + " interface"});
       pugi::xml_node i = p.append_child("ProtoInterface");
       XmlWriter nodes(protos_);
       for (const auto& f : fields.scene.roots.at(0)->fields) {
@@ -302,11 +308,13 @@ class XmlWriter {
         types[declaration_of(f.name).name] = declaration_of(f.name).type;
       }
       const ReadResult body =
-          read_vrml97(fmt::format("#X3D V3.2 utf8\n{}\n", raw.substr(body_open + 1, body_close - body_open - 2)),
+          read_vrml97(fmt::format("#X3D V3.2 utf8\n{}\n",
+                                  raw.substr(body_open + 1, body_close - body_open - 2)),
                       {.source_name = what + " body", .proto_body = true});
       XmlWriter(protos_).write_roots(p.append_child("ProtoBody"), body.scene.roots);
     } catch (const ParseError& e) {
-      throw DataError(fmt::format("cannot write {} as X3D XML: its text does not read: {}", what, e.what()));
+      throw DataError(
+          fmt::format("cannot write {} as X3D XML: its text does not read: {}", what, e.what()));
     }
   }
 

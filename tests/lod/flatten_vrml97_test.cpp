@@ -148,5 +148,34 @@ TEST(FlattenVrml97, SkinnedShapesAreDrawnInTheirStoredPose) {
   EXPECT_EQ(humanoid.flat.mesh.triangle_count(), 2u);
 }
 
+// For the glTF output: each Shape drawn on its own, every level of a LOD
+// (its empty last level too), IndexedLineSets as coloured segments.
+TEST(FlattenVrml97, LodShapesKeepEveryLevelAndLines) {
+  Log log;
+  const auto r = vrml97::read_vrml97(std::string("#VRML V2.0 utf8\n") +
+                                     "DEF L LOD { range [10] level [ " + kQuad + " Group {} ] }\n" +
+                                     "Transform { translation 5 0 0 children [ " + kQuad +
+                                     " Shape { appearance Appearance { material Material { "
+                                     "emissiveColor 0 1 0 } } geometry IndexedLineSet { coord "
+                                     "Coordinate { point [0 0 0, 1 0 0, 1 1 0] } coordIndex [0 1 2 "
+                                     "-1 2 0] } } ] }");
+  const Vrml97LodShapes shapes = vrml97_lod_shapes(r.scene, log);
+  ASSERT_EQ(shapes.shapes.lods.size(), 1u);
+  const scene::LodGroup& lod = shapes.shapes.lods.begin()->second;
+  EXPECT_EQ(lod.lod->name, "L");
+  ASSERT_EQ(lod.levels.size(), 2u);
+  ASSERT_EQ(lod.levels[0].size(), 1u);
+  EXPECT_EQ(lod.levels[0][0].surface.mesh.triangle_count(), 2u);
+  EXPECT_TRUE(lod.levels[1].empty());
+  ASSERT_EQ(shapes.shapes.plain.size(), 2u);
+  EXPECT_EQ(shapes.shapes.plain[0].surface.mesh.positions[0], (Vec3{5, 0, 0}));
+  const TriangleMesh& lines = shapes.shapes.plain[1].surface.mesh;
+  EXPECT_EQ(lines.triangle_count(), 0u);
+  EXPECT_EQ(lines.lines.size(), 3u);  // two segments, then one
+  EXPECT_EQ(lines.colors.at(0), (Vec3{0, 1, 0}));
+  // The one-surface flattening does not draw lines.
+  EXPECT_EQ(flatten_vrml97(r.scene, {}, log).skipped.at("IndexedLineSet"), 1u);
+}
+
 }  // namespace
 }  // namespace lodforge

@@ -220,6 +220,11 @@ class Flattener {
     const NodePtr g = vrml97_geometry::node_of(s, "geometry");
     if (!g) return;
     const Node& geometry = *g;
+    if (geometry.type == "IndexedLineSet" && collect_) {  // lines: for the glTF output only
+      ++out_.shapes;
+      if (sink_) sink_->push_back(line_shape(s, geometry, m));
+      return;
+    }
     vrml97_geometry::ShapeMesh piece;
     Attributes from;
     if (is_primitive(geometry.type)) {
@@ -258,6 +263,66 @@ class Flattener {
     const Look look = appearance_of(s);
     append(piece, m, look, from);
     if (sink_) sink_->push_back(take_shape(s, vertices, triangles, look.texture));
+  }
+
+  // An IndexedLineSet as line segments in world space, coloured by its Color
+  // node (per vertex or per polyline) or else its Material's emissiveColor
+  // (white without a Material: VRML97 lines are not lit).
+  scene::DrawnShape line_shape(const Node& s, const Node& set, const Mat4& m) {
+    scene::DrawnShape d{.node = &s};
+    TriangleMesh& mesh = d.surface.mesh;
+    const NodePtr coord = vrml97_geometry::node_of(set, "coord");
+    const FieldValue* points = coord ? coord->value("point") : nullptr;
+    const FieldValue* index = set.value("coordIndex");
+    if (!points || !index) return d;
+    const NodePtr color = vrml97_geometry::node_of(set, "color");
+    const FieldValue* colors = color ? color->value("color") : nullptr;
+    const std::size_t stride = color && color->type == "ColorRGBA" ? 4 : 3;
+    const FieldValue* color_index = set.value("colorIndex");
+    const bool per_vertex = int_of(set, "colorPerVertex", 1) != 0;
+    Vec3 plain{1, 1, 1};
+    float opacity = 1;
+    if (const NodePtr a = vrml97_geometry::node_of(s, "appearance"))
+      if (const NodePtr mat = vrml97_geometry::node_of(*a, "material")) {
+        plain = vec3_of(*mat, "emissiveColor", {});
+        opacity = 1 - std::clamp(float_of(*mat, "transparency", 0), 0.f, 1.f);
+      }
+    const std::size_t n = points->floats.size() / 3;
+    auto color_at = [&](std::size_t i) {
+      const std::size_t at = stride * i;
+      return colors && at + 2 < colors->floats.size()
+                 ? Vec3{colors->floats[at], colors->floats[at + 1], colors->floats[at + 2]}
+                 : plain;
+    };
+    std::size_t polyline = 0;
+    bool open = false;
+    for (std::size_t k = 0; k < index->ints.size(); ++k) {
+      const std::int32_t i = index->ints[k];
+      if (i < 0 || std::size_t(i) >= n) {  // -1 ends a polyline; a bad index too
+        polyline += open;
+        open = false;
+        continue;
+      }
+      const Vec3 p = m.transform_point({points->floats[3 * std::size_t(i)],
+                                        points->floats[3 * std::size_t(i) + 1],
+                                        points->floats[3 * std::size_t(i) + 2]});
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw DataError("a coordinate is not finite (after its transforms)");
+      const bool indexed = color_index && k < color_index->ints.size();
+      const std::size_t c =
+          per_vertex ? (indexed ? std::size_t(std::max(color_index->ints[k], 0)) : std::size_t(i))
+                     : (color_index && polyline < color_index->ints.size()
+                            ? std::size_t(std::max(color_index->ints[polyline], 0))
+                            : polyline);
+      if (open)
+        mesh.lines.push_back(
+            {std::uint32_t(mesh.positions.size() - 1), std::uint32_t(mesh.positions.size())});
+      mesh.positions.push_back(p);
+      mesh.colors.push_back(color_at(c));
+      d.surface.opacity.push_back(opacity);
+      open = true;
+    }
+    return d;
   }
 
   // The shape appended last (from `vertices`, `triangles` on) taken out of

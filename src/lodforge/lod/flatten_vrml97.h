@@ -56,7 +56,9 @@ FlatVrml97 flatten_vrml97(const scene::Scene& scene, const FlattenVrml97Options&
 /// The shapes of a VRML97 / X3D scene one by one, in world space with their
 /// colours, texture coordinates and texture, grouped by the LOD node they are
 /// drawn under with every level's shapes (a LOD inside a level drawn at its
-/// first level): what gltf::lod_shapes_to_gltf makes a glTF model of.
+/// first level): what gltf::lod_shapes_to_gltf makes a glTF model of. Beside
+/// the geometry flatten_vrml97 draws, IndexedLineSets are shapes of line
+/// segments (their Color node's colours, else the Material's emissiveColor).
 struct Vrml97LodShapes {
   scene::LodShapes shapes;  ///< `camera` stays null: the angle is viewpoint_field_of_view's
   /// The Texture2 nodes (filename, wrapS, wrapT) the shapes' textures point

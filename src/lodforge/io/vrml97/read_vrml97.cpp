@@ -59,6 +59,8 @@ constexpr TypedNode kTypedNodes[] = {
     {"IndexedFaceSet",
      "MFInt32 coordIndex MFInt32 normalIndex MFInt32 colorIndex MFInt32 texCoordIndex "
      "SFBool convex SFFloat creaseAngle "},
+    {"IndexedLineSet",
+     "MFInt32 coordIndex MFInt32 colorIndex SFBool colorPerVertex SFNode coord SFNode color"},
     {"IndexedTriangleSet", "MFInt32 index "},
     {"IndexedQuadSet", "MFInt32 index "},
     {"TriangleSet", ""},

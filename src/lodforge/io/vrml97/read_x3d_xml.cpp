@@ -370,8 +370,17 @@ class Converter {
       case ValueShape::kNode:
         fail(at, fmt::format("field '{}' holds nodes: give them as child elements", field));
       case ValueShape::kSFNumbers:
-      case ValueShape::kMFNumbers:
-        return numbers(v, shape == ValueShape::kMFNumbers, at, field);
+      case ValueShape::kMFNumbers: {
+        // Not numbers after all (a field of another node, or a prototype's,
+        // by the same name): by its form, as an unknown one; a typed field
+        // then gets the classic reader's error at this attribute.
+        const auto t = tokens(v);
+        if (!t.empty() && std::all_of(t.begin(), t.end(), [](auto x) {
+              return is_number_token(x) || is_bool_token(x);
+            }))
+          return numbers(v, shape == ValueShape::kMFNumbers, at, field);
+        break;
+      }
       case ValueShape::kUnknown:
         break;
     }

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <map>
 #include <pugixml.hpp>
 #include <unordered_map>
@@ -83,8 +84,7 @@ std::string xml_value(std::string_view raw, ValueShape shape) {
   std::vector<std::string_view> t = classic_tokens(raw);
   std::erase_if(t, [](std::string_view x) { return x == "[" || x == "]"; });
   const bool one_string = t.size() == 1 && t[0].starts_with('"');
-  if (one_string && (shape == ValueShape::kSFString || shape == ValueShape::kUnknown))
-    return vrml1::detail::unquote(t[0]);
+  if (one_string && shape != ValueShape::kMFString) return vrml1::detail::unquote(t[0]);
   std::string out;
   for (const std::string_view x : t) {
     if (!out.empty()) out += ' ';
@@ -131,6 +131,22 @@ std::string xml_value(const FieldValue& v) {
       for (const float f : v.floats) sep(), fmt::format_to(std::back_inserter(out), "{}", f);
       return out;
   }
+}
+
+// `name` as an XML element or attribute name; DataError if it cannot be
+// one (VRML names allow characters XML names do not, such as '&').
+const char* xml_name(const std::string& name, std::string_view what) {
+  auto ok = [](unsigned char c, bool first) {
+    return std::isalpha(c) || c == '_' || c >= 0x80 ||
+           (!first && (std::isdigit(c) || c == '-' || c == '.'));
+  };
+  bool valid = !name.empty();
+  for (std::size_t i = 0; valid && i < name.size(); ++i)
+    valid = ok(static_cast<unsigned char>(name[i]), i == 0);
+  if (!valid)
+    throw DataError(fmt::format(
+        "cannot write the {} '{}' in the X3D XML encoding: it is no XML name", what, name));
+  return name.c_str();
 }
 
 std::string_view x3d_access(std::string_view access) {
@@ -344,7 +360,8 @@ class XmlWriter {
       throw DataError(fmt::format("cannot write the node {} (kept as text) as X3D XML", n->type));
     const auto proto = protos_.find(n->type);
     const bool instance = proto != protos_.end();
-    pugi::xml_node e = parent.append_child(instance ? "ProtoInstance" : n->type.c_str());
+    pugi::xml_node e =
+        parent.append_child(instance ? "ProtoInstance" : xml_name(n->type, "node type"));
     if (instance) e.append_attribute("name") = n->type.c_str();
     const std::string_view default_field = instance ? "children" : default_container_field(n->type);
     auto container = [&] {
@@ -407,7 +424,7 @@ class XmlWriter {
       } else if (!f.is_raw && f.value.type.kind == FieldKind::kNode) {
         for (const auto& c : f.value.nodes) write_node(e, c, f.name);
       } else {
-        e.append_attribute(f.name.c_str()) =
+        e.append_attribute(xml_name(f.name, "field name")) =
             (f.is_raw ? xml_value(f.raw, x3d_value_shape(n.type, f.name)) : xml_value(f.value))
                 .c_str();
       }

@@ -169,6 +169,12 @@ TEST(X3dXml, ValuesAndNamesTheTablesDoNotFit) {
   const std::string xml = write_x3d_xml(r.scene);
   EXPECT_NE(xml.find(R"(size="1 q 1")"), std::string::npos) << xml;
   EXPECT_EQ(write_x3d_xml(read_x3d_xml(xml).scene), xml);
+  // A number beyond float's range is read as infinity (as by the classic
+  // reader) and written back as inf.
+  const std::string huge = write_x3d_xml(
+      read_x3d_xml(R"(<X3D><Scene><Coordinate point="0 1 1e99"/></Scene></X3D>)").scene);
+  EXPECT_NE(huge.find(R"(point="0 1 inf")"), std::string::npos) << huge;
+  EXPECT_EQ(write_x3d_xml(read_x3d_xml(huge).scene), huge);
   const ReadResult amp = read_vrml97("#X3D V3.2 utf8\nBox& { }\n");
   EXPECT_THROW(write_x3d_xml(amp.scene), DataError);
 }

@@ -61,7 +61,10 @@ std::string_view trim(std::string_view v) {
 
 bool is_number_token(std::string_view t) {
   const char c = t.empty() ? ' ' : t[0];
-  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+  if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') return true;
+  // What the classic reader's number parser takes too (an overflowing
+  // number is read as, and written back as, inf).
+  return t == "inf" || t == "nan" || t == "infinity";
 }
 
 bool is_bool_token(std::string_view t) {

@@ -26,6 +26,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/io/vrml1/lexer.h"
 #include "lodforge/io/vrml97/x3d_fields.h"
 
 namespace lodforge::vrml97 {
@@ -71,13 +72,12 @@ bool is_bool_token(std::string_view t) {
   return t == "true" || t == "false" || t == "TRUE" || t == "FALSE";
 }
 
-// A plain name (DEF, USE, a field or node type): no white space, quotes,
-// braces or brackets, so it stays one word in the classic text.
+// A plain name (DEF, USE, a field or node type): none of the characters
+// that end a word of the classic encoding, so it stays one word there.
 bool is_word(std::string_view n) {
   if (n.empty()) return false;
   return std::none_of(n.begin(), n.end(), [](char c) {
-    return is_space(c) || c == '"' || c == '{' || c == '}' || c == '[' || c == ']' || c == '#' ||
-           c == '\'' || static_cast<unsigned char>(c) < 0x20;
+    return vrml1::detail::is_delimiter(c) || c == '\'' || static_cast<unsigned char>(c) < 0x20;
   });
 }
 

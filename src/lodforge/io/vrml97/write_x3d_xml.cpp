@@ -217,7 +217,7 @@ class XmlWriter {
     if (n.type == "COMPONENT") {
       std::string all;
       for (const auto x : t) all += x;
-      const std::size_t colon = all.find(':');
+      const std::size_t colon = all.rfind(':');  // the level follows the last
       pugi::xml_node c = head.append_child("component");
       c.append_attribute("name") = all.substr(0, colon).c_str();
       if (colon != std::string::npos) c.append_attribute("level") = all.substr(colon + 1).c_str();

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -248,6 +249,30 @@ TEST_F(LodVrml97Corpus, BadInputExitsOneWithTheLineAndNoOutput) {
   }
   EXPECT_FALSE(fs::exists(out + ".png"));
   EXPECT_FALSE(fs::exists(out + ".ply"));
+}
+
+// The encoding is told by the content where it tells: an X3D XML document
+// named .wrl, classic X3D named .x3d, and a bad XML file's line and column.
+TEST_F(LodVrml97Corpus, TheContentTellsTheEncoding) {
+  const std::string shape =
+      "Shape { geometry IndexedFaceSet { coordIndex [0 1 2 -1] coord Coordinate { point [0 0 0, "
+      "1 0 0, 0 1 0] } } }";
+  std::ofstream(dir_ / "classic.x3d") << "#X3D V3.2 utf8\n" << shape << "\n";
+  std::ofstream(dir_ / "xml.wrl")
+      << "\xEF\xBB\xBF<?xml version='1.0'?>\n<X3D version='3.2'><Scene><Shape><IndexedFaceSet "
+         "coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/></IndexedFaceSet></Shape>"
+         "</Scene></X3D>\n";
+  for (const char* name : {"classic.x3d", "xml.wrl"}) {
+    const CommandResult info = run_lodforge("info --json -q " + (dir_ / name).string());
+    ASSERT_EQ(info.exit_code, 0) << name << ": " << info.err;
+    EXPECT_EQ(nlohmann::json::parse(info.out)["triangles"], 1) << name;
+  }
+  std::ofstream(dir_ / "broken.x3d") << "<X3D><Scene>\n  <Group></Scene></X3D>\n";
+  const CommandResult bad =
+      run_lodforge("lod " + (dir_ / "broken.x3d").string() + " -o " + (dir_ / "o.x3d").string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("broken.x3d:2:"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o.x3d"));
 }
 
 }  // namespace

@@ -140,6 +140,11 @@ TEST(X3dXml, ErrorsNameTheLineAndColumnOfTheXml) {
       error_of("<X3D><Scene>\n<Group>\n <Shape USE='Nope'/></Group></Scene></X3D>");
   EXPECT_EQ(use.substr(0, 10), "t.x3d:3:3:") << use;
   EXPECT_NE(use.find("Nope"), std::string::npos) << use;
+  // Lines of a script's text do not shift the positions after it.
+  const std::string after_script = error_of(
+      "<X3D><Scene>\n<Script><![CDATA[ecmascript:\n\n\nfunction f() {}\n]]></Script>\n"
+      "<Group>\n <Shape USE='Nope'/></Group></Scene></X3D>");
+  EXPECT_EQ(after_script.substr(0, 10), "t.x3d:8:3:") << after_script;
   // An element where a node is expected that is none.
   EXPECT_EQ(error_of("<X3D><Scene><connect/></Scene></X3D>"),
             "t.x3d:1:14: <connect> is not allowed here");

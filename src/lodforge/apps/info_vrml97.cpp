@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "lodforge/core/file_io.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/read_x3d_xml.h"
 #include "lodforge/scene/traverse.h"
@@ -44,7 +45,14 @@ nlohmann::ordered_json bounds_json(const Box3& bounds) {
 }
 
 vrml97::ReadResult read_vrml97_input(const std::string& path) {
-  if (vrml97::is_x3d_xml_path(path)) return vrml97::read_x3d_xml_file(path);
+  // The encoding by the content where it tells (a `.x3d` holding the
+  // classic encoding, an X3D document named otherwise), else by the name.
+  std::string head = path == "-" ? std::string() : read_head(path, 256);
+  if (head.starts_with("\xEF\xBB\xBF")) head.erase(0, 3);
+  const std::size_t first = head.find_first_not_of(" \t\r\n");
+  const char c = first == std::string::npos ? '\0' : head[first];
+  if (c == '<' || (c != '#' && vrml97::is_x3d_xml_path(path)))
+    return vrml97::read_x3d_xml_file(path);
   return vrml97::read_vrml97_file(path, {.source_name = path});
 }
 

@@ -256,8 +256,14 @@ void x3d_to_vrml97(scene::Scene& s, Log& log) {
 bool is_vrml97_input(const std::string& path) {
   if (path == "-") return false;
   if (ends_with(path, ".x3dv") || vrml97::is_x3d_xml_path(path)) return true;
-  // (Of a gzip file, .wrl.gz or .wrz, the header of what it holds.)
-  return vrml97::is_vrml97_header(read_head(path, 16));
+  // (Of a gzip file, .wrl.gz or .wrz, the header of what it holds; an X3D
+  // XML document by its root element.)
+  const std::string head = read_head(path, 512);
+  const std::size_t first = head.find('<');
+  const bool xml = first != std::string::npos &&
+                   head.find_first_not_of(" \t\r\n\xEF\xBB\xBF") == first &&
+                   head.find("<X3D") != std::string::npos;
+  return xml || vrml97::is_vrml97_header(head);
 }
 
 bool writes_x3d_xml(const std::string& output, const std::string& format) {

@@ -8,8 +8,8 @@
 
 namespace lodforge::apps {
 
-/// True if `path` (not "-") starts with a VRML97 or X3D classic header, or
-/// ends in .x3dv / .x3d.
+/// True if `path` (not "-") starts with a VRML97 or X3D classic header or
+/// is an XML document with an <X3D> element, or ends in .x3dv / .x3d.
 bool is_vrml97_input(const std::string& path);
 
 /// True if `output` is to be written in the X3D XML encoding: `format` is

@@ -101,7 +101,7 @@ class Converter {
   std::string run() {
     pugi::xml_document doc;
     const pugi::xml_parse_result parsed =
-        doc.load_buffer(xml_.data(), xml_.size(), pugi::parse_default, pugi::encoding_utf8);
+        doc.load_buffer(xml_.data(), xml_.size(), pugi::parse_default, pugi::encoding_auto);
     if (!parsed) fail(parsed.offset, fmt::format("malformed XML: {}", parsed.description()));
     const pugi::xml_node root = doc.document_element();
     if (std::string_view(root.name()) != "X3D")
@@ -178,6 +178,13 @@ class Converter {
     out_ += '\n';
     origin_.push_back(pos(offset));
     out_.append(std::size_t(indent) * 2, ' ');
+  }
+
+  // The line breaks of a string just written (a script's text) continue the
+  // line it began on.
+  void lines_within(std::string_view text) {
+    for (const char c : text)
+      if (c == '\n') origin_.push_back(origin_.back());
   }
 
   std::string_view checked_name(const pugi::xml_node e, std::string_view attribute,
@@ -286,14 +293,17 @@ class Converter {
       out_ += checked_name(e, "attribute name", name);
       out_ += ' ';
       const std::string value = classic_value(x3d_value_shape(type, name), a.value(), at, name);
-      if (name == "url" && !text.empty())
+      if (name == "url" && !text.empty()) {
         out_ += fmt::format("[ {} {} ]", strip_brackets(value), quote_classic(text));
-      else
+        lines_within(text);
+      } else {
         out_ += value;
+      }
     }
     if (!text.empty() && !e.attribute("url")) {
       line(e.offset_debug(), indent + 1);
       out_ += fmt::format("url {}", quote_classic(text));
+      lines_within(text);
     }
     std::vector<std::pair<std::string, std::vector<pugi::xml_node>>> groups;
     for (const pugi::xml_node c : e.children()) {

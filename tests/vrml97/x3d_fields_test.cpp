@@ -21,6 +21,10 @@ TEST(X3dFields, ShapesOfTypedTableAndPerNodeFields) {
   EXPECT_EQ(x3d_value_shape("TextureTransform", "scale"), ValueShape::kSFNumbers);
   EXPECT_EQ(x3d_value_shape("Color", "color"), ValueShape::kMFNumbers);
   EXPECT_EQ(x3d_value_shape("Fog", "color"), ValueShape::kSFNumbers);
+  EXPECT_EQ(x3d_value_shape("OrthoViewpoint", "fieldOfView"), ValueShape::kMFNumbers);
+  EXPECT_EQ(x3d_value_shape("GeoViewpoint", "fieldOfView"), ValueShape::kUnknown);
+  EXPECT_EQ(x3d_value_shape("Anchor", "parameter"), ValueShape::kMFString);
+  EXPECT_EQ(x3d_value_shape("TextureCoordinateGenerator", "parameter"), ValueShape::kMFNumbers);
   // By name in any node, and unknown.
   EXPECT_EQ(x3d_value_shape("ImageTexture", "url"), ValueShape::kMFString);
   EXPECT_EQ(x3d_value_shape("PositionInterpolator", "keyValue"), ValueShape::kMFNumbers);

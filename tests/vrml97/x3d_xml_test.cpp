@@ -148,6 +148,10 @@ TEST(X3dXml, ErrorsNameTheLineAndColumnOfTheXml) {
   // An element where a node is expected that is none.
   EXPECT_EQ(error_of("<X3D><Scene><connect/></Scene></X3D>"),
             "t.x3d:1:14: <connect> is not allowed here");
+  // A component level that is not a whole number (found by fuzzing: the
+  // writer finds the level after the last colon, so it must hold none).
+  EXPECT_EQ(error_of("<X3D><head><component name='Shaders' level='1:2'/></head></X3D>"),
+            "t.x3d:1:38: expected a whole number for level of <component>, got '1:2'");
   // A <field> without its type.
   EXPECT_NE(
       error_of(

@@ -68,6 +68,11 @@ bool is_number_token(std::string_view t) {
   return t == "inf" || t == "nan" || t == "infinity";
 }
 
+// A component's level: digits only (the writer finds it after the last colon).
+bool is_level_token(std::string_view t) {
+  return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 bool is_bool_token(std::string_view t) {
   return t == "true" || t == "false" || t == "TRUE" || t == "FALSE";
 }
@@ -211,7 +216,11 @@ class Converter {
     const std::string_view name = h.name();
     line(h.offset_debug(), 0);
     if (name == "component") {
-      out_ += fmt::format("COMPONENT {}:{}", required(h, "name"), required(h, "level", true));
+      const std::string_view level = required(h, "level", true);
+      if (!is_level_token(level))
+        fail(offset_of(h, "level"),
+             fmt::format("expected a whole number for level of <component>, got '{}'", level));
+      out_ += fmt::format("COMPONENT {}:{}", required(h, "name"), level);
     } else if (name == "meta") {
       out_ += fmt::format("META {} {}", quote_classic(h.attribute("name").as_string()),
                           quote_classic(h.attribute("content").as_string()));

@@ -184,6 +184,19 @@ TEST(X3dXml, ValuesAndNamesTheTablesDoNotFit) {
       read_x3d_xml(R"(<X3D><Scene><Coordinate point="0 1 1e99"/></Scene></X3D>)").scene);
   EXPECT_NE(huge.find(R"(point="0 1 inf")"), std::string::npos) << huge;
   EXPECT_EQ(write_x3d_xml(read_x3d_xml(huge).scene), huge);
+  // Text inside a node that holds no code is not part of the scene (it was
+  // taken as a url, which a prototype instance then wrote back as a field).
+  const std::string text =
+      write_x3d_xml(read_x3d_xml(R"(<X3D><Scene><ProtoInstance name="P"> 1"/></ProtoInstance>
+                      <Group>words</Group></Scene></X3D>)")
+                        .scene);
+  EXPECT_EQ(text.find("url"), std::string::npos) << text;
+  EXPECT_EQ(write_x3d_xml(read_x3d_xml(text).scene), text);
+  // An attribute named as a keyword of the classic encoding is no field name
+  // (EXPORT in a node's body would read as a statement).
+  EXPECT_NE(error_of(R"(<X3D><Scene><TimeSenso EXPORT="x"/></Scene></X3D>)")
+                .find("expected a name for attribute name of <TimeSenso>, got 'EXPORT'"),
+            std::string::npos);
   const ReadResult amp = read_vrml97("#X3D V3.2 utf8\nBox& { }\n");
   EXPECT_THROW(write_x3d_xml(amp.scene), DataError);
 }

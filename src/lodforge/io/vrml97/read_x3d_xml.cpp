@@ -86,8 +86,23 @@ bool is_word(std::string_view n) {
   });
 }
 
+// Words the classic encoding reads as keywords, wherever they stand in a
+// node's body: never a name there.
+bool is_classic_keyword(std::string_view n) {
+  static constexpr std::string_view kKeywords[] = {
+      "AS",   "COMPONENT", "DEF",   "EXPORT", "EXTERNPROTO", "FALSE", "IMPORT", "IS", "META",
+      "NULL", "PROFILE",   "PROTO", "ROUTE",  "TO",          "TRUE",  "UNIT",   "USE"};
+  return std::find(std::begin(kKeywords), std::end(kKeywords), n) != std::end(kKeywords);
+}
+
 bool is_name(std::string_view n) {
-  return is_word(n) && !is_number_token(n);
+  return is_word(n) && !is_number_token(n) && !is_classic_keyword(n);
+}
+
+// Nodes whose text content (or CDATA) is program code, taken as a url.
+bool holds_code(std::string_view type) {
+  return type == "Script" || type == "ShaderPart" || type == "ShaderProgram" ||
+         type == "PackagedShader";
 }
 
 bool has_value_access(std::string_view access) {
@@ -290,7 +305,8 @@ class Converter {
     for (const pugi::xml_node is : e.children("IS"))
       for (const pugi::xml_node c : is.children("connect"))
         connects[std::string(required(c, "nodeField"))] = std::string(required(c, "protoField"));
-    const std::string text = script_text(e);
+    // Text in any other node is not part of the scene (19776-1 maps none).
+    const std::string text = !instance && holds_code(type) ? script_text(e) : std::string();
     for (const pugi::xml_attribute a : e.attributes()) {
       const std::string_view name = a.name();
       if (name == "DEF" || name == "USE" || name == "containerField" || name == "class" ||

@@ -59,9 +59,10 @@ struct McBuildOptions {
   /// in the cells around the edge is least, so that coarse triangles straddle
   /// the surface instead of cutting chords on one side of it (lower
   /// deviation at the coarse levels; docs/RESULTS.md), unless the move is
-  /// under 5 % of a finest cell (then the finer level's vertex serves). Costs a fifth more vertices
-  /// and 6 bytes per full-resolution triangle at run time. false: every vertex of every level is a
-  /// finest crossing, on the input surface.
+  /// under 5 % of a finest cell (then the finer level's vertex serves). The
+  /// placed vertices are extra vertices of the model (their count and bytes:
+  /// docs/RESULTS.md). false: every vertex of every level is a finest
+  /// crossing, on the input surface.
   bool place_coarse_vertices = true;
   /// The build may take at most this many bytes, as mc_build_bytes estimates
   /// them before the lattice is allocated (DataError if more). 0: no limit.

@@ -15,6 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::read_text;
 using testing::run_lodforge;
 
@@ -140,10 +141,47 @@ TEST_F(LodCli, TexturesAreFoundFromAnotherOutputFolder) {
                          "Cube {}\n}\n");
   auto r = run_lodforge("lod " + in + " -o " + path("other/dir/out.wrl"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("1 file name (Texture2, WWWInline) made relative to"));
+  EXPECT_THAT(r.err, HasSubstr("1 file reference made relative to"));
   auto out = vrml1::read_vrml1_file(path("other/dir/out.wrl"));
   EXPECT_THAT(read_text(path("other/dir/out.wrl")), HasSubstr("\"../../in/tex/wood.png\""));
   EXPECT_TRUE(fs::exists(path("other/dir/../../in/tex/wood.png")));
+  // format moves them too.
+  r = run_lodforge("format " + in + " -o " + path("formatted/out.wrl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(read_text(path("formatted/out.wrl")), HasSubstr("\"../in/tex/wood.png\""));
+}
+
+// The same for VRML97 and X3D: every value of a url field (ImageTexture,
+// Inline, Background's ...Url), the part after '#' kept, URLs and program
+// code left alone; in both encodings of X3D, from lod and from format.
+TEST_F(LodCli, Vrml97UrlsAreFoundFromAnotherOutputFolder) {
+  fs::create_directories(path("in97/tex"));
+  const std::string in = write("in97/scene.x3dv", R"(#X3D V3.0 utf8
+PROFILE Immersive
+Background { backUrl [ "sky/back.png" ] }
+Shape { appearance Appearance { texture ImageTexture { url [ "tex/wood.png" "http://x.org/w.png" ] } }
+        geometry Box { } }
+Inline { url "parts/wheel.x3dv#Top" }
+Script { url "ecmascript:
+function initialize() {}" }
+)");
+  for (const std::string out : {"other/dir/out.x3dv", "other/dir/out.x3d"}) {
+    auto r = run_lodforge("lod " + in + " -o " + path(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("3 file references made relative to")) << out;
+    const std::string text = read_text(path(out));
+    for (const char* moved :
+         {"../../in97/tex/wood.png", "../../in97/sky/back.png", "../../in97/parts/wheel.x3dv#Top",
+          "http://x.org/w.png", "function initialize"})
+      EXPECT_THAT(text, HasSubstr(moved)) << out;
+  }
+  auto r = run_lodforge("format " + in + " -o " + path("in97/same.x3dv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, Not(HasSubstr("made relative")));
+  EXPECT_THAT(read_text(path("in97/same.x3dv")), HasSubstr("\"tex/wood.png\""));
+  r = run_lodforge("format " + in + " -o " + path("f/out.x3dv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(read_text(path("f/out.x3dv")), HasSubstr("\"../in97/tex/wood.png\""));
 }
 
 TEST_F(LodCli, BadUsageIsExitTwo) {

@@ -87,7 +87,7 @@ ROUTE TS.time TO S.t
 TEST(ReadVrml97, UntypedFieldsHoldNodesWhenTheyAreNodes) {
   auto r = read_vrml97(R"(#VRML V2.0 utf8
 Collision { collide FALSE proxy DEF B Box { size 1 1 1 } children [ Shape { geometry USE B } ] }
-Anchor { url [ "a.wrl" "b.wrl" ] children [] }
+Anchor { parameter [ "a=1" "b=2" ] url [ "a.wrl" "b.wrl" ] children [] }
 )");
   const auto& c = *r.scene.roots[0];
   EXPECT_TRUE(c.fields[0].is_raw);
@@ -95,7 +95,11 @@ Anchor { url [ "a.wrl" "b.wrl" ] children [] }
   EXPECT_EQ(c.fields[1].value.nodes.at(0)->type, "Box");
   EXPECT_EQ(c.value("children")->nodes.at(0)->value("geometry")->nodes.at(0),
             c.fields[1].value.nodes[0]);
-  EXPECT_EQ(r.scene.roots[1]->fields[0].raw, R"([ "a.wrl" "b.wrl" ])");
+  EXPECT_EQ(r.scene.roots[1]->fields[0].raw, R"([ "a=1" "b=2" ])");
+  // File references are typed (so they can follow a scene written elsewhere).
+  EXPECT_FALSE(r.scene.roots[1]->fields[1].is_raw);
+  EXPECT_EQ(r.scene.roots[1]->fields[1].value.strings,
+            (std::vector<std::string>{"a.wrl", "b.wrl"}));
 }
 
 TEST(ReadVrml97, ErrorsNameFileLineColumnAndWhatWasExpected) {

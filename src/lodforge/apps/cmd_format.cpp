@@ -53,14 +53,20 @@ void add_format_command(CLI::App& app, Runner& run) {
     run = [s] {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
+      make_output_folder(s->output);
       if (is_vrml97_input(s->input)) {
         vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
+        // A glTF output takes its images from the input's folder instead.
+        if (!writes_gltf(s->output, s->format))
+          relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
         write_vrml97_as(r.scene, s->input, s->output, s->format, 0, r.log);
         if (!s->read.quiet) print_diagnostics(r.log.entries());
         return 0;
       }
       vrml1::ReadResult r = read_scene(s->input, s->read);
       const std::string as_vrml97 = vrml97_format_of(s->format, s->output);
+      if (!as_vrml97.empty() || !gltf::is_gltf_path(s->output))
+        relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
       if (!as_vrml97.empty()) {
         write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet);
       } else if (gltf::is_gltf_path(s->output)) {

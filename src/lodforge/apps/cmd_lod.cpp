@@ -201,15 +201,6 @@ std::size_t file_size_or_zero(const std::string& path) {
   return ec ? 0 : static_cast<std::size_t>(size);
 }
 
-// The folder of `target`, created if missing.
-void make_output_folder(const std::string& target) {
-  namespace fs = std::filesystem;
-  const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
-  std::error_code ec;
-  if (!to.empty() && (fs::create_directories(to, ec), ec))
-    throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
-}
-
 // Reads one scene, makes its LODs and writes them; a DataError is the
 // outcome's error. `progress` receives the library's progress, drawn on
 // `bar`, which is cleared before anything is printed; `stats` gets the
@@ -234,7 +225,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
         !vrml97 && !gltf && !as_gltf ? vrml97_format_of(s.format, out.output) : "";
     if (gltf || vrml97) make_output_folder(out.output);
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
-                       : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn)
+                       : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet)
                                 : LodResult{};
     if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
@@ -258,14 +249,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     const std::string& target = out.output;
     const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
     make_output_folder(target);
-    if (!vrml97 && !gltf && input != "-" && target != "-") {
-      const auto moved =
-          scene::relocate_references(result.scene, fs::path(input).parent_path(), to);
-      if (moved.rewritten && !s.read.quiet)
-        fmt::print(stderr, "{}: {} file name{} (Texture2, WWWInline) made relative to {}\n", input,
-                   moved.rewritten, moved.rewritten == 1 ? "" : "s",
-                   to.empty() ? "." : to.string());
-    }
+    if (!vrml97 && !gltf) relocate_to_output(result.scene, input, target, s.read.quiet);
     if (!vrml97 && !gltf) {
       // A VRML 1.0 / Inventor scene is written as glTF when asked (--format
       // or an output named .glb / .gltf), else in its own language.

@@ -13,8 +13,10 @@
 
 #include <fmt/core.h>
 
+#include "lodforge/core/error.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/render/color_bar.h"
+#include "lodforge/scene/relocate_references.h"
 
 namespace lodforge::apps {
 
@@ -162,6 +164,25 @@ Image add_deviation_bar(const Image& picture, double max) {
                                  .min = 0,
                                  .max = max,
                                  .title = "deviation"});
+}
+
+void make_output_folder(const std::string& target) {
+  namespace fs = std::filesystem;
+  const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();
+  std::error_code ec;
+  if (!to.empty() && (fs::create_directories(to, ec), ec))
+    throw DataError(fmt::format("{}: cannot create the folder: {}", to.string(), ec.message()));
+}
+
+void relocate_to_output(scene::Scene& scene, const std::string& input, const std::string& output,
+                        bool quiet) {
+  namespace fs = std::filesystem;
+  if (input == "-" || output == "-") return;
+  const fs::path to = fs::path(output).parent_path();
+  const auto moved = scene::relocate_references(scene, fs::path(input).parent_path(), to);
+  if (moved.rewritten && !quiet)
+    fmt::print(stderr, "{}: {} file reference{} made relative to {}\n", input, moved.rewritten,
+               moved.rewritten == 1 ? "" : "s", to.empty() ? "." : to.string());
 }
 
 }  // namespace lodforge::apps

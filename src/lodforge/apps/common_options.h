@@ -10,6 +10,7 @@
 #include "lodforge/io/vrml1/read_vrml1.h"
 #include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/render/image.h"
+#include "lodforge/scene/node.h"
 
 namespace lodforge::apps {
 
@@ -44,6 +45,16 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
 
 /// Reads a VRML 1.0 or Open Inventor scene, printing warnings on stderr unless quiet.
 vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s);
+
+/// Creates the folder of `target` if it is missing (nothing for "-");
+/// DataError naming the folder when it cannot.
+void make_output_folder(const std::string& target);
+
+/// Makes the relative file references of `scene`, read from `input`, relative
+/// to the folder of `output` (scene::relocate_references) and says how many
+/// changed on stderr unless `quiet`. Nothing for standard input or output.
+void relocate_to_output(scene::Scene& scene, const std::string& input, const std::string& output,
+                        bool quiet);
 
 /// The same for a file's contents already read (`path` names it in messages
 /// and gives the folder of its inlines).

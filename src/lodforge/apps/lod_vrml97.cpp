@@ -1,5 +1,7 @@
 #include "lodforge/apps/lod_vrml97.h"
 
+#include "lodforge/apps/common_options.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -319,10 +321,12 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
 }
 
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
-                          const std::string& format, const LodOptions& options) {
+                          const std::string& format, const LodOptions& options, bool quiet) {
   vrml97::ReadResult r = read_vrml97_as(input, output, format);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
+  // A glTF output takes its images from the input's folder instead.
+  if (!writes_gltf(output, format)) relocate_to_output(result.scene, input, output, quiet);
   write_vrml97_as(result.scene, input, output, format, result.camera_angle, result.log);
   return result;
 }

@@ -40,10 +40,12 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
                      const std::string& format, double camera_angle, Log& log);
 
 /// Reads `input` and sets the output encoding as read_vrml97_as, runs
-/// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as).
-/// Throws DataError (nothing written) for a parse error or a scene the
-/// output encoding cannot hold.
+/// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as), its
+/// relative file references made relative to the output's folder
+/// (relocate_to_output; said on stderr unless `quiet`). Throws DataError
+/// (nothing written) for a parse error or a scene the output encoding
+/// cannot hold.
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
-                          const std::string& format, const LodOptions& options);
+                          const std::string& format, const LodOptions& options, bool quiet = false);
 
 }  // namespace lodforge::apps

@@ -393,13 +393,7 @@ class Flattener {
     if (!fresh) return it->second;
     const scene::Field* url = t.find("url");
     std::string file;
-    if (url && !url->is_raw && !url->value.strings.empty()) {
-      file = url->value.strings[0];
-    } else if (url && url->is_raw) {  // ["a.png" "b.jpg"] kept as text: the first
-      const auto open = url->raw.find('"');
-      const auto close = open == std::string::npos ? open : url->raw.find('"', open + 1);
-      if (close != std::string::npos) file = url->raw.substr(open + 1, close - open - 1);
-    }
+    if (url && !url->is_raw && !url->value.strings.empty()) file = url->value.strings[0];
     if (file.empty()) return it->second;
     auto repeat = [&](const char* field) {
       const scene::Field* f = t.find(field);

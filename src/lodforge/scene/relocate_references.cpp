@@ -27,6 +27,32 @@ fs::path normal_absolute(const fs::path& p) {
   return fs::absolute(p).lexically_normal();
 }
 
+// Whether `field` of `n` holds file references.
+bool is_reference(const Node& n, const Field& field) {
+  if (field.is_raw) return false;
+  const std::string& f = field.name;
+  if (n.type == "Texture2") return f == "filename";
+  if (n.type == "WWWInline" || n.type == "WWWAnchor") return f == "name";
+  return f == "url" || (f.size() > 3 && f.ends_with("Url"));
+}
+
+// `ref` as seen from `to`, or empty when it stays as it is.
+std::string moved(const std::string& ref, const fs::path& from, const fs::path& to) {
+  const std::size_t first = ref.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || ref.find('\n') != std::string::npos || ref[first] == '#')
+    return {};
+  const std::string trimmed = ref.substr(first);
+  if (has_scheme(trimmed)) return {};
+  const std::size_t hash = trimmed.find('#');
+  const std::string path = trimmed.substr(0, hash);
+  if (fs::path(path).is_absolute()) return {};
+  const fs::path target = (from / path).lexically_normal();
+  std::string out = target.lexically_relative(to).generic_string();
+  if (out.empty()) out = target.generic_string();
+  if (hash != std::string::npos) out += trimmed.substr(hash);
+  return out == ref ? std::string() : out;
+}
+
 }  // namespace
 
 RelocateResult relocate_references(Scene& scene, const fs::path& from_dir, const fs::path& to_dir) {
@@ -34,31 +60,25 @@ RelocateResult relocate_references(Scene& scene, const fs::path& from_dir, const
   const fs::path from = normal_absolute(from_dir.empty() ? fs::path(".") : from_dir);
   const fs::path to = normal_absolute(to_dir.empty() ? fs::path(".") : to_dir);
   if (from == to) return result;
-  struct Reference {
-    const char* type;
-    const char* field;
-  };
-  static constexpr Reference kReferences[] = {{"Texture2", "filename"}, {"WWWInline", "name"}};
   std::unordered_set<const Node*> seen;
   std::vector<Node*> stack;
   for (const auto& r : scene.roots) stack.push_back(r.get());
   while (!stack.empty()) {
     Node* n = stack.back();
     stack.pop_back();
-    if (!seen.insert(n).second) continue;
+    if (!n || !seen.insert(n).second) continue;
     for (const auto& c : n->children) stack.push_back(c.get());
-    for (const Reference& ref : kReferences) {
-      if (n->type != ref.type) continue;
-      const FieldValue* v = n->value(ref.field);
-      if (!v || v->strings.empty()) continue;
-      const std::string& name = v->strings[0];
-      if (name.empty() || has_scheme(name) || fs::path(name).is_absolute()) continue;
-      const fs::path target = (from / name).lexically_normal();
-      std::string moved = target.lexically_relative(to).generic_string();
-      if (moved.empty()) moved = target.generic_string();
-      if (moved == name) continue;
-      n->set(ref.field, make_string(moved));
-      ++result.rewritten;
+    for (Field& field : n->fields) {
+      for (const auto& c : field.value.nodes) stack.push_back(c.get());
+      if (!is_reference(*n, field)) continue;
+      bool changed = false;
+      for (std::string& ref : field.value.strings) {
+        std::string m = moved(ref, from, to);
+        if (m.empty()) continue;
+        ref = std::move(m);
+        changed = true;
+      }
+      result.rewritten += changed;
     }
   }
   return result;

@@ -1,9 +1,15 @@
 #pragma once
-/// File references of a scene (Texture2 filename, WWWInline name) that are
-/// relative to the folder of the file they were read from, made relative to
-/// the folder the scene is written to, so a scene written elsewhere still
-/// finds its textures and inlined files. URLs (with a scheme), absolute paths
-/// and empty names are left as they are.
+/// File references of a scene that are relative to the folder of the file
+/// they were read from, made relative to the folder the scene is written to,
+/// so a scene written elsewhere still finds its textures and inlined files.
+/// The references: VRML 1.0's Texture2 filename, WWWInline name and
+/// WWWAnchor name; VRML97's and X3D's string fields named `url` or ending in
+/// `Url` (ImageTexture, Inline, Anchor, AudioClip, Script, Background's
+/// backUrl ...), every value of each, a `#name` after a path kept. URLs (with
+/// a scheme, such as `http:` or a script's `ecmascript:`), absolute paths,
+/// names of the same file (`#name`), empty names and values spanning lines
+/// (program code) are left as they are; so are the texts of PROTO bodies
+/// and EXTERNPROTO statements, which are kept verbatim.
 #include <cstddef>
 #include <filesystem>
 

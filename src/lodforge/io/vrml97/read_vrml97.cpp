@@ -82,6 +82,21 @@ constexpr TypedNode kTypedNodes[] = {
     {"Viewpoint",
      "SFFloat fieldOfView SFVec3f position SFRotation orientation SFString description "
      "SFBool jump"},
+    // File references (scene::relocate_references moves them with the scene).
+    {"ImageTexture", "MFString url"},
+    {"MovieTexture", "MFString url"},
+    {"ImageCubeMapTexture", "MFString url"},
+    {"ImageTexture3D", "MFString url"},
+    {"AudioClip", "MFString url"},
+    {"Inline", "MFString url"},
+    {"Anchor", "MFString url"},
+    {"Script", "MFString url"},
+    {"ShaderPart", "MFString url"},
+    {"ShaderProgram", "MFString url"},
+    {"PackagedShader", "MFString url"},
+    {"Background",
+     "MFString backUrl MFString frontUrl MFString leftUrl MFString rightUrl MFString topUrl "
+     "MFString bottomUrl"},
 };
 
 bool geometry_node(std::string_view type) {

@@ -11,12 +11,18 @@
 // the cell's cube (a cell's triangles join points on its edges and faces,
 // or their centroids) and is usually much tighter.
 //
-//   query    | order of the cells                  | stops when
+//   query    | order of the cells                  | a cell is skipped when
 //   ---------+-------------------------------------+------------------------------
-//   ray      | depth first, children nearest entry | a box's entry is beyond the
+//   ray      | depth first, children nearest entry | its box's entry is beyond the
 //            | first                               | nearest hit found
-//   closest  | best first by the distance of the   | the nearest box left is
-//            | box (a heap)                        | farther than the nearest point
+//   closest  | depth first, children nearest box   | its box is farther than the
+//            | first                               | nearest point found (the
+//            |                                     | radius shrinks as they come)
+//
+// The closest-point search is not a global best-first one (a heap ordered by
+// box distance): that visits fewer cells, but its heap costs more than the
+// cells it saves (1.4-1.7x slower on the bunny, bench/mcoctree_query_bench),
+// and the stack needs no allocation.
 //
 // Ties (equal distances) go to the lowest triangle index, and a box at
 // exactly the best distance is still visited, so the answer does not depend on
@@ -27,7 +33,6 @@
 #include <array>
 #include <cassert>
 #include <cmath>
-#include <queue>
 #include <string>
 #include <utility>
 
@@ -243,19 +248,27 @@ McClosest McQuery::closest(const Vec3& p) const {
   McClosest out;
   if (nodes_.empty()) return out;
   ClosestPoint best;
-  using Entry = std::pair<float, std::uint32_t>;  // box distance squared, node
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
-  heap.push({box_distance_squared(p, nodes_[0].lo, nodes_[0].hi), 0});
-  while (!heap.empty()) {
-    const auto [d2, i] = heap.top();
-    heap.pop();
-    if (d2 > best.distance_squared) break;
-    const Node& n = nodes_[i];
+  struct Entry {
+    std::uint32_t node;
+    float d2;
+  };
+  std::array<Entry, 8 * (kMaxDepth + 1)> stack;
+  int top = 0;
+  stack[top++] = {0, box_distance_squared(p, nodes_[0].lo, nodes_[0].hi)};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.d2 > best.distance_squared) continue;
+    const Node& n = nodes_[e.node];
     if (!n.leaf) {
+      std::array<Entry, 8> kids;
+      int k = 0;
       for (std::uint32_t c = n.first; c < n.first + n.count; ++c)
-        if (float e = box_distance_squared(p, nodes_[c].lo, nodes_[c].hi);
-            e <= best.distance_squared)
-          heap.push({e, c});
+        if (float d = box_distance_squared(p, nodes_[c].lo, nodes_[c].hi);
+            d <= best.distance_squared)
+          kids[k++] = {c, d};
+      for (int i = 1; i < k; ++i)
+        for (int j = i; j > 0 && kids[j - 1].d2 < kids[j].d2; --j) std::swap(kids[j - 1], kids[j]);
+      for (int i = 0; i < k; ++i) stack[top++] = kids[i];
       continue;
     }
     for (std::uint32_t t = n.first; t < n.first + n.count; ++t) {

@@ -92,10 +92,12 @@ class McQuery {
   /// comment). found() is false only when the level has no triangles. Throws
   /// DataError when p is not finite.
   ///
-  /// Cost: best-first over the cells by the distance of their boxes, the
-  /// radius shrinking with each closer triangle: O(log n) nodes for a point
-  /// near the surface; a point far away (many cells at almost the same
-  /// distance, e.g. the centre of a sphere) visits more.
+  /// Cost: depth first over the cells, the nearest box first, skipping
+  /// cells whose boxes are farther than the nearest point found so far (the
+  /// radius shrinks with each closer triangle): O(log n) nodes for a point
+  /// within a few cells of the surface; a point at distance D visits the
+  /// cells whose boxes are nearer than D, more as D grows against the cell
+  /// size (the centre of a sphere: every cell). Allocates nothing.
   McClosest closest(const Vec3& p) const;
 
   /// Whether p is inside the closed surface: closest(p).inside().

@@ -2,8 +2,8 @@
 // brute force over the same level's triangles and the metrics BVH
 // (metrics/triangle_bvh.h) built on that mesh, for the bunny (capped) at
 // resolutions 64, 128 and 256, so that the growth with the triangle count
-// shows. Rays: octree and brute force (the BVH answers closest points
-// only). Points: the octree's closest point with its signed distance, brute
+// shows. Rays: the first hit (octree: with its point and face normal).
+// Points: the octree's closest point with its signed distance, brute
 // force's closest point, the BVH's closest point; for points anywhere in
 // the box and for points near the surface.
 //
@@ -26,6 +26,7 @@
 #include "lodforge/mcoctree/mc_query.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
+#include "lodforge/metrics/ray.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
 namespace {
@@ -86,8 +87,7 @@ const Setup* setup(int resolution) {
     float x = u(rng), y = u(rng);
     if (x + y > 1) x = 1 - x, y = 1 - y;
     const Vec3 normal = normalized(cross(b - a, c - a));
-    s.near.push_back(a + (b - a) * x + (c - a) * y +
-                     normal * ((2 * u(rng) - 1) * model.cell_size));
+    s.near.push_back(a + (b - a) * x + (c - a) * y + normal * ((2 * u(rng) - 1) * model.cell_size));
   }
   return &s;
 }
@@ -101,28 +101,18 @@ void counters(benchmark::State& state, const Setup& s, std::size_t queries) {
   state.counters["nodes"] = static_cast<double>(s.query->node_count());
 }
 
-// Brute force's first hit over every triangle (Moeller-Trumbore, float).
+// Brute force's first hit: every triangle tested (metrics/ray.h).
 float brute_ray(const TriangleMesh& m, Vec3 o, Vec3 d) {
-  d = normalized(d);
-  float best = -1;
-  for (const auto& f : m.triangles) {
-    const Vec3 &a = m.positions[f[0]], e1 = m.positions[f[1]] - a, e2 = m.positions[f[2]] - a;
-    const Vec3 p = cross(d, e2);
-    const float det = dot(e1, p);
-    if (det == 0) continue;
-    const Vec3 t = o - a;
-    const float uu = dot(t, p) / det;
-    if (uu < 0 || uu > 1) continue;
-    const Vec3 q = cross(t, e1);
-    const float vv = dot(d, q) / det;
-    if (vv < 0 || uu + vv > 1) continue;
-    const float s = dot(e2, q) / det;
-    if (s >= 0 && (best < 0 || s < best)) best = s;
-  }
-  return best;
+  const Ray ray(o, normalized(d));
+  double best = -1;
+  for (const auto& f : m.triangles)
+    if (double t = ray.hit(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
+        t >= 0 && (best < 0 || t < best))
+      best = t;
+  return static_cast<float>(best);
 }
 
-// Args: resolution, method (0 octree, 1 brute force).
+// Args: resolution, method (0 octree, 1 brute force, 2 BVH).
 void BM_McoQueryRay(benchmark::State& state) {
   const Setup* s = setup(static_cast<int>(state.range(0)));
   if (!s) return state.SkipWithError("bunny missing");
@@ -135,6 +125,8 @@ void BM_McoQueryRay(benchmark::State& state) {
       const auto& [o, d] = s->rays[i];
       if (method == kOctree)
         benchmark::DoNotOptimize(s->query->ray(o, d));
+      else if (method == kBvh)
+        benchmark::DoNotOptimize(s->bvh->first_hit(o, d));
       else
         benchmark::DoNotOptimize(brute_ray(s->query->mesh(), o, d));
     }
@@ -143,7 +135,7 @@ void BM_McoQueryRay(benchmark::State& state) {
   counters(state, *s, done);
 }
 BENCHMARK(BM_McoQueryRay)
-    ->ArgsProduct({{64, 128, 256}, {kOctree, kBrute}})
+    ->ArgsProduct({{64, 128, 256}, {kOctree, kBrute, kBvh}})
     ->Unit(benchmark::kMicrosecond);
 
 // Args: resolution, method (0 octree, 1 brute force, 2 BVH), points (0: in

@@ -25,8 +25,9 @@
 // and the stack needs no allocation.
 //
 // Ties (equal distances) go to the lowest triangle index, and a box at
-// exactly the best distance is still visited, so the answer does not depend on
-// the order of the visits.
+// exactly the best distance is still visited (the boxes are grown a little,
+// so a tied triangle's box is nearer than the tie), so the answer does not
+// depend on the order of the visits.
 #include "lodforge/mcoctree/mc_query.h"
 
 #include <algorithm>
@@ -37,6 +38,7 @@
 #include <utility>
 
 #include "lodforge/core/error.h"
+#include "lodforge/metrics/ray.h"
 
 namespace lodforge {
 namespace {
@@ -51,60 +53,6 @@ std::pair<std::uint32_t, std::uint32_t> cell_triangles(const McLodModel& m, std:
   const std::uint32_t b = m.intervals[j].first_triangle;
   return {b, m.intervals[j + 1].first_triangle - b};
 }
-
-// Moeller & Trumbore, "Fast, minimum storage ray/triangle intersection"
-// (1997), in double precision so that a ray through a shared edge is seldom
-// lost between the two triangles. Both sides count. The t of the hit, or a
-// negative value.
-double ray_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
-  const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
-  const double dd[3] = {d.x, d.y, d.z};
-  const double p[3] = {dd[1] * e2[2] - dd[2] * e2[1], dd[2] * e2[0] - dd[0] * e2[2],
-                       dd[0] * e2[1] - dd[1] * e2[0]};
-  const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
-  if (det == 0) return -1;  // parallel to the plane, or a degenerate triangle
-  const double inv = 1.0 / det;
-  const double s[3] = {double(o.x) - a.x, double(o.y) - a.y, double(o.z) - a.z};
-  const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv;
-  if (u < 0 || u > 1) return -1;
-  const double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
-                       s[0] * e1[1] - s[1] * e1[0]};
-  const double v = (dd[0] * q[0] + dd[1] * q[1] + dd[2] * q[2]) * inv;
-  if (v < 0 || u + v > 1) return -1;
-  return (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv;
-}
-
-// A ray prepared for slab tests against many boxes.
-struct Ray {
-  Vec3 o, d, inv;
-  std::array<bool, 3> flat{};  // direction component zero
-
-  Ray(const Vec3& origin, const Vec3& unit) : o(origin), d(unit) {
-    for (int a = 0; a < 3; ++a) {
-      flat[a] = unit[a] == 0;
-      inv[a] = flat[a] ? 0 : 1 / unit[a];
-    }
-  }
-  // Entry t of the box within [0, t_max], or a negative value when the ray
-  // misses it there. A zero direction component is tested by position,
-  // avoiding the 0 * inf of the plain slab formula.
-  float enter(const Vec3& lo, const Vec3& hi, float t_max) const {
-    float t0 = 0, t1 = t_max;
-    for (int a = 0; a < 3; ++a) {
-      if (flat[a]) {
-        if (o[a] < lo[a] || o[a] > hi[a]) return -1;
-        continue;
-      }
-      float near = (lo[a] - o[a]) * inv[a], far = (hi[a] - o[a]) * inv[a];
-      if (near > far) std::swap(near, far);
-      t0 = std::max(t0, near);
-      t1 = std::min(t1, far);
-      if (t0 > t1) return -1;
-    }
-    return t0;
-  }
-};
 
 float box_distance_squared(const Vec3& p, const Vec3& lo, const Vec3& hi) {
   float s = 0;
@@ -217,10 +165,10 @@ McRayHit McQuery::ray(const Vec3& origin, const Vec3& direction, float max_dista
     if (n.leaf) {
       for (std::uint32_t t = n.first; t < n.first + n.count; ++t) {
         const auto& f = mesh.triangles[t];
-        double s = ray_triangle(origin, unit, mesh.positions[f[0]], mesh.positions[f[1]],
-                                mesh.positions[f[2]]);
-        if (s < 0 || s > best) continue;
+        const double s = r.hit(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]);
+        // Compared as floats, the distance reported: equal floats are a tie.
         const auto sf = static_cast<float>(s);
+        if (s < 0 || sf > best) continue;
         if (sf < best || t < hit.triangle) best = sf, hit.triangle = t;
       }
       continue;

@@ -22,9 +22,11 @@
 /// says so (McClosest::open) and the point counts as outside.
 ///
 /// Units are the model's (those of the mesh it was built from). Queries are
-/// const and may run from any number of threads at once; answers do not depend
-/// on the order cells are visited in (among equal distances the lowest
-/// triangle index wins), so they are deterministic.
+/// const and may run from any number of threads at once. Answers are
+/// deterministic: the same model, level and query give the same answer. Among
+/// triangles at exactly the same distance the lowest index found wins (for
+/// closest points every such triangle is found; for rays, one in a cell the
+/// float rounding of a box entry puts beyond the hit may be missed).
 #include <cstdint>
 #include <limits>
 #include <vector>

@@ -21,7 +21,7 @@
 //
 // The closest-point search is not a global best-first one (a heap ordered by
 // box distance): that visits fewer cells, but its heap costs more than the
-// cells it saves (1.4-1.7x slower on the bunny, bench/mcoctree_query_bench),
+// cells it saves (slower on the bunny at every resolution: docs/RESULTS.md),
 // and the stack needs no allocation.
 //
 // Ties (equal distances) go to the lowest triangle index, and a box at

@@ -43,13 +43,17 @@
 namespace lodforge {
 namespace {
 
-// The triangles of cell c at level N: the last interval with from <= N (as
-// extract_mc_indices picks it). Returns {first, count} in model.triangles.
+// Depth-first stacks: at most 7 siblings wait per level of the tree.
+constexpr std::size_t kStackSize = 8 * (std::size_t{McQuery::kMaxDepth} + 1);
+
+// The triangles of cell c at priority `level`: the last interval with from
+// <= level (as extract_mc_indices picks it). Returns {first, count} in
+// model.triangles.
 std::pair<std::uint32_t, std::uint32_t> cell_triangles(const McLodModel& m, std::uint32_t c,
-                                                       std::uint32_t N) {
+                                                       std::uint32_t level) {
   std::uint32_t j = m.cells[c].first_interval;
   const std::uint32_t last = m.cells[c + 1].first_interval - 1;
-  while (j < last && m.intervals[j + 1].from <= N) ++j;
+  while (j < last && m.intervals[j + 1].from <= level) ++j;
   const std::uint32_t b = m.intervals[j].first_triangle;
   return {b, m.intervals[j + 1].first_triangle - b};
 }
@@ -86,16 +90,16 @@ McQuery::McQuery(const McLodModel& model, McExtractResult level)
 void McQuery::build_tree(const McLodModel& m) {
   const TriangleMesh& mesh = signs_.mesh();
   if (m.cells.empty() || m.group.empty() || mesh.triangles.empty()) return;
-  const std::uint32_t N = priority_;
-  const std::uint32_t end = m.group[N + 1];
-  auto expanded = [&](std::uint32_t c) { return m.cells[c].until <= N; };
+  const std::uint32_t level = priority_;
+  const std::uint32_t end = m.group[level + 1];
+  auto expanded = [&](std::uint32_t c) { return m.cells[c].until <= level; };
 
   std::vector<std::uint32_t> first(end, 0);
   std::uint32_t next = 0;
   for (std::uint32_t c = 0; c < end; ++c)
     if (!expanded(c)) {
       first[c] = next;
-      next += cell_triangles(m, c, N).second;
+      next += cell_triangles(m, c, level).second;
     }
   assert(next == mesh.triangles.size());
 
@@ -106,7 +110,7 @@ void McQuery::build_tree(const McLodModel& m) {
       for (std::uint32_t k = m.group[u]; k < m.group[u + 1]; ++k) box[c].add(box[k]);
       continue;
     }
-    const std::uint32_t n = cell_triangles(m, c, N).second;
+    const std::uint32_t n = cell_triangles(m, c, level).second;
     for (std::uint32_t t = first[c]; t < first[c] + n; ++t)
       for (auto v : mesh.triangles[t]) box[c].add(mesh.positions[v]);
   }
@@ -116,7 +120,7 @@ void McQuery::build_tree(const McLodModel& m) {
   const float pad = 1e-4f * m.cell_size + 4 * std::numeric_limits<float>::min();
   auto node_of = [&](std::uint32_t c) {
     Node n{box[c].lo - Vec3{pad, pad, pad}, box[c].hi + Vec3{pad, pad, pad}, 0, 0, !expanded(c)};
-    if (n.leaf) n.first = first[c], n.count = cell_triangles(m, c, N).second;
+    if (n.leaf) n.first = first[c], n.count = cell_triangles(m, c, level).second;
     return n;
   };
   if (box[0].empty()) return;
@@ -155,7 +159,7 @@ McRayHit McQuery::ray(const Vec3& origin, const Vec3& direction, float max_dista
     std::uint32_t node;
     float t;
   };
-  std::array<Entry, 8 * (kMaxDepth + 1)> stack;
+  std::array<Entry, kStackSize> stack;
   int top = 0;
   if (float t = r.enter(nodes_[0].lo, nodes_[0].hi, best); t >= 0) stack[top++] = {0, t};
   while (top > 0) {
@@ -200,7 +204,7 @@ McClosest McQuery::closest(const Vec3& p) const {
     std::uint32_t node;
     float d2;
   };
-  std::array<Entry, 8 * (kMaxDepth + 1)> stack;
+  std::array<Entry, kStackSize> stack;
   int top = 0;
   stack[top++] = {0, box_distance_squared(p, nodes_[0].lo, nodes_[0].hi)};
   while (top > 0) {

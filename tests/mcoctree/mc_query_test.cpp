@@ -157,7 +157,8 @@ void check_against_brute_force(const McQuery& q, const TriangleMesh& mesh, int c
 // misses; the centre is inside at about half a unit.
 TEST(McQuery, CubeRaysAndPoints) {
   const McLodModel m = model_of(test::make_cube(), 16);
-  const McQuery q(m);
+  McQuery made(m);
+  const McQuery q = std::move(made);  // movable: answers from its own copies
   const float h = m.cell_size;
   McRayHit hit = q.ray({0.5f, 0.5f, -1}, {0, 0, 2});
   ASSERT_TRUE(hit.hit());

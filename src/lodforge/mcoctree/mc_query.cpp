@@ -38,6 +38,7 @@
 #include <utility>
 
 #include "lodforge/core/error.h"
+#include "lodforge/mcoctree/mesh_signs.h"
 #include "lodforge/metrics/ray.h"
 
 namespace lodforge {
@@ -73,13 +74,22 @@ McQuery::McQuery(const McLodModel& model, const McExtractOptions& level)
     : McQuery(model, extract_mc_mesh(model, level)) {}
 
 McQuery::McQuery(const McLodModel& model, McExtractResult level)
-    : priority_(level.priority), signs_(std::move(level.mesh)) {
-  const TriangleMesh& mesh = signs_.mesh();
+    : priority_(level.priority),
+      signs_(std::make_unique<const detail::SignedDistance>(std::move(level.mesh))) {
+  const TriangleMesh& mesh = signs_->mesh();
   prepared_.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles)
     prepared_.push_back(
         PreparedTriangle::of(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
   build_tree(model);
+}
+
+McQuery::McQuery(McQuery&&) noexcept = default;
+McQuery& McQuery::operator=(McQuery&&) noexcept = default;
+McQuery::~McQuery() = default;
+
+const TriangleMesh& McQuery::mesh() const {
+  return signs_->mesh();
 }
 
 // The tree cut at priority_, in three passes over the cells of groups
@@ -88,7 +98,7 @@ McQuery::McQuery(const McLodModel& model, McExtractResult level)
 // after its parent in the cell array), and the nodes breadth first so that
 // a node's children are contiguous.
 void McQuery::build_tree(const McLodModel& m) {
-  const TriangleMesh& mesh = signs_.mesh();
+  const TriangleMesh& mesh = signs_->mesh();
   if (m.cells.empty() || m.group.empty() || mesh.triangles.empty()) return;
   const std::uint32_t level = priority_;
   const std::uint32_t end = m.group[level + 1];
@@ -152,7 +162,7 @@ McRayHit McQuery::ray(const Vec3& origin, const Vec3& direction, float max_dista
   McRayHit hit;
   if (nodes_.empty()) return hit;
   const Ray r(origin, unit);
-  const TriangleMesh& mesh = signs_.mesh();
+  const TriangleMesh& mesh = signs_->mesh();
   float best = max_distance;
   // At most 7 siblings wait per level while the nearest child is entered.
   struct Entry {
@@ -230,7 +240,7 @@ McClosest McQuery::closest(const Vec3& p) const {
         best = {tp.point, t, tp.barycentric, tp.distance_squared};
     }
   }
-  const auto sample = signs_.sample(p, best);
+  const auto sample = signs_->sample(p, best);
   out.point = best.point;
   out.triangle = best.triangle;
   out.distance = sample.distance;

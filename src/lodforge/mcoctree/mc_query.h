@@ -29,16 +29,19 @@
 /// float rounding of a box entry puts beyond the hit may be missed).
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "lodforge/core/math.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
-#include "lodforge/mcoctree/mesh_signs.h"
 #include "lodforge/mesh/triangle_mesh.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge {
+namespace detail {
+class SignedDistance;
+}
 
 /// The first intersection of a ray with the surface.
 struct McRayHit {
@@ -67,6 +70,8 @@ struct McClosest {
 /// Queries against one level of a model: built once (O(cells + triangles) of
 /// the level, plus the adjacency for the pseudo-normals), then queried.
 /// Holds copies of what it needs; the model may be dropped afterwards.
+/// Movable (a moved-from query may only be assigned to or destroyed), not
+/// copyable.
 class McQuery {
  public:
   /// The level as in extract_mc_mesh: McExtractOptions{} is the full
@@ -75,6 +80,9 @@ class McQuery {
   /// when the tree is deeper than kMaxDepth levels (no model from
   /// build_mc_octree is).
   explicit McQuery(const McLodModel& model, const McExtractOptions& level = {});
+  McQuery(McQuery&&) noexcept;
+  McQuery& operator=(McQuery&&) noexcept;
+  ~McQuery();
 
   static constexpr int kMaxDepth = 30;
 
@@ -108,7 +116,7 @@ class McQuery {
   std::uint32_t priority() const { return priority_; }
   /// The level's mesh (extract_mc_mesh's): the triangle indices of the
   /// answers refer to it.
-  const TriangleMesh& mesh() const { return signs_.mesh(); }
+  const TriangleMesh& mesh() const;
   /// Nodes of the search tree (octree nodes with triangles below them).
   std::size_t node_count() const { return nodes_.size(); }
 
@@ -123,7 +131,7 @@ class McQuery {
   void build_tree(const McLodModel& model);
 
   std::uint32_t priority_ = 0;
-  detail::SignedDistance signs_;
+  std::unique_ptr<const detail::SignedDistance> signs_;  // the level's mesh and pseudo-normals
   std::vector<Node> nodes_;                 // [0] = the root; a node's children are contiguous
   std::vector<PreparedTriangle> prepared_;  // by triangle index of mesh()
 };

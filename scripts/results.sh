@@ -122,7 +122,7 @@ section() {
         "$B/bench/vertex_clustering_bench --benchmark_min_time=3 --benchmark_filter='OverSloppy/[02]/'"
       ) ;;
     octree)  # marching-cube octree: quality, pictures, resolutions, speed, memory, scans, checks
-      targets=(mcoctree_quality mcoctree_bench lodforge_cli test_mcoctree)
+      targets=(mcoctree_quality mcoctree_bench mcoctree_query_bench lodforge_cli test_mcoctree)
       commands=(
         "$B/bench/mcoctree_quality --out docs/images"
         "$B/bench/mcoctree_quality --metric distance"
@@ -131,6 +131,7 @@ section() {
         commands+=("$B/bench/mcoctree_quality --resolution $r --samples 200000")
       done
       commands+=("$B/bench/mcoctree_bench --benchmark_filter='BM_McoExtract/|BM_McoMemory|BM_McoBuildBesideMeshopt'")
+      commands+=("$B/bench/mcoctree_query_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true")
       for m in horse.ply fandisk.obj cow.obj; do
         commands+=("$B/lodforge mco build $D/meshes/$m -o $W/${m%.*}.mco -q")
       done

@@ -1,4 +1,4 @@
-// `lodforge mco build | extract | info | scan` as a user runs them: exit
+// `lodforge mco build | extract | info | query | scan` as a user runs them: exit
 // codes, outputs, the range-scan path end to end, and bad model files.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -193,6 +193,68 @@ TEST_F(McoCli, CorruptedOrWrongFilesAreErrorsWithoutOutput) {
             2);
   EXPECT_EQ(run_lodforge("mco build " + mesh_ + " -o x.mco --resolution 1").exit_code, 2);
   EXPECT_EQ(run_lodforge("mco").exit_code, 2);
+}
+
+// `mco query` on the torus (ring in the xy plane, R = 1, r = 0.35): answers in
+// the order of the options; a ray through the hole misses, one from +x hits
+// the outer side; the tube's centre line is inside, the torus's centre not.
+TEST_F(McoCli, QueryRaysAndPoints) {
+  std::string m = model();
+  auto r = run_lodforge("mco query " + m +
+                        " --ray 0,0,5,0,0,-1 --point 1,0,0 --ray 5,0,0,-2,0,0 --point 0,0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 4u);
+  const double cell = info_json(m)["cell_size"].get<double>();
+  EXPECT_EQ(j[0]["ray"], nlohmann::json::parse("[0, 0, 5, 0, 0, -1]"));
+  EXPECT_FALSE(j[0]["hit"].get<bool>());
+  EXPECT_FALSE(j[0].contains("distance"));
+
+  EXPECT_EQ(j[1]["point"], nlohmann::json::parse("[1, 0, 0]"));
+  EXPECT_TRUE(j[1]["inside"].get<bool>());
+  EXPECT_TRUE(j[1]["side_known"].get<bool>());
+  EXPECT_NEAR(j[1]["distance"].get<double>(), -0.35, cell);
+  EXPECT_EQ(j[1]["closest"].size(), 3u);
+
+  ASSERT_TRUE(j[2]["hit"].get<bool>());
+  EXPECT_NEAR(j[2]["distance"].get<double>(), 5 - 1.35, cell);
+  EXPECT_NEAR(j[2]["point"][0].get<double>(), 1.35, cell);
+  EXPECT_NEAR(j[2]["normal"][0].get<double>(), 1, 0.1);
+  EXPECT_TRUE(j[2]["triangle"].is_number_unsigned());
+
+  EXPECT_FALSE(j[3]["inside"].get<bool>());
+  EXPECT_NEAR(j[3]["distance"].get<double>(), 0.65, cell);
+
+  // A coarse level answers too, from fewer triangles.
+  r = run_lodforge("mco query " + m + " --point 0,0,0 --percent 10");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out).size(), 1u);
+  EXPECT_THAT(r.err, HasSubstr("priority"));
+}
+
+// Bad numbers: exit 1, the option and the expected form named, nothing on
+// stdout; no query at all is a usage error.
+TEST_F(McoCli, QueryBadArguments) {
+  std::string m = model();
+  const std::pair<const char*, const char*> bad[] = {
+      {"--ray", "1,2,3"},     {"--ray", "0,0,0,1,0,x"}, {"--point", "1,2"},     {"--point", "1,,2"},
+      {"--point", "1,2,3,4"}, {"--point", "1,2,nan"},   {"--point", "1,2,1e99"}};
+  for (auto [option, value] : bad) {
+    auto r = run_lodforge("mco query " + m + " " + option + " " + value);
+    EXPECT_EQ(r.exit_code, 1) << option << " " << value;
+    EXPECT_TRUE(r.out.empty()) << option << " " << value;
+    EXPECT_THAT(r.err, HasSubstr(std::string(option) + " '" + value + "': expected "))
+        << option << " " << value;
+    EXPECT_THAT(r.err, HasSubstr(std::string(option) == "--ray" ? "OX,OY,OZ,DX,DY,DZ (6 finite"
+                                                                : "X,Y,Z (3 finite"));
+  }
+  auto r = run_lodforge("mco query " + m + " --point 1,2,3 --ray 1,2,3,0,0,0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("direction DX,DY,DZ is zero"));
+  r = run_lodforge("mco query " + m);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--ray or --point"));
 }
 
 TEST_F(McoCli, ScanThenBuildFromTheScans) {

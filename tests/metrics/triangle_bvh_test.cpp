@@ -5,6 +5,7 @@
 #include <random>
 
 #include "lodforge/metrics/closest_point_on_triangle.h"
+#include "lodforge/metrics/ray.h"
 #include "mesh/test_meshes.h"
 
 namespace lodforge {
@@ -62,6 +63,61 @@ TEST(TriangleBvh, EqualsBruteForceOnRandomQueries) {
       EXPECT_NEAR(length_squared(p - c.point), c.distance_squared, 1e-4f);
     }
   }
+}
+
+// first_hit: the nearest crossing over all triangles (a triangle hit at that
+// t: the sheet is there twice, its copy wound the other way), for random rays and for axis-parallel
+// ones (zero direction components; the sheet at z = 0 has a box of zero thickness), with both
+// builds; a max_distance short of the hit misses.
+TEST(TriangleBvh, FirstHitEqualsBruteForce) {
+  TriangleMesh m = awkward_mesh();
+  auto brute = [&](const Vec3& o, const Vec3& d) {
+    RayHit best;
+    const Ray ray(o, normalized(d));
+    for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& f = m.triangles[t];
+      double s = ray.hit(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
+      if (s >= 0 && static_cast<float>(s) < best.distance) best = {static_cast<float>(s), t};
+    }
+    return best;
+  };
+  for (int leaf : {1, 4, -4}) {
+    TriangleBvh bvh(
+        m, {.leaf_size = std::abs(leaf), .build = leaf < 0 ? BvhBuild::kMorton : BvhBuild::kSah});
+    std::mt19937 rng(10 + leaf);
+    std::uniform_real_distribution<float> coord(-3, 8);
+    std::uniform_real_distribution<float> aim(-1, 1);
+    std::normal_distribution<float> g;
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec3 o{coord(rng), coord(rng), coord(rng)};
+      Vec3 d{g(rng), g(rng), g(rng)};
+      if (i % 4 == 0) d = {0, 0, -1};
+      if (i % 4 == 1) d = Vec3{0, coord(rng), coord(rng)} - o, d.x = 0;
+      if (i % 4 == 2) d = Vec3{aim(rng), aim(rng), aim(rng)} - o;  // at the sphere
+      const RayHit expect = brute(o, d), got = bvh.first_hit(o, d);
+      ASSERT_EQ(got.hit(), expect.hit()) << i;
+      if (!got.hit()) continue;
+      ++hits;
+      EXPECT_EQ(got.distance, expect.distance) << i;
+      const auto& f = m.triangles[got.triangle];
+      EXPECT_EQ(
+          static_cast<float>(
+              Ray(o, normalized(d)).hit(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]])),
+          got.distance)
+          << i;
+      if (got.distance > 0) EXPECT_FALSE(bvh.first_hit(o, d, 0.99f * got.distance).hit()) << i;
+    }
+    EXPECT_GT(hits, 800) << leaf;
+  }
+  // Straight down onto the sheet (3..4, 0..1 at z = 0).
+  TriangleBvh bvh(m);
+  RayHit h = bvh.first_hit({3.25f, 0.25f, 2}, {0, 0, -5});
+  ASSERT_TRUE(h.hit());
+  EXPECT_FLOAT_EQ(h.distance, 2);
+  EXPECT_FALSE(bvh.first_hit({3.25f, 0.25f, 2}, {0, 0, -1}, 1.5f).hit());
+  EXPECT_FALSE(bvh.first_hit({3.25f, 0.25f, 2}, {0, 0, 0}).hit());
+  EXPECT_FALSE(TriangleBvh(TriangleMesh{}).first_hit({0, 0, 0}, {1, 0, 0}).hit());
 }
 
 // closest_point_unless_within: exact beyond the stop distance; within it,

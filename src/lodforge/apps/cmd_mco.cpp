@@ -2,13 +2,16 @@
 //                    [--metric area|distance] [--surface-vertices] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco info MODEL.mco [--json]`
+// `lodforge mco query MODEL.mco (--ray OX,OY,OZ,DX,DY,DZ | --point X,Y,Z)...
+//                    [--percent P | --priority N]`
 // `lodforge mco scan MESH --views K -o DIR [--resolution N]`
 // The marching-cube octree: build once, extract any level later.
-// Human text goes to stderr; `info --json` prints JSON on stdout.
+// Human text goes to stderr; `info --json` and `query` print JSON on stdout.
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +28,7 @@
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
+#include "lodforge/mcoctree/mc_query.h"
 #include "lodforge/mcoctree/mco_file.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mcoctree/scan_mesh.h"
@@ -333,6 +337,154 @@ void add_mco_info(CLI::App* mco, Runner& run) {
   });
 }
 
+struct Query {
+  std::string input;
+  std::vector<std::string> rays, points;
+  std::int64_t priority = -1;
+  double percent = -1;
+  bool quiet = false;
+};
+
+// The numbers of a comma-separated option value, exactly `count` of them,
+// finite floats; DataError naming the option and the expected form.
+std::vector<float> parse_numbers(const std::string& value, std::size_t count,
+                                 const std::string& option, const std::string& form) {
+  std::vector<float> out;
+  const char* p = value.data();
+  const char* const end = p + value.size();
+  while (p <= end) {
+    const char* comma = std::find(p, end, ',');
+    double x = 0;
+    auto [stop, ec] = std::from_chars(p, comma, x);
+    if (ec != std::errc{} || stop != comma || !std::isfinite(static_cast<float>(x))) {
+      out.clear();
+      break;
+    }
+    out.push_back(static_cast<float>(x));
+    p = comma + 1;
+  }
+  if (out.size() != count)
+    throw DataError(fmt::format("{} '{}': expected {} ({} finite numbers separated by commas)",
+                                option, value, form, count));
+  return out;
+}
+
+std::vector<float> parse_ray(const std::string& value) {
+  auto v = parse_numbers(value, 6, "--ray", "OX,OY,OZ,DX,DY,DZ");
+  if (v[3] == 0 && v[4] == 0 && v[5] == 0)
+    throw DataError(fmt::format("--ray '{}': the direction DX,DY,DZ is zero", value));
+  return v;
+}
+std::vector<float> parse_point(const std::string& value) {
+  return parse_numbers(value, 3, "--point", "X,Y,Z");
+}
+
+// A float as the double of its shortest decimal form, so that JSON shows
+// 0.1 rather than 0.10000000149011612.
+double json_float(float x) {
+  char buf[32];
+  auto end = std::to_chars(buf, buf + sizeof buf, x).ptr;
+  double d = 0;
+  std::from_chars(buf, end, d);
+  return d;
+}
+
+nlohmann::ordered_json json_of(const float* v, int n) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::array();
+  for (int k = 0; k < n; ++k) j.push_back(json_float(v[k]));
+  return j;
+}
+nlohmann::ordered_json json_of(Vec3 v) {
+  return json_of(&v.x, 3);
+}
+
+// One query's answer as JSON: the query, then what it found.
+nlohmann::ordered_json ray_json(const McQuery& q, const std::string& value) {
+  auto v = parse_ray(value);
+  const Vec3 o{v[0], v[1], v[2]}, d{v[3], v[4], v[5]};
+  const McRayHit hit = q.ray(o, d);
+  nlohmann::ordered_json j;
+  j["ray"] = json_of(v.data(), 6);
+  j["hit"] = hit.hit();
+  if (hit.hit()) {
+    j["distance"] = json_float(hit.distance);
+    j["point"] = json_of(hit.point);
+    j["normal"] = json_of(hit.normal);
+    j["triangle"] = hit.triangle;
+  }
+  return j;
+}
+
+nlohmann::ordered_json point_json(const McQuery& q, const std::string& value) {
+  auto v = parse_point(value);
+  const McClosest c = q.closest({v[0], v[1], v[2]});
+  nlohmann::ordered_json j;
+  j["point"] = json_of(v.data(), 3);
+  j["found"] = c.found();
+  if (c.found()) {
+    j["distance"] = json_float(c.distance);
+    j["closest"] = json_of(c.point);
+    j["triangle"] = c.triangle;
+    j["inside"] = c.inside();
+    j["side_known"] = !c.open;
+  }
+  return j;
+}
+
+void add_mco_query(CLI::App* mco, Runner& run) {
+  auto qs = std::make_shared<Query>();
+  CLI::App* query = mco->add_subcommand(
+      "query",
+      "Ray hits, closest points, signed distances and inside tests on MODEL.mco (JSON on stdout)");
+  query->add_option("MODEL", qs->input, "Model file (.mco)")->required();
+  auto* oray = query->add_option(
+      "--ray", qs->rays,
+      "Ray OX,OY,OZ,DX,DY,DZ (origin, direction): the first hit's distance, point, face normal "
+      "and triangle (repeatable)");
+  auto* opoint = query->add_option(
+      "--point", qs->points,
+      "Point X,Y,Z: the closest surface point, signed distance (negative inside) and whether "
+      "it is inside (repeatable)");
+  auto* op = query
+                 ->add_option("--percent", qs->percent,
+                              "Query the level with this percent of the full-resolution "
+                              "triangles (default: full resolution)")
+                 ->check(kFiniteNumber)
+                 ->check(CLI::Range(0.0, 100.0));
+  auto* on = query->add_option("--priority", qs->priority, "Query the level of priority N")
+                 ->check(kFiniteNumber)
+                 ->check(CLI::NonNegativeNumber);
+  op->excludes(on);
+  query->add_flag("-q,--quiet", qs->quiet, "No warnings and no summary line");
+  query->callback([qs, query, oray, opoint, &run] {
+    // The answers in the order the options were given.
+    std::vector<bool> is_ray;
+    for (const CLI::Option* o : query->parse_order())
+      if (o == oray || o == opoint) is_ray.push_back(o == oray);
+    run = [qs, is_ray] {
+      if (is_ray.empty())
+        throw CLI::ValidationError("mco query", "give at least one --ray or --point");
+      // Bad numbers are reported before the model is read.
+      for (const auto& v : qs->rays) parse_ray(v);
+      for (const auto& v : qs->points) parse_point(v);
+      const LoadedModel loaded = load_model(qs->input, qs->priority, qs->quiet);
+      std::int64_t triangles = -1;
+      if (qs->percent >= 0)
+        triangles = std::llround(double(loaded.full_triangles) * qs->percent / 100.0);
+      const McQuery q(loaded.model, {.priority = qs->priority, .triangles = triangles});
+      nlohmann::ordered_json out = nlohmann::ordered_json::array();
+      std::size_t r = 0, p = 0;
+      for (bool ray : is_ray)
+        out.push_back(ray ? ray_json(q, qs->rays[r++]) : point_json(q, qs->points[p++]));
+      if (!qs->quiet)
+        fmt::print(stderr, "{}: priority {} of {}, {} triangles, {} queries\n", qs->input,
+                   q.priority(), loaded.model.priorities(), q.mesh().triangle_count(), out.size());
+      fmt::print("{}\n", out.dump(2));
+      return 0;
+    };
+  });
+}
+
 struct Scan {
   std::string input, output;
   int views = 6, resolution = 256;
@@ -382,6 +534,7 @@ void add_mco_command(CLI::App& app, Runner& run) {
   add_mco_build(mco, run);
   add_mco_extract(mco, run);
   add_mco_info(mco, run);
+  add_mco_query(mco, run);
   add_mco_scan(mco, run);
 }
 

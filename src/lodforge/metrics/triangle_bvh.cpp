@@ -38,6 +38,7 @@
 
 #include "lodforge/core/morton.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
+#include "lodforge/metrics/ray.h"
 
 namespace lodforge {
 namespace {
@@ -372,6 +373,44 @@ ClosestPoint TriangleBvh::closest_point(const Vec3& p, const Vec3& normal,
 
 ClosestPoint TriangleBvh::closest_point_lowest_index(const Vec3& p, std::uint32_t hint) const {
   return query<Tie::kLowestIndex>(p, {}, hint);
+}
+
+RayHit TriangleBvh::first_hit(const Vec3& origin, const Vec3& direction, float max_distance) const {
+  RayHit hit;
+  const Vec3 unit = normalized(direction);
+  if (nodes_.empty() || length_squared(unit) == 0) return hit;
+  const Ray ray(origin, unit);
+  struct Entry {
+    std::uint32_t node;
+    float t;
+  };
+  Entry stack[kStackSize];
+  int top = 0;
+  float best = max_distance;
+  if (float t = ray.enter(nodes_[0].lo, nodes_[0].hi, best); t >= 0) stack[top++] = {0, t};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.t > best) continue;
+    const Node& node = nodes_[e.node];
+    if (node.count) {
+      for (std::uint32_t i = node.index, last = node.index + node.count; i < last; ++i) {
+        const double s = ray.hit(corners_[i].a, corners_[i].b, corners_[i].c);
+        // Compared as floats, the distance reported: equal floats are a tie.
+        const auto sf = static_cast<float>(s);
+        if (s < 0 || sf > best) continue;
+        if (sf < best || order_[i] < hit.triangle) best = sf, hit.triangle = order_[i];
+      }
+      continue;
+    }
+    // The nearer child is popped first.
+    Entry a{e.node + 1, ray.enter(nodes_[e.node + 1].lo, nodes_[e.node + 1].hi, best)};
+    Entry b{node.index, ray.enter(nodes_[node.index].lo, nodes_[node.index].hi, best)};
+    if (a.t >= 0 && b.t >= 0 && a.t < b.t) std::swap(a, b);
+    if (a.t >= 0) stack[top++] = a;
+    if (b.t >= 0) stack[top++] = b;
+  }
+  if (hit.hit()) hit.distance = best;
+  return hit;
 }
 
 Vec3 TriangleBvh::normal_at(const ClosestPoint& at) const {

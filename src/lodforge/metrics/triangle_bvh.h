@@ -42,6 +42,13 @@ struct ClosestPoint {
   bool found() const { return triangle != kNone; }
 };
 
+/// The answer to a first-hit query.
+struct RayHit {
+  float distance = std::numeric_limits<float>::infinity();  ///< t along the unit direction
+  std::uint32_t triangle = kNone;                           ///< index into mesh.triangles
+  bool hit() const { return triangle != kNone; }
+};
+
 /// Built once per mesh, then queried from any number of threads at once
 /// (queries are const and allocate nothing). The mesh is referenced, not
 /// copied: it must outlive the hierarchy and stay unchanged.
@@ -89,6 +96,19 @@ class TriangleBvh {
   /// work is split among threads get the same triangle for any thread count.
   ClosestPoint closest_point_lowest_index(const Vec3& p,
                                           std::uint32_t hint = ClosestPoint::kNone) const;
+
+  /// The first triangle the ray origin + t * direction meets, 0 <= t <=
+  /// max_distance, t along the unit direction (the direction's length is
+  /// ignored), from either side (metrics/ray.h); among triangles at exactly
+  /// the same t, the lowest index of those the traversal reaches (a tied
+  /// triangle in a box whose entry rounds beyond t may be missed: the
+  /// distance is exact, the triangle one of the tied ones, the same for a
+  /// given hierarchy). Not hit() when there is none, or when the
+  /// direction is zero. Preconditions: origin and direction finite. Nodes
+  /// nearer the origin first, skipping those entered beyond the nearest hit
+  /// so far.
+  RayHit first_hit(const Vec3& origin, const Vec3& direction,
+                   float max_distance = std::numeric_limits<float>::infinity()) const;
 
   /// Unit surface normal at a found point: the mesh's per-vertex normals
   /// interpolated with the barycentric coordinates when it has them (and

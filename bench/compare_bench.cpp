@@ -24,14 +24,14 @@
 #include "lodforge/metrics/sample_surface.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 
-// The shared corpus beside the repository ($LODFORGE_SHARED_DATA overrides).
 std::string mesh_dir() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+  return lodforge::bench::shared_mesh_dir();
 }
 
 struct Meshes {

@@ -31,6 +31,8 @@
 #include "lodforge/render/write_png.h"
 #include "lodforge/simplify/quadric_collapse.h"
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
@@ -45,12 +47,7 @@ struct Settings {
 
 Settings parse(int argc, char** argv) {
   Settings s;
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA"))
-    s.mesh = std::string(env) + "/meshes/bun_zipper.ply";
-  else
-    s.mesh =
-        (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/bun_zipper.ply")
-            .string();
+  s.mesh = lodforge::bench::shared_mesh_dir() + "bun_zipper.ply";
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string k = argv[i], v = argv[i + 1];
     if (k == "--mesh")

@@ -29,15 +29,14 @@
 #include "lodforge/metrics/ray.h"
 #include "lodforge/metrics/triangle_bvh.h"
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 
 std::string bunny_path() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA"))
-    return std::string(env) + "/meshes/bun_zipper.ply";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/bun_zipper.ply")
-      .string();
+  return lodforge::bench::shared_mesh_dir() + "bun_zipper.ply";
 }
 
 // The model of the bunny at one resolution, its full-resolution query

@@ -21,13 +21,14 @@
 #include <meshoptimizer.h>
 #endif
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 
 std::string mesh_dir() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+  return lodforge::bench::shared_mesh_dir();
 }
 
 const TriangleMesh* load(const std::string& name) {

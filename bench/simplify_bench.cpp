@@ -61,15 +61,15 @@
 #include <meshoptimizer.h>
 #endif
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 using Clock = std::chrono::steady_clock;
 
-// The shared corpus beside the repository ($LODFORGE_SHARED_DATA overrides).
 std::string mesh_dir() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+  return lodforge::bench::shared_mesh_dir();
 }
 
 /// One row of the table: filled by its benchmark (time, output), then by the

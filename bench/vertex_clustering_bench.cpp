@@ -40,14 +40,14 @@
 #include <meshoptimizer.h>
 #endif
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 
-// The shared corpus beside the repository ($LODFORGE_SHARED_DATA overrides).
 std::string data_dir() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+  return lodforge::bench::shared_mesh_dir();
 }
 
 const TriangleMesh* load(const std::string& name) {

@@ -27,14 +27,14 @@
 #define LODFORGE_BENCH_QUADRIC 1
 #endif
 
+#include "bench_data.h"
+
 namespace {
 
 using namespace lodforge;
 
-// The shared corpus beside the repository ($LODFORGE_SHARED_DATA overrides).
 std::string mesh_dir() {
-  if (const char* env = std::getenv("LODFORGE_SHARED_DATA")) return std::string(env) + "/meshes/";
-  return (std::filesystem::path(__FILE__).parent_path() / "../../shared/data/meshes/").string();
+  return lodforge::bench::shared_mesh_dir();
 }
 
 const char* const kMeshes[] = {"bun_zipper.ply", "igea.ply"};

@@ -90,6 +90,29 @@ TEST_F(McoCli, BuildInfoExtract) {
 
 // --metric distance orders the expansions by the distance metric: a model of
 // the same full resolution, numbered differently; an unknown metric is a usage error.
+// A part thinner than a cell comes apart, parts closer than a cell join:
+// the build says so (and where), and says nothing when the parts are kept.
+TEST_F(McoCli, BuildSaysWhenTheModelDoesNotKeepTheInputsParts) {
+  auto kept = run_lodforge("mco build " + mesh_ + " -o " + path("t.mco") + " --resolution 20");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_EQ(kept.err.find("connected part"), std::string::npos) << kept.err;
+  // A tube half a cell thick.
+  const std::string thin = path("thin.ply");
+  write_mesh(test::make_torus(1.0f, 0.03f, 64, 8), thin);
+  auto apart = run_lodforge("mco build " + thin + " -o " + path("thin.mco") + " --resolution 20");
+  ASSERT_EQ(apart.exit_code, 0) << apart.err;
+  EXPECT_NE(apart.err.find("where the input has 1"), std::string::npos) << apart.err;
+  EXPECT_NE(apart.err.find("A finer --resolution"), std::string::npos) << apart.err;
+  // The teapot's lid, body and handle touch: at the default resolution they join.
+  const std::string teapot = std::string(LODFORGE_SHARED_DATA) + "/meshes/teapot.obj";
+  if (!fs::exists(teapot)) GTEST_SKIP() << teapot << " missing";
+  auto join = run_lodforge("mco build " + teapot + " -o " + path("teapot.mco"));
+  ASSERT_EQ(join.exit_code, 0) << join.err;
+  EXPECT_NE(join.err.find("has 1 connected part where the input has 3: parts closer than"),
+            std::string::npos)
+      << join.err;
+}
+
 TEST_F(McoCli, PriorityMetricChoice) {
   std::string area = model(), distance = model("distance.mco", " --metric distance");
   ASSERT_TRUE(fs::exists(distance));

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "mesh/test_meshes.h"
 
 namespace lodforge {
@@ -120,6 +122,25 @@ TEST(TestMeshes, ClosedBuildersAreOutward) {
   }
   EXPECT_EQ(test::make_icosphere(2).vertex_count(), 162u);
   EXPECT_EQ(mesh_topology_report(test::make_open_disk(16)).boundary_edges, 16u);
+}
+
+// Parts: triangles joined by a vertex or by a vertex position (split seams),
+// numbered in the order of their first triangle.
+TEST(TriangleParts, SharedVerticesAndPositionsJoin) {
+  TriangleMesh two = test::make_cube(1.f);
+  const TriangleMesh far = test::make_cube(1.f, {5, 0, 0});
+  const auto base = std::uint32_t(two.positions.size());
+  two.positions.insert(two.positions.end(), far.positions.begin(), far.positions.end());
+  for (Triangle t : far.triangles) two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const std::vector<std::uint32_t> parts = triangle_parts(two);
+  ASSERT_EQ(parts.size(), 24u);
+  EXPECT_EQ(parts.front(), 0u);
+  EXPECT_EQ(parts.back(), 1u);
+  EXPECT_EQ(*std::max_element(parts.begin(), parts.end()), 1u);
+  // Every triangle with its own corners (a triangle soup): still one part
+  // per cube, by the positions the corners share.
+  EXPECT_EQ(triangle_parts(test::as_soup(two)), parts);
+  EXPECT_TRUE(triangle_parts(TriangleMesh{}).empty());
 }
 
 }  // namespace

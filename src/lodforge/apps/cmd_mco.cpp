@@ -28,6 +28,7 @@
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
+#include "lodforge/mcoctree/mc_parts.h"
 #include "lodforge/mcoctree/mc_query.h"
 #include "lodforge/mcoctree/mco_file.h"
 #include "lodforge/mcoctree/range_scan.h"
@@ -80,6 +81,36 @@ struct Build {
   SceneReadSettings read;
 };
 
+std::string box_text(const Box3& b) {
+  return fmt::format("[{:.4g} {:.4g} {:.4g}]..[{:.4g} {:.4g} {:.4g}]", b.lo.x, b.lo.y, b.lo.z,
+                     b.hi.x, b.hi.y, b.hi.z);
+}
+
+// Says when the model's surface does not keep the input's connected parts,
+// and where its smallest parts are.
+void warn_lost_parts(const std::string& input, const TriangleMesh& mesh, const McLodModel& model) {
+  const McPartsCheck parts = check_mc_parts(mesh, extract_mc_mesh(model).mesh);
+  if (parts.kept()) return;
+  const std::string counts =
+      fmt::format("{}: at full resolution the model has {} connected part{} where the input has {}",
+                  input, parts.model_parts, parts.model_parts == 1 ? "" : "s", parts.input_parts);
+  if (parts.model_parts < parts.input_parts) {
+    fmt::print(stderr,
+               "warning: {}: parts closer than about a cell ({:.4g}) join, a part smaller than "
+               "one vanishes. A finer --resolution keeps them apart\n",
+               counts, model.cell_size);
+    return;
+  }
+  std::string smallest;
+  for (const McPart& p : parts.smallest)
+    smallest += fmt::format("{}{} triangles in {}", smallest.empty() ? "" : "; ", p.triangles,
+                            box_text(p.bounds));
+  fmt::print(stderr,
+             "warning: {}: a part thinner than about a cell ({:.4g}) comes apart into pieces; "
+             "the smallest: {}. A finer --resolution keeps what is at least a cell thick\n",
+             counts, model.cell_size, smallest);
+}
+
 // Builds the octree of a mesh or of range scans and writes the model.
 int run_mco_build(const Build& b) {
   check_output_paths(std::array{OutputPath{b.output, "the model"}}, std::array{b.input});
@@ -101,6 +132,7 @@ int run_mco_build(const Build& b) {
     return named(b.input, [&] { return build_mc_octree(input, drawn); });
   };
   std::string what;
+  TriangleMesh mesh;  // a mesh input, kept to compare its parts with the model's
   if (is_range_input(b.input)) {
     auto scans = read_range_scans(b.input);
     std::size_t points = 0;
@@ -113,7 +145,7 @@ int run_mco_build(const Build& b) {
         scans.size(), points, r.stats.band_points, r.stats.carved_points, r.stats.flooded_points,
         r.stats.filled_voids, r.stats.dropped_parts);
   } else {
-    TriangleMesh mesh = load_geometry(b.input, 0, b.read);
+    mesh = load_geometry(b.input, 0, b.read);
     if (const double bytes = mc_build_bytes(mesh.bounds(), b.resolution);
         bytes > double(std::uint64_t{1} << 30))
       fmt::print(stderr,
@@ -125,6 +157,7 @@ int run_mco_build(const Build& b) {
   }
   McLodModel model = compile_mc_lod(r.tree);
   write_mco_file(model, b.output);
+  if (!mesh.triangles.empty()) warn_lost_parts(b.input, mesh, model);
   double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print(stderr,
              "{}: {} -> {} nodes ({} leaves), {} vertices, {} priorities, {} triangles at "

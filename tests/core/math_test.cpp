@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/expect_near.h"
+
 #include <cmath>
 
 namespace lodforge {
@@ -11,11 +13,7 @@ namespace {
 
 constexpr float kHalfPi = 1.57079632679f;
 
-void expect_near(const Vec3& a, const Vec3& b, float tolerance = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, tolerance);
-  EXPECT_NEAR(a.y, b.y, tolerance);
-  EXPECT_NEAR(a.z, b.z, tolerance);
-}
+using test::expect_near;
 
 TEST(Mat4, TranslationScaleAndRotationMovePointsAndVectors) {
   const Mat4 t = Mat4::translation({1, 2, 3});

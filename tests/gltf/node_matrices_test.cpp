@@ -4,16 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include "core/expect_near.h"
+
 #include <cmath>
 
 namespace lodforge::gltf {
 namespace {
 
-void expect_near(const Vec3& a, const Vec3& b) {
-  EXPECT_NEAR(a.x, b.x, 1e-6);
-  EXPECT_NEAR(a.y, b.y, 1e-6);
-  EXPECT_NEAR(a.z, b.z, 1e-6);
-}
+using test::expect_near;
 
 TEST(NodeMatrices, MatrixIsColumnMajorAndTrsIsTranslateRotateScale) {
   tinygltf::Node m;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "core/expect_near.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -45,11 +47,7 @@ TriangleMesh rich_mesh() {
   return m;
 }
 
-void expect_near(const Vec3& a, const Vec3& b, float tol) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+using test::expect_near;
 
 struct RoundTrip {
   const char* name;

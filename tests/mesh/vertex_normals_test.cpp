@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/expect_near.h"
+
 #include <cmath>
 
 #include "mesh/test_meshes.h"
@@ -10,11 +12,7 @@
 namespace lodforge {
 namespace {
 
-void expect_near(const Vec3& a, const Vec3& b) {
-  EXPECT_NEAR(a.x, b.x, 1e-5f);
-  EXPECT_NEAR(a.y, b.y, 1e-5f);
-  EXPECT_NEAR(a.z, b.z, 1e-5f);
-}
+using test::expect_near;
 
 TEST(VertexNormals, ACubeCornerPointsAlongItsDiagonal) {
   const TriangleMesh cube = test::make_centered_cube(1.f);

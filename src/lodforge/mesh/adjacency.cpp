@@ -8,11 +8,10 @@
 #include "lodforge/mesh/adjacency.h"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
-#include <cstring>
 #include <numeric>
-#include <unordered_map>
+
+#include "lodforge/mesh/weld.h"
 
 namespace lodforge {
 namespace {
@@ -32,25 +31,6 @@ class UnionFind {
 
  private:
   std::vector<std::uint32_t> parent_;
-};
-
-// A position by its bits (so -0 and 0 are two positions, which only splits
-// a part where a mesh mixes them).
-using PositionBits = std::array<std::uint32_t, 3>;
-
-PositionBits bits_of(const Vec3& p) {
-  PositionBits b;
-  std::memcpy(b.data(), &p.x, 4);
-  std::memcpy(b.data() + 1, &p.y, 4);
-  std::memcpy(b.data() + 2, &p.z, 4);
-  return b;
-}
-
-struct PositionBitsHash {
-  std::size_t operator()(const PositionBits& b) const {
-    return (std::size_t{b[0]} * 73856093u) ^ (std::size_t{b[1]} * 19349663u) ^
-           (std::size_t{b[2]} * 83492791u);
-  }
 };
 
 }  // namespace
@@ -214,24 +194,18 @@ TopologyReport mesh_topology_report(const TriangleMesh& mesh) {
 }
 
 std::vector<std::uint32_t> triangle_parts(const TriangleMesh& mesh) {
-  const std::size_t nv = mesh.positions.size();
-  UnionFind parts(nv);
   // Vertices at one position are one vertex here.
-  std::unordered_map<PositionBits, std::uint32_t, PositionBitsHash> first_at;
-  first_at.reserve(nv);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    const auto [it, fresh] = first_at.try_emplace(bits_of(mesh.positions[v]), v);
-    if (!fresh) parts.unite(v, it->second);
-  }
+  const std::vector<std::uint32_t> vertex = weld(mesh, {.remove_degenerate = false}).remap;
+  UnionFind parts(mesh.positions.size());
   for (const Triangle& t : mesh.triangles) {
-    parts.unite(t[0], t[1]);
-    parts.unite(t[1], t[2]);
+    parts.unite(vertex[t[0]], vertex[t[1]]);
+    parts.unite(vertex[t[1]], vertex[t[2]]);
   }
-  std::vector<std::uint32_t> label(nv, kNone), out;
+  std::vector<std::uint32_t> label(mesh.positions.size(), kNone), out;
   out.reserve(mesh.triangles.size());
   std::uint32_t next = 0;
   for (const Triangle& t : mesh.triangles) {
-    std::uint32_t& l = label[parts.find(t[0])];
+    std::uint32_t& l = label[parts.find(vertex[t[0]])];
     if (l == kNone) l = next++;
     out.push_back(l);
   }

@@ -77,8 +77,8 @@ struct TopologyReport {
 TopologyReport mesh_topology_report(const TriangleMesh& mesh);
 
 /// The connected part of each triangle (#F labels): triangles that share a
-/// vertex, or a vertex position (so a seam of split vertices does not cut a
-/// part in two), are in one part. Parts are numbered from 0 in the order of
+/// vertex, or a vertex position (weld's exact merge, so a seam of split
+/// vertices does not cut a part in two), are in one part. Parts are numbered from 0 in the order of
 /// their first triangle. O(V + F) expected.
 std::vector<std::uint32_t> triangle_parts(const TriangleMesh& mesh);
 

@@ -7,10 +7,6 @@
 namespace lodforge {
 namespace {
 
-std::size_t drawn(const TriangleMesh& m) {
-  return m.triangle_count() + m.lines.size();
-}
-
 // Manual mode: quality - 2 levels, halving the triangles each time.
 std::vector<std::size_t> halving_targets(const TriangleMesh& mesh, int quality) {
   std::vector<std::size_t> targets;
@@ -29,10 +25,11 @@ SpacedLevels space(std::span<const MeasuredLevel> candidates, const TriangleMesh
   std::vector<std::size_t> triangles;
   for (const auto& l : candidates) {
     errors.push_back(l.error);
-    triangles.push_back(drawn(l.level.mesh));
+    triangles.push_back(drawn_count(l.level.mesh));
   }
-  return space_levels({.errors = errors, .triangles = triangles, .level0_triangles = drawn(mesh)},
-                      radius, o.range, o.spacing);
+  return space_levels(
+      {.errors = errors, .triangles = triangles, .level0_triangles = drawn_count(mesh)}, radius,
+      o.range, o.spacing);
 }
 
 std::string chain_end(const SimplifyResult& last) {
@@ -58,7 +55,10 @@ ChosenLevels choose_levels(const TriangleMesh& mesh, double radius, const Choose
     c.triangle_targets = halving_targets(mesh, o.quality);
     if (c.triangle_targets.empty()) return out;
   } else {
-    // Only the candidates worth showing need their error measured in full.
+    // Only the candidates worth showing need their error measured in full,
+    // and only those the size rule allows, an estimate.
+    if (o.spacing.spacing > 1 && o.spacing.max_ratio < 1)
+      c.most_kept_drawn = std::size_t(std::floor(o.spacing.max_ratio * double(drawn_count(mesh))));
     c.keep = [&](std::span<const MeasuredLevel> candidates) {
       std::vector<std::size_t> kept;
       for (const SpacedLevel& s : space(candidates, mesh, radius, o).levels) {

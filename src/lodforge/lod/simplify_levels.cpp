@@ -76,10 +76,16 @@ std::vector<MeasuredLevel> simplify_levels(const TriangleMesh& mesh,
   // The choice is made once, on the estimates, and only its levels are
   // measured in full: choosing again on the full figures would measure
   // further levels, each as dear as the first ones, for little gain.
+  // Levels the size rule can never keep lead the chain (it only shrinks).
+  std::size_t first = 0;
+  while (options.most_kept_drawn && first < out.size() &&
+         drawn_count(out[first].level.mesh) > options.most_kept_drawn)
+    out[first++].measured_in_full = false;
+  std::erase_if(pending, [&](std::size_t i) { return i < first; });
   measure(out, pending, full, false, progress, 1);
   std::vector<std::size_t> kept;
-  for (std::size_t i : options.keep(out))
-    if (i < out.size() && !out[i].measured_in_full) kept.push_back(i);
+  for (std::size_t i : options.keep(std::span(out).subspan(first)))
+    if (i + first < out.size() && !out[i + first].measured_in_full) kept.push_back(i + first);
   const std::uint64_t units =
       kept.empty() ? 0 : std::min<std::uint64_t>(kFull, (total - pending.size()) / kept.size());
   measure(out, kept, full, true, progress, units);

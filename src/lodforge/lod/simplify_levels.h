@@ -29,6 +29,13 @@ struct LevelChainOptions {
   /// full, the others keep their estimate (MeasuredLevel::measured_in_full
   /// false) and must not be written. Unset: every level is measured in full.
   std::function<std::vector<std::size_t>(std::span<const struct MeasuredLevel> levels)> keep;
+  /// With `keep`: the size rule of the spacing (SpacingOptions::max_ratio x
+  /// level 0) as a count of triangles plus line segments. The leading levels
+  /// that draw more can never be kept, so they are not estimated either:
+  /// `keep` is given the levels from the first that draws at most this many
+  /// (its indices count from there), and the ones before keep error 0 and
+  /// measured_in_full false. 0: no such levels.
+  std::size_t most_kept_drawn = 0;
   /// Stage "measure": levels measured of the chain's levels, reported once
   /// the chain is made (0 of n) and after each level (from worker threads).
   ProgressCallback progress;
@@ -50,6 +57,11 @@ struct MeasuredLevel {
   /// is kErrorMargin x DeviationMeter::estimate, no bound.
   bool measured_in_full = true;
 };
+
+/// What a level draws: its triangles plus its line segments.
+inline std::size_t drawn_count(const TriangleMesh& m) {
+  return m.triangle_count() + m.lines.size();
+}
 
 /// Area samples per direction for measuring a level that `method` made of a
 /// mesh with `triangles` triangles: `requested` if non-zero, else one per

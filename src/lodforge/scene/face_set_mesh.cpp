@@ -6,14 +6,19 @@
 
 namespace lodforge::scene {
 
-std::vector<FaceRun> face_runs(std::span<const std::int32_t> coord_index, std::size_t point_count,
-                               const FaceSetSource& source) {
+void check_coord_index(std::span<const std::int32_t> coord_index, std::size_t point_count,
+                       const FaceSetSource& source) {
   for (std::size_t i = 0; i < coord_index.size(); ++i)
     if (coord_index[i] >= 0 && std::size_t(coord_index[i]) >= point_count)
       throw DataError(
           fmt::format("{} coordIndex[{}] = {} is out of range (the current {} has {} "
                       "points)",
                       source.where, i, coord_index[i], source.coordinates, point_count));
+}
+
+std::vector<FaceRun> face_runs(std::span<const std::int32_t> coord_index, std::size_t point_count,
+                               const FaceSetSource& source) {
+  check_coord_index(coord_index, point_count, source);
   std::vector<FaceRun> runs;
   for_each_index_run(coord_index, [&](std::size_t b, std::size_t e) { runs.emplace_back(b, e); });
   return runs;

@@ -42,11 +42,15 @@ void for_each_index_run(std::span<const std::int32_t> index, Visit&& visit) {
   if (index.size() > begin) visit(begin, index.size());
 }
 
+/// Throws DataError "<where> coordIndex[i] = v is out of range (the current
+/// <coordinates> has n points)" naming the first index of `coord_index` out of
+/// range of `point_count` (negative indices end faces). O(coord_index.size()).
+void check_coord_index(std::span<const std::int32_t> coord_index, std::size_t point_count,
+                       const FaceSetSource& source);
+
 /// The faces of `coord_index` in order: the non-empty runs separated by -1
 /// (any negative index); a missing final -1 is allowed. Every index is
-/// checked against `point_count`. Throws DataError "<where> coordIndex[i] =
-/// v is out of range (the current <coordinates> has n points)" naming the
-/// first index out of range. O(coord_index.size()).
+/// checked first (check_coord_index). O(coord_index.size()).
 std::vector<FaceRun> face_runs(std::span<const std::int32_t> coord_index, std::size_t point_count,
                                const FaceSetSource& source);
 

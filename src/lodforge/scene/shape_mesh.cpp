@@ -344,12 +344,13 @@ ShapeCounts shape_counts(const ShapeVisit& visit, const ShapeMeshOptions& option
   const std::size_t points = f.size() / 3;
   const std::vector<std::int32_t>& ci = field_or_default(shape, "coordIndex")->ints;
   const std::string where = fmt::format("line {}: {}", shape.first_line, shape.type);
-  for (const auto& [b, e] : face_runs(ci, points, {where, "Coordinate3"})) {
+  check_coord_index(ci, points, {where, "Coordinate3"});
+  for_each_index_run(ci, [&](std::size_t b, std::size_t e) {
     if (line_set)
       counts.segments += e - b - 1;
     else if (e - b >= 3)
       counts.triangles += e - b - 2;
-  }
+  });
   counts.vertices = points;
   const bool move = options.world_space && !(visit.state.transform == Mat4{});
   for (std::size_t i = 0; i < points; ++i) {

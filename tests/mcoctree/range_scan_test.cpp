@@ -119,6 +119,16 @@ TEST(RangeScan, BadFilesAreDataErrors) {
   }
 }
 
+TEST(RangeScan, BuildRefusesBadConfidences) {
+  RangeScan s = read_range_grid_data(kAscii, "t.ply");
+  s.confidence = {1, 1};  // not one per point
+  EXPECT_THROW(build_mc_octree({s}, {.resolution = 4}), DataError);
+  s.confidence = {1, 1, -1, 1, 1};
+  EXPECT_THROW(build_mc_octree({s}, {.resolution = 4}), DataError);
+  s.confidence = {1, 1, NAN, 1, 1};
+  EXPECT_THROW(build_mc_octree({s}, {.resolution = 4}), DataError);
+}
+
 TEST(RangeScan, StanfordBunnyConf) {
   std::string conf = std::string(LODFORGE_SHARED_DATA) + "/range/bunny/bun.conf";
   if (!fs::exists(conf)) GTEST_SKIP() << "no " << conf;

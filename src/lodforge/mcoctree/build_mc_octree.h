@@ -149,10 +149,10 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
-/// size, a grid index out of range, colours not one per point, a world
-/// coordinate outside the range of check_coordinate_range, and when the
-/// build would take more than options.max_memory; DataError for
-/// a resolution out of range.
+/// size, a grid index out of range, colours or confidences not one per
+/// point, a negative or non-finite confidence, a world coordinate outside the range of
+/// check_coordinate_range, and when the build would take more than options.max_memory; DataError
+/// for a resolution out of range.
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
                               const McBuildOptions& options = {});
 

@@ -35,6 +35,9 @@ std::vector<std::uint8_t> used_points(const RangeScan& s) {
   if (!s.confidence.empty() && s.confidence.size() != s.points.size())
     throw DataError("mcoctree: " + s.name + ": " + std::to_string(s.confidence.size()) +
                     " confidences for " + std::to_string(s.points.size()) + " points");
+  for (float c : s.confidence)
+    if (!(c >= 0 && std::isfinite(c)))
+      throw DataError("mcoctree: " + s.name + ": a negative or non-finite confidence");
   std::vector<std::uint8_t> used(s.points.size(), 0);
   for (auto g : s.grid) {
     if (g >= 0 && static_cast<std::size_t>(g) >= s.points.size())

@@ -30,7 +30,8 @@ class ScanField {
  public:
   /// Takes the points the scans' grids refer to. Throws DataError (naming
   /// the scan) for a grid that is not cols x rows, a grid index out of range,
-  /// colours not one per point, a non-finite coordinate, or no point at all.
+  /// colours or confidences not one per point, a negative or non-finite
+  /// confidence, a non-finite coordinate, or no point at all.
   explicit ScanField(const std::vector<RangeScan>& scans);
   const Box3& bounds() const { return bounds_; }
   bool colored() const { return colored_; }

@@ -62,6 +62,7 @@ ScanField::ScanField(const std::vector<RangeScan>& scans) {
       points_.push_back(s.to_world(s.points[i]));
       normals_.push_back(normalized(s.rotate(n[i])));
       weights_.push_back(w[i]);
+      log_weights_.push_back(std::log(w[i]));
       colored_ = colored_ || !s.colors.empty();
       colors_.push_back(s.colors.empty() ? Rgb8{200, 200, 200} : s.colors[i]);
     }
@@ -135,7 +136,7 @@ ScanField::Estimate ScanField::estimate(const Vec3& x, int reach) const {
   std::uint32_t ref = 0;
   visit(c, reach, [&](std::uint32_t i) {
     const float d2 = length_squared(points_[i] - x);
-    const float sc = d2 - h2 * std::log(weights_[i]);
+    const float sc = d2 - h2 * log_weights_[i];
     if (sc < score) score = sc, best = d2, ref = i;
   });
   Estimate e;

@@ -62,7 +62,7 @@ class ScanField {
   void visit(const std::array<std::int64_t, 3>& c, int reach, Fn&& fn) const;
 
   std::vector<Vec3> points_, normals_;
-  std::vector<float> weights_;  // RangeScan::weights
+  std::vector<float> weights_, log_weights_;  // RangeScan::weights and their logarithms
   std::vector<Rgb8> colors_;
   bool colored_ = false;
   Box3 bounds_;

@@ -317,10 +317,11 @@ constexpr float kLoneWeak = 1.0f;
 // the plane is within a cell of it. Such a corner is a spike or a pit a cell
 // high in an otherwise smooth surface (noise between overlapping scans flips
 // one estimate); a feature that sharp in the data lies farther than a cell
-// from the corner at its tip. On the Stanford bunny, 5 or more flipped only
-// a quarter of the spikes; 3 or more flips the corners of every slanted
-// surface. The decision is made for every point against the signs as they
-// are, then applied, so it does not depend on the order:
+// from the corner at its tip. On the Stanford bunny's scans (per-point
+// tangent planes), 5 or more left a normal deviation from bun_zipper of
+// 0.19 rad where 4 or more left 0.165; 3 or more flips corners of slanted
+// surfaces too and roughened it (0.37). The decision is made for every point against the signs as
+// they are, then applied, so it does not depend on the order:
 //
 // | neighbours of the other sign | |distance| < kLoneWeak cells | the point |
 // |------------------------------|------------------------------|-----------|

@@ -53,7 +53,10 @@ TEST(RangeScan, WeightsByViewAngleRimAndConfidence) {
   EXPECT_NEAR(w[4], 0.5f, 1e-5f);          // the centre: cos 60, all 4 triangles
   EXPECT_NEAR(w[0], 0.5f * 1 / 4, 1e-5f);  // a corner of the data: 1 triangle of 4
   EXPECT_NEAR(w[1], 0.5f * 2 / 4, 1e-5f);  // a side: 2 of 4
-  s.confidence.assign(9, 0.5f);
+  // Confidence counts relative to the scan's largest (scales differ).
+  s.confidence.assign(9, 4.0f);
+  EXPECT_NEAR(s.weights(s.normals())[4], 0.5f, 1e-5f);
+  s.confidence[4] = 2;
   EXPECT_NEAR(s.weights(s.normals())[4], 0.25f, 1e-5f);
   // A stray point (no lattice neighbour) is hardly trusted at all.
   s.grid = {-1, -1, -1, -1, 4, -1, -1, -1, -1};

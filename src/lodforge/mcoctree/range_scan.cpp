@@ -223,10 +223,14 @@ std::vector<Vec3> RangeScan::normals() const {
 }
 
 std::vector<float> RangeScan::weights(const std::vector<Vec3>& normals) const {
+  // Confidence scales differ between scanners and tools: relative to the
+  // scan's largest.
+  float top = 0;
+  for (float c : confidence) top = std::max(top, c);
   std::vector<float> out(points.size(), kMinWeight);
   for_each_lattice_normal(*this, [&](std::int32_t i, const Vec3&, int count) {
     float w = std::max(normals[i].z, 0.0f) * static_cast<float>(count) / 4;
-    if (!confidence.empty()) w *= std::min(confidence[i], 1.0f);
+    if (top > 0) w *= confidence[i] / top;
     out[i] = std::max(w, kMinWeight);
   });
   return out;

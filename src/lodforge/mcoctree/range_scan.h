@@ -59,7 +59,8 @@ struct RangeScan {
   /// the cosine between its normal and the line of sight (grazing samples
   /// are noisy), times the fraction of its 4 lattice triangles that exist
   /// (the rim of the data, mixed pixels at depth jumps; a stray point has
-  /// none), times its confidence when the scan has one; at least kMinWeight.
+  /// none), times its confidence over the scan's largest when the scan has
+  /// confidences; at least kMinWeight.
   /// `normals` is normals()'s result. #points.
   std::vector<float> weights(const std::vector<Vec3>& normals) const;
   static constexpr float kMinWeight = 0.01f;

@@ -184,7 +184,7 @@ TEST(RangeScan, StanfordBunnyFromScansCoversBunZipper) {
   auto c = compare_meshes(stanford, ours, options);
   auto ref = compare_meshes(stanford, read_mesh(res2), options);
   std::printf(
-      "bunny from scans (resolution %d): %llu triangles, %zu lone corners flipped; Stanford -> "
+      "bunny from scans (resolution %d): %llu triangles, %zu pits filled; Stanford -> "
       "ours mean %.4f %%, max %.3f %%, normals %.3f rad (res2 %.3f); ours -> Stanford mean "
       "%.3f %%, max %.2f %%, normals %.3f rad (res2 %.3f)\n",
       r.stats.resolution, static_cast<unsigned long long>(r.tree.full_triangles()),

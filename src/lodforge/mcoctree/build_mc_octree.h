@@ -86,7 +86,7 @@ struct McBuildStats {
   std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
   std::size_t filled_voids = 0;     ///< range scans: enclosed outside regions made inside
   std::size_t dropped_parts = 0;    ///< range scans: small inside regions (bubbles) made outside
-  std::size_t sign_flips = 0;       ///< range scans: lone corners (spikes, pits) flipped
+  std::size_t sign_flips = 0;       ///< range scans: lone outside corners (pits) made inside
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
   std::size_t hole_nodes = 0;       ///< nodes left without triangles over the input's holes
@@ -143,9 +143,9 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// point behind a measured surface than see it beyond their data (outside the silhouette or the
 /// window), else outside (a line through a gap in a scan's data says nothing). Where no scan saw
 /// the surface (under an object that stood on a turntable) the model is closed by a cap where the
-/// vote changes, near the rim of the unseen region. Lone corners (a band point
-/// within a cell of the plane whose sign disagrees with 4 or more of its 6
-/// neighbours: a spike or a pit) are flipped. Normals and colours: the same weighted average
+/// vote changes, near the rim of the unseen region. Lone outside corners (a band
+/// point within a cell of the plane with 4 or more of its 6 neighbours
+/// inside: a pit) are made inside. Normals and colours: the same weighted average
 /// of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong

@@ -306,27 +306,31 @@ class SightCarver {
   std::vector<Image> images_;
 };
 
-// A band point whose sign disagrees with at least this many of its 6
-// lattice neighbours, and whose distance is under this many cells, is a
+// An outside band point whose sign disagrees with at least this many of its
+// 6 lattice neighbours, and whose distance is under this many cells, is a
 // lone corner (see flip_lone_corners).
 constexpr int kLoneDisagreeing = 4;
 constexpr float kLoneWeak = 1.0f;
 
-// Lone corners: a band point that sticks out of its neighbours' sign (4 or
-// more of 6 disagree: sharper than the corner of a cube, where 3 do) while
-// the plane is within a cell of it. Such a corner is a spike or a pit a cell
-// high in an otherwise smooth surface (noise between overlapping scans flips
-// one estimate); a feature that sharp in the data lies farther than a cell
-// from the corner at its tip. On the Stanford bunny's scans (per-point
-// tangent planes), 5 or more left a normal deviation from bun_zipper of
-// 0.19 rad where 4 or more left 0.165; 3 or more flips corners of slanted
-// surfaces too and roughened it (0.37). The decision is made for every point against the signs as
-// they are, then applied, so it does not depend on the order:
+// Lone corners: an outside band point sunk into the inside (4 or more of its
+// 6 neighbours inside: sharper than the corner of a cube, where 3 are) while
+// the plane is within a cell of it. Such a corner is a pit a cell deep in an
+// otherwise smooth surface (noise between overlapping scans flips one
+// estimate); it is made inside. The mirror case, a lone inside corner, is
+// left alone: it is also the tip of a feature thinner than a cell (a
+// horse's ear scanned by mco scan lost its tip, 0.9 -> 1.4 % of the
+// diagonal away, when those flipped too), and the weighted distance already
+// removes most spikes. On the Stanford bunny's scans (per-point tangent
+// planes), flips at 5 or more disagreeing neighbours left a normal deviation
+// from bun_zipper of 0.19 rad where 4 or more left 0.165; 3 or more flips
+// corners of slanted surfaces too and roughened it (0.37). The decision is
+// made for every point against the signs as they are, then applied, so it
+// does not depend on the order:
 //
-// | neighbours of the other sign | |distance| < kLoneWeak cells | the point |
-// |------------------------------|------------------------------|-----------|
-// | >= kLoneDisagreeing          | yes                          | flipped   |
-// | otherwise                    | either                       | kept      |
+// | sign    | neighbours inside    | |distance| < kLoneWeak cells | the point    |
+// |---------|----------------------|------------------------------|--------------|
+// | outside | >= kLoneDisagreeing  | yes                          | made inside  |
+// | any     | otherwise            | either                       | kept         |
 //
 // On the lattice's border nothing flips (outside by construction). Returns
 // the number of points flipped.
@@ -335,10 +339,9 @@ std::size_t flip_lone_corners(Lattice& lat) {
   const float weak = kLoneWeak * lat.h;
   tbb::parallel_for(std::size_t{0}, lat.distance.size(), [&](std::size_t i) {
     const Lattice::Exact& e = lat.distance[i];
-    if (std::abs(e.distance) >= weak || lat.on_border(e.idx)) return;
+    if (lat.inside(e.idx) || std::abs(e.distance) >= weak || lat.on_border(e.idx)) return;
     int other = 0;
-    lattice_neighbours(lat, e.idx,
-                       [&](std::int64_t q) { other += lat.inside(q) != lat.inside(e.idx); });
+    lattice_neighbours(lat, e.idx, [&](std::int64_t q) { other += lat.inside(q); });
     flip[i] = other >= kLoneDisagreeing;
   });
   std::size_t flipped = 0;

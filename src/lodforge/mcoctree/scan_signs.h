@@ -78,9 +78,9 @@ class ScanField {
 /// boundary and wherever a line of sight shows the space empty (space
 /// carving), inside where more scans see the point behind a measured surface
 /// than beyond their data, else outside; then enclosed voids are filled and
-/// small inside regions dropped (sign_components.h), and band points whose
-/// sign disagrees with 4 or more of their 6 neighbours while they lie within
-/// a cell of the plane (lone corners: spikes and pits) are flipped. Fills
+/// small inside regions dropped (sign_components.h), and outside band points
+/// with 4 or more of their 6 neighbours inside while they lie within a cell
+/// of the plane (lone corners: pits) are made inside. Fills
 /// stats' band_points, carved_points, flooded_points, filled_voids,
 /// dropped_parts and sign_flips; reports "signs" (layers) to `progress`. The result does not
 /// depend on the threads.

@@ -27,6 +27,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (g < -1 || g >= static_cast<std::int64_t>(scan.points.size())) __builtin_trap();
   for (const auto& p : scan.points)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) __builtin_trap();
+  if (!scan.confidence.empty() && scan.confidence.size() != scan.points.size()) __builtin_trap();
+  for (float c : scan.confidence)
+    if (!(c >= 0 && std::isfinite(c))) __builtin_trap();
   // Small scans only: a build is milliseconds at resolution 12. A scan whose
   // extent is thousands of its point spacings (stray points far away) gets
   // line-of-sight images of up to 4096 x 4096 pixels: a fraction of a second

@@ -137,7 +137,11 @@ section() {
       done
       commands+=(
         "$B/lodforge mco build $D/range/bunny/bun.conf --resolution 200 -o $W/scans200.mco -q && ls -l $W/scans200.mco"
+        "$B/lodforge mco extract $W/scans200.mco --percent 100 -o $W/scans200.ply && $B/lodforge compare $D/meshes/bun_zipper.ply $W/scans200.ply --samples 50000 --json"
+        "$B/lodforge compare $W/scans200.ply $D/meshes/bun_zipper.ply --samples 50000 --colored $W/scans200_deviation.ply --color-max 0.0088 -q && $B/lodforge render $W/scans200_deviation.ply -o docs/images/scan_bunny_deviation_side.png --size 400x400 && $B/lodforge render $W/scans200_deviation.ply -o docs/images/scan_bunny_deviation_bottom.png --size 400x400 --view 0,-90"
         "$B/lodforge mco build $D/range/bunny/bun.conf -o $W/scans.mco -q && $B/lodforge mco extract $W/scans.mco --percent 100 -o $W/scans.ply && $B/lodforge compare $D/meshes/bun_zipper.ply $W/scans.ply --samples 50000 --json"
+        "$B/lodforge compare $D/meshes/bun_zipper.ply $D/meshes/bun_zipper_res2.ply --samples 50000 --json"
+        "$B/lodforge render $W/scans.ply -o docs/images/scan_bunny_smooth.png --size 560x420 --no-colors --flat --view 60,10"
         "$B/tests/test_mcoctree"
       ) ;;
     simplify)  # the three simplifiers beside meshoptimizer; reported against measured error

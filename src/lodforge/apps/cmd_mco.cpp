@@ -141,9 +141,9 @@ int run_mco_build(const Build& b) {
     r = build_with_bar(scans);
     what = fmt::format(
         "{} range scans ({} points; lattice: {} measured, {} carved, {} flooded; {} voids "
-        "filled, {} bubbles dropped)",
+        "filled, {} bubbles dropped, {} pits filled)",
         scans.size(), points, r.stats.band_points, r.stats.carved_points, r.stats.flooded_points,
-        r.stats.filled_voids, r.stats.dropped_parts);
+        r.stats.filled_voids, r.stats.dropped_parts, r.stats.sign_flips);
   } else {
     mesh = load_geometry(b.input, 0, b.read);
     if (const double bytes = mc_build_bytes(mesh.bounds(), b.resolution);

@@ -86,6 +86,7 @@ struct McBuildStats {
   std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
   std::size_t filled_voids = 0;     ///< range scans: enclosed outside regions made inside
   std::size_t dropped_parts = 0;    ///< range scans: small inside regions (bubbles) made outside
+  std::size_t sign_flips = 0;       ///< range scans: lone outside corners (pits) made inside
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
   std::size_t hole_nodes = 0;       ///< nodes left without triangles over the input's holes
@@ -132,25 +133,26 @@ McBuildResult build_mc_octree(const TriangleMesh& mesh, const McBuildOptions& op
 /// frame their alignment gives (Kim, ch. 4; `resolution` counts cells across
 /// the longest side of all points' bounding box; `holes` is not used).
 ///
-/// Corner signs: within two cells of the data, the distance to the tangent
-/// plane of the nearest range point (its normal from its 4 lattice
-/// neighbours' triangles), averaged with Gaussian weights over the nearby
-/// points of the same sheet so that overlapping scans out of register by a
-/// fraction of a cell agree; outside wherever a line of sight shows the
-/// space empty (in front of the surface a scan measured: space carving) and
-/// on the root cube's faces; everywhere else a vote of the scans: inside
-/// where more scans see the point behind a measured surface than see it
-/// beyond their data (outside the silhouette or the window), else outside
-/// (a line through a gap in a scan's data says nothing). Where no scan saw
+/// Corner signs: within two cells of the data, the distance to the plane of
+/// the nearby range points of one sheet (their normals from their 4 lattice
+/// neighbours' triangles), fitted with Gaussian weights times each point's
+/// trust (RangeScan::weights: grazing, rim and stray samples count little)
+/// so that overlapping scans out of register by a fraction of a cell agree; outside wherever a line
+/// of sight shows the space empty (in front of the surface a scan measured: space carving) and on
+/// the root cube's faces; everywhere else a vote of the scans: inside where more scans see the
+/// point behind a measured surface than see it beyond their data (outside the silhouette or the
+/// window), else outside (a line through a gap in a scan's data says nothing). Where no scan saw
 /// the surface (under an object that stood on a turntable) the model is closed by a cap where the
-/// vote changes, near the rim of the unseen region. Normals and colours: the same weighted average
+/// vote changes, near the rim of the unseen region. Lone outside corners (a band
+/// point within a cell of the plane with 4 or more of its 6 neighbours
+/// inside: a pit) are made inside. Normals and colours: the same weighted average
 /// of the nearby points' normals and colours.
 ///
 /// Throws DataError for no scans, no measured point, a grid of the wrong
-/// size, a grid index out of range, colours not one per point, a world
-/// coordinate outside the range of check_coordinate_range, and when the
-/// build would take more than options.max_memory; DataError for
-/// a resolution out of range.
+/// size, a grid index out of range, colours or confidences not one per
+/// point, a negative or non-finite confidence, a world coordinate outside the range of
+/// check_coordinate_range, and when the build would take more than options.max_memory; DataError
+/// for a resolution out of range.
 McBuildResult build_mc_octree(const std::vector<RangeScan>& scans,
                               const McBuildOptions& options = {});
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -164,40 +165,74 @@ float RangeScan::spacing() const {
   return d[d.size() / 2];
 }
 
-std::vector<Vec3> RangeScan::normals() const {
-  std::vector<Vec3> out(points.size(), Vec3{0, 0, 1});
+namespace {
+
+// The unit normals of the triangles point i of `scan` makes with its 4
+// lattice neighbours (right/up, up/left, left/down, down/right), for each
+// point: fn(i, sum of those normals, how many there are). Edges longer than
+// 4 x spacing() (depth jumps) make no triangle.
+template <class Fn>
+void for_each_lattice_normal(const RangeScan& scan, Fn&& fn) {
+  const int rows = scan.rows, cols = scan.cols;
+  const auto& grid = scan.grid;
+  const auto& points = scan.points;
   auto at = [&](int r, int c) -> std::int32_t {
     if (r < 0 || c < 0 || r >= rows || c >= cols) return -1;
     return grid[static_cast<std::size_t>(r) * cols + c];
   };
   // A lattice edge much longer than the spacing crosses a depth jump (an
   // occluding contour): its triangle is not surface.
-  const float limit = 4 * spacing();
+  const float limit = 4 * scan.spacing();
   const float limit2 = limit > 0 ? limit * limit : INFINITY;
   // Neighbours counter-clockwise in (col, row): right, up, left, down.
   const int dr[4] = {0, 1, 0, -1}, dc[4] = {1, 0, -1, 0};
-  double flip = 0;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       std::int32_t i = at(r, c);
       if (i < 0) continue;
       Vec3 sum{};
+      int count = 0;
       for (int k = 0; k < 4; ++k) {
         std::int32_t a = at(r + dr[k], c + dc[k]), b = at(r + dr[(k + 1) % 4], c + dc[(k + 1) % 4]);
         if (a < 0 || b < 0) continue;
         Vec3 ea = points[a] - points[i], eb = points[b] - points[i];
         if (length_squared(ea) > limit2 || length_squared(eb) > limit2) continue;
         sum += normalized(cross(ea, eb));
+        ++count;
       }
-      if (length_squared(sum) > 0) {
-        out[i] = normalized(sum);
-        flip += out[i].z;
-      }
+      fn(i, sum, count);
     }
+}
+
+}  // namespace
+
+std::vector<Vec3> RangeScan::normals() const {
+  std::vector<Vec3> out(points.size(), Vec3{0, 0, 1});
+  double flip = 0;
+  for_each_lattice_normal(*this, [&](std::int32_t i, const Vec3& sum, int) {
+    if (length_squared(sum) > 0) {
+      out[i] = normalized(sum);
+      flip += out[i].z;
+    }
+  });
   // The grid's handedness (rows up or down) decides the cross products' side;
   // the sensor is on +z, so the majority must face +z.
   if (flip < 0)
     for (auto& n : out) n = -n;
+  return out;
+}
+
+std::vector<float> RangeScan::weights(const std::vector<Vec3>& normals) const {
+  // Confidence scales differ between scanners and tools: relative to the
+  // scan's largest.
+  float top = 0;
+  for (float c : confidence) top = std::max(top, c);
+  std::vector<float> out(points.size(), kMinWeight);
+  for_each_lattice_normal(*this, [&](std::int32_t i, const Vec3&, int count) {
+    float w = std::max(normals[i].z, 0.0f) * static_cast<float>(count) / 4;
+    if (top > 0) w *= confidence[i] / top;
+    out[i] = std::max(w, kMinWeight);
+  });
   return out;
 }
 
@@ -270,12 +305,13 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
   for (const Element& e : elements) {
     if (e.name == "vertex") {
       has_vertex = true;
-      int xyz[3] = {-1, -1, -1}, rgb[3] = {-1, -1, -1};
+      int xyz[3] = {-1, -1, -1}, rgb[3] = {-1, -1, -1}, confidence = -1;
       static const char* const kXyz[3] = {"x", "y", "z"};
       static const char* const kRgb[2][3] = {{"red", "green", "blue"},
                                              {"diffuse_red", "diffuse_green", "diffuse_blue"}};
       for (std::size_t k = 0; k < e.props.size(); ++k) {
         const auto& n = e.props[k].name;
+        if (n == "confidence") confidence = static_cast<int>(k);
         for (int a = 0; a < 3; ++a) {
           if (n == kXyz[a]) xyz[a] = static_cast<int>(k);
           if (n == kRgb[0][a] || n == kRgb[1][a]) rgb[a] = static_cast<int>(k);
@@ -285,6 +321,7 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
       bool colored = rgb[0] >= 0 && rgb[1] >= 0 && rgb[2] >= 0;
       scan.points.resize(static_cast<std::size_t>(e.count));
       if (colored) scan.colors.resize(scan.points.size());
+      if (confidence >= 0) scan.confidence.resize(scan.points.size());
       std::vector<double> v(e.props.size());
       for (std::int64_t i = 0; i < e.count; ++i) {
         for (std::size_t k = 0; k < e.props.size(); ++k) {
@@ -300,6 +337,12 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name) {
                static_cast<float>(v[xyz[2]])};
         if (!is_finite(q)) throw fail(fmt::format("vertex {} has a non-finite coordinate", i));
         scan.points[i] = q;
+        if (confidence >= 0) {
+          const double c = v[confidence];
+          if (!(c >= 0 && std::isfinite(c)))
+            throw fail(fmt::format("vertex {} has confidence {}", i, c));
+          scan.confidence[i] = static_cast<float>(c);
+        }
         if (colored)
           for (int a = 0; a < 3; ++a)
             scan.colors[i][a] = static_cast<std::uint8_t>(std::clamp(v[rgb[a]], 0.0, 255.0));
@@ -404,7 +447,9 @@ std::string write_range_grid_data(const RangeScan& scan) {
       "ply\nformat binary_little_endian 1.0\nobj_info num_cols {}\nobj_info num_rows {}\n"
       "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
       scan.cols, scan.rows, scan.points.size());
+  const bool confident = !scan.confidence.empty();
   if (colored) out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  if (confident) out += "property float confidence\n";
   out += fmt::format("element range_grid {}\nproperty list uchar int vertex_indices\nend_header\n",
                      scan.grid.size());
   auto put = [&](const auto& v) {
@@ -414,6 +459,7 @@ std::string write_range_grid_data(const RangeScan& scan) {
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
     put(scan.points[i].x), put(scan.points[i].y), put(scan.points[i].z);
     if (colored) out.append(reinterpret_cast<const char*>(scan.colors[i].data()), 3);
+    if (confident) put(scan.confidence[i]);
   }
   for (auto g : scan.grid) {
     if (g < 0) {

@@ -31,8 +31,12 @@ struct RangeScan {
   int cols = 0, rows = 0;
   /// rows x cols, row-major: index into points, or -1 where nothing was measured.
   std::vector<std::int32_t> grid;
-  std::vector<Vec3> points;                   ///< in the scan frame
-  std::vector<Rgb8> colors;                   ///< empty or #points
+  std::vector<Vec3> points;  ///< in the scan frame
+  std::vector<Rgb8> colors;  ///< empty or #points
+  /// Empty or #points: the scanner's confidence in each point (the PLY's
+  /// `confidence` property, >= 0), as Stanford's scans of other objects
+  /// and VRIP's inputs carry it.
+  std::vector<float> confidence;
   Vec3 translation;                           ///< scan frame -> world: R(rotation) p + translation
   std::array<float, 4> rotation{0, 0, 0, 1};  ///< unit quaternion qx qy qz qw, as in a .conf
 
@@ -50,12 +54,23 @@ struct RangeScan {
   /// towards the sensor (+z); edges longer than 4 x spacing() (depth jumps)
   /// make no triangle. A point without such a triangle gets +z. #points.
   std::vector<Vec3> normals() const;
+  /// How far each point is to be trusted, in (0, 1] (Curless & Levoy 1996,
+  /// "A volumetric method for building complex models from range images"):
+  /// the cosine between its normal and the line of sight (grazing samples
+  /// are noisy), times the fraction of its 4 lattice triangles that exist
+  /// (the rim of the data, mixed pixels at depth jumps; a stray point has
+  /// none), times its confidence over the scan's largest when the scan has
+  /// confidences; at least kMinWeight.
+  /// `normals` is normals()'s result. #points.
+  std::vector<float> weights(const std::vector<Vec3>& normals) const;
+  static constexpr float kMinWeight = 0.01f;
 };
 
 /// Reads one range-grid PLY (ASCII or binary, either byte order). `name` is
 /// used in messages. Throws DataError ("name: ...") for a missing
 /// num_cols/num_rows, a missing range_grid or vertex element, an index out
-/// of range, a non-finite coordinate or truncated data.
+/// of range, a non-finite coordinate, a negative or non-finite confidence or
+/// truncated data.
 RangeScan read_range_grid_data(std::string_view data, const std::string& name);
 
 /// Reads scans: a `.conf` file (the scans it lists, aligned), a directory
@@ -64,7 +79,7 @@ RangeScan read_range_grid_data(std::string_view data, const std::string& name);
 std::vector<RangeScan> read_range_scans(const std::string& path);
 
 /// The bytes of a binary little-endian range-grid PLY of `scan` (colours as
-/// red green blue uchar when present).
+/// red green blue uchar, confidence as a float, when present).
 std::string write_range_grid_data(const RangeScan& scan);
 
 /// Writes every scan as DIR/<name> and DIR/<conf_name> listing them (a

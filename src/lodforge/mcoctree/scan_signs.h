@@ -20,14 +20,18 @@ namespace lodforge::detail {
 /// 1992, "Surface reconstruction from unorganized points"): the distance of x
 /// to the tangent plane of the nearest range point, whose normal comes from
 /// its 4 lattice neighbours. One nearest point makes the sign flicker where
-/// two scans overlap slightly out of register, so the distance is the
-/// Gaussian-weighted mean over the nearby points whose normals agree with the
-/// nearest one's (same sheet).
+/// two scans overlap slightly out of register, and one point's normal is
+/// noisy, so the distance is taken from the nearby points whose normals agree
+/// with the nearest one's (same sheet), Gaussian-weighted by distance and by
+/// how far each point is trusted (RangeScan::weights: grazing samples, the
+/// rims of the data and stray points count little, as in Curless & Levoy
+/// 1996).
 class ScanField {
  public:
   /// Takes the points the scans' grids refer to. Throws DataError (naming
   /// the scan) for a grid that is not cols x rows, a grid index out of range,
-  /// colours not one per point, a non-finite coordinate, or no point at all.
+  /// colours or confidences not one per point, a negative or non-finite
+  /// confidence, a non-finite coordinate, or no point at all.
   explicit ScanField(const std::vector<RangeScan>& scans);
   const Box3& bounds() const { return bounds_; }
   bool colored() const { return colored_; }
@@ -46,8 +50,10 @@ class ScanField {
     Vec3 normal;
     Vec3 color;  ///< 0..255 per channel (grey where the scans have no colours)
   };
-  /// The weighted tangent-plane distance at x from the points within `reach`
-  /// cells (per axis) of x's cell; not found when there is none.
+  /// The signed distance at x from the points within `reach` cells (per
+  /// axis) of x's cell: the mean of the distance to their weighted plane
+  /// (weighted centroid, mean normal) and of their tangent planes' weighted
+  /// distances; not found when there is none.
   Estimate estimate(const Vec3& x, int reach) const;
 
  private:
@@ -56,6 +62,7 @@ class ScanField {
   void visit(const std::array<std::int64_t, 3>& c, int reach, Fn&& fn) const;
 
   std::vector<Vec3> points_, normals_;
+  std::vector<float> weights_, log_weights_;  // RangeScan::weights and their logarithms
   std::vector<Rgb8> colors_;
   bool colored_ = false;
   Box3 bounds_;
@@ -71,9 +78,11 @@ class ScanField {
 /// boundary and wherever a line of sight shows the space empty (space
 /// carving), inside where more scans see the point behind a measured surface
 /// than beyond their data, else outside; then enclosed voids are filled and
-/// small inside regions dropped (sign_components.h). Fills stats'
-/// band_points, carved_points, flooded_points, filled_voids and
-/// dropped_parts; reports "signs" (layers) to `progress`. The result does not
+/// small inside regions dropped (sign_components.h), and outside band points
+/// with 4 or more of their 6 neighbours inside while they lie within a cell
+/// of the plane (lone corners: pits) are made inside. Fills
+/// stats' band_points, carved_points, flooded_points, filled_voids,
+/// dropped_parts and sign_flips; reports "signs" (layers) to `progress`. The result does not
 /// depend on the threads.
 Lattice make_scan_lattice(ScanField& field, const std::vector<RangeScan>& scans, int resolution,
                           McBuildStats& stats, const ProgressCallback& progress);

@@ -1,6 +1,8 @@
 // View-dependent extraction (Kim, "Level-of-detail mesh modeling using the
-// marching cube octree", ch. 7: the octree refined by the viewer's distance
-// instead of one priority for the whole model), on the run-time model.
+// marching cube octree": ch. 8 proposes extending the model to "simplify only
+// the viewing area", ch. 7 claims O(log n) view dependency through the
+// octree): the octree cut by the viewer's distance instead of one priority
+// for the whole model, on the run-time model.
 //
 // The run-time model stores no tree: the nodes are recovered from it once.
 // A cell's parent is the cell expanded at the priority of its group (the
@@ -29,7 +31,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "lodforge/core/error.h"
@@ -245,6 +246,13 @@ std::uint32_t McViewExtractor::find(int level, std::int64_t x, std::int64_t y,
   return it == index_.end() ? kNoCell : it->second;
 }
 
+// The same-level neighbour of cell c at offset kNear[j], or kNoCell.
+std::uint32_t McViewExtractor::neighbour(std::uint32_t c, int j) const {
+  const auto& q = coords_[c];
+  return find(level_[c], std::int64_t{q[0]} + kNear[j][0], std::int64_t{q[1]} + kNear[j][1],
+              std::int64_t{q[2]} + kNear[j][2]);
+}
+
 // Expands c after its parent and the coarser cells the neighbour rule needs
 // expanded; its children and same-level neighbours are checked again.
 void McViewExtractor::expand(std::uint32_t c, bool forced) {
@@ -270,21 +278,15 @@ void McViewExtractor::expand(std::uint32_t c, bool forced) {
   for (std::uint32_t child = model_.group[k]; child < model_.group[k + 1]; ++child)
     queue_.push_back(child);
   for (int j = 0; j < kSplitting; ++j)
-    if (auto n = find(level, std::int64_t{q[0]} + kNear[j][0], std::int64_t{q[1]} + kNear[j][1],
-                      std::int64_t{q[2]} + kNear[j][2]);
-        n != kNoCell)
-      queue_.push_back(n);
+    if (auto n = neighbour(c, j); n != kNoCell) queue_.push_back(n);
 }
 
 // The N whose split state is cell c's: the largest priority among its
 // parent's and its expanded face and edge neighbours'.
 std::uint32_t McViewExtractor::split_priority(std::uint32_t c) const {
   std::uint32_t N = parent_[c] == kNoCell ? 0 : model_.cells[parent_[c]].until;
-  const auto& q = coords_[c];
   for (int j = 0; j < kSplitting; ++j)
-    if (auto n = find(level_[c], std::int64_t{q[0]} + kNear[j][0], std::int64_t{q[1]} + kNear[j][1],
-                      std::int64_t{q[2]} + kNear[j][2]);
-        n != kNoCell && expanded_[n])
+    if (auto n = neighbour(c, j); n != kNoCell && expanded_[n])
       N = std::max(N, model_.cells[n].until);
   return N;
 }
@@ -314,11 +316,8 @@ void McViewExtractor::check(std::uint32_t c, const Frame& frame, double pixel_er
   if (until != McLodModel::kNever && on_screen(c, frame) > pixel_error) return expand(c, false);
   const std::uint32_t N = split_priority(c);
   if (N > until) return expand(c, true);
-  const auto& q = coords_[c];
   for (int j = 0; j < kSplitting; ++j)
-    if (auto n = find(level_[c], std::int64_t{q[0]} + kNear[j][0], std::int64_t{q[1]} + kNear[j][1],
-                      std::int64_t{q[2]} + kNear[j][2]);
-        n != kNoCell && !expanded_[n] && model_.cells[n].until < N)
+    if (auto n = neighbour(c, j); n != kNoCell && !expanded_[n] && model_.cells[n].until < N)
       expand(n, true);
 }
 

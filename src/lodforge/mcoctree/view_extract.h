@@ -1,9 +1,11 @@
 #pragma once
 /// View-dependent extraction from the marching-cube octree's run-time model
-/// (mc_lod_model.h; Kim, ch. 7: view-dependent rendering): every region is
-/// refined until its error, projected on the screen, is under a pixel budget;
-/// regions outside the view frustum stay coarse. The result is crack-free on
-/// the same terms as uniform extraction (extract_mc_mesh.h).
+/// (mc_lod_model.h; what Kim's ch. 8 leaves as future work, "simplify only
+/// the viewing area", with ch. 7's O(log n) per node through the octree,
+/// Table 7.1 "view dependency"): every region is refined until its error,
+/// projected on the screen, is under a pixel budget; regions outside the view
+/// frustum stay coarse. The result is crack-free on the same terms as uniform
+/// extraction (extract_mc_mesh.h).
 ///
 /// The cut. Node x is refined while it is in the view frustum (its cube, grown
 /// by its error and a quarter of its size, against the near plane and the four
@@ -116,6 +118,7 @@ class McViewExtractor {
   void prepare_tree();
   void prepare_errors();
   std::uint32_t find(int level, std::int64_t x, std::int64_t y, std::int64_t z) const;
+  std::uint32_t neighbour(std::uint32_t c, int j) const;
   void expand(std::uint32_t c, bool forced);
   double on_screen(std::uint32_t c, const Frame& frame) const;
   void check(std::uint32_t c, const Frame& frame, double pixel_error);

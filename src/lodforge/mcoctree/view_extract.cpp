@@ -146,10 +146,10 @@ void McViewExtractor::prepare_tree() {
   // Finest cells from their triangles' boxes, then up the parents.
   for (std::uint32_t c = cells; c-- > 0;) {
     if (m.cells[c].until == McLodModel::kNever) {
+      if (level_[c] != m.depth) throw DataError("view extraction: a leaf above the finest level");
       const std::uint32_t a = m.intervals[m.cells[c].first_interval].first_triangle;
       const std::uint32_t b = m.intervals[m.cells[c + 1].first_interval].first_triangle;
-      if (level_[c] != m.depth || a == b)
-        throw DataError("view extraction: a leaf cell above the finest level or without triangles");
+      if (a == b) continue;  // over a hole of an open model: unlocated
       Box3 box;
       for (std::uint32_t t = a; t < b; ++t)
         for (auto v : m.triangles[t]) box.add(m.positions[v]);
@@ -159,9 +159,8 @@ void McViewExtractor::prepare_tree() {
             std::clamp(std::floor((centre[k] - m.origin[k]) / m.cell_size), 0.0f,
                        static_cast<float>((1u << m.depth) - 1)));
     }
-    if (coords_[c][0] == kNoCell) throw DataError("view extraction: a node without finest cells");
     const std::uint32_t p = parent_[c];
-    if (p == kNoCell) continue;
+    if (p == kNoCell || !located(c)) continue;
     const std::array<std::uint32_t, 3> up{coords_[c][0] >> 1, coords_[c][1] >> 1,
                                           coords_[c][2] >> 1};
     if (coords_[p][0] == kNoCell)
@@ -171,7 +170,8 @@ void McViewExtractor::prepare_tree() {
   }
   index_.reserve(cells);
   for (std::uint32_t c = 0; c < cells; ++c)
-    if (!index_.emplace(key(level_[c], coords_[c][0], coords_[c][1], coords_[c][2]), c).second)
+    if (located(c) &&
+        !index_.emplace(key(level_[c], coords_[c][0], coords_[c][1], coords_[c][2]), c).second)
       throw DataError("view extraction: two cells at one place");
 }
 
@@ -311,7 +311,7 @@ double McViewExtractor::on_screen(std::uint32_t c, const Frame& frame) const {
 // One cell of the cut (its parent expanded, itself not): the screen test,
 // then the crack rules.
 void McViewExtractor::check(std::uint32_t c, const Frame& frame, double pixel_error) {
-  if (expanded_[c] || (parent_[c] != kNoCell && !expanded_[parent_[c]])) return;
+  if (expanded_[c] || !located(c) || (parent_[c] != kNoCell && !expanded_[parent_[c]])) return;
   const std::uint32_t until = model_.cells[c].until;
   if (until != McLodModel::kNever && on_screen(c, frame) > pixel_error) return expand(c, false);
   const std::uint32_t N = split_priority(c);
@@ -327,13 +327,13 @@ void McViewExtractor::emit(const Frame& frame, McViewResult& result) {
   const McLodModel& m = model_;
   indices_.clear();
   auto take = [&](std::uint32_t c) {
-    const std::uint32_t N = split_priority(c);
+    const std::uint32_t N = located(c) ? split_priority(c) : 0;
     std::uint32_t j = m.cells[c].first_interval;
     const std::uint32_t last = m.cells[c + 1].first_interval - 1;
     while (j < last && m.intervals[j + 1].from <= N) ++j;
     indices_.insert(indices_.end(), m.triangles.begin() + m.intervals[j].first_triangle,
                     m.triangles.begin() + m.intervals[j + 1].first_triangle);
-    const double pixels = on_screen(c, frame);
+    const double pixels = located(c) ? on_screen(c, frame) : 0;
     if (pixels < 0)
       result.culled += error_[c] > 0;
     else

@@ -44,6 +44,12 @@
 /// so each emitted cell copies the triangles of its interval at that N, as
 /// uniform extraction does, and neighbours agree on every shared face and edge.
 ///
+/// Open models (McHoles::kOpen): a node none of whose finest cells has
+/// triangles (all of it over a hole of the input) cannot be placed from the
+/// model; it is never refined (it is emitted with its first interval when its
+/// parent is, as it shows nothing at full resolution) and takes no part in
+/// the crack rules of its neighbours, whose border there is open anyway.
+///
 /// Cost: preparation (McViewExtractor's constructor) is O(cells + triangles x
 /// depth) with the error bounds computed on all threads; an extraction is
 /// O(visited nodes) hash look-ups (27 + 18 per expanded node, expected O(1)
@@ -119,6 +125,7 @@ class McViewExtractor {
   void prepare_errors();
   std::uint32_t find(int level, std::int64_t x, std::int64_t y, std::int64_t z) const;
   std::uint32_t neighbour(std::uint32_t c, int j) const;
+  bool located(std::uint32_t c) const { return coords_[c][0] != McNode::kNone; }
   void expand(std::uint32_t c, bool forced);
   double on_screen(std::uint32_t c, const Frame& frame) const;
   void check(std::uint32_t c, const Frame& frame, double pixel_error);

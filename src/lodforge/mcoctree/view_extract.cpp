@@ -11,15 +11,16 @@
 // cube holding the centre of its triangles' box (its vertices are finest
 // crossings, strictly inside its edges, and loop centroids of them, so the
 // centre is strictly inside the cube), and a coarser cell's are its
-// children's halved. The extraction then works on integers:
+// children's halved; each cell's neighbour tables are made from them once.
+// The extraction then works on integers and arrays:
 //
 //   step                 | work per node
 //   ---------------------+--------------------------------------------------
 //   check a cell         | screen test (frustum planes, projected error),
 //                        | then the crack rules of view_extract.h: 18
-//                        | same-level neighbours looked up, priorities compared
+//                        | same-level neighbours read, priorities compared
 //   expand a node        | its parent first, the neighbour rule's coarser
-//                        | cells (26 look-ups), then its children and
+//                        | cells (a table), then its children and
 //                        | neighbours are checked (again)
 //   emit a cell          | N = largest priority among its parent and its
 //                        | expanded neighbours; copy its interval at N
@@ -114,6 +115,8 @@ McViewExtractor::McViewExtractor(const McLodModel& model) : model_(model), compa
     throw DataError("view extraction: the model is deeper than " + std::to_string(kMaxDepth) +
                     " levels");
   prepare_tree();
+  prepare_neighbours();
+  index_ = {};  // the walk reads the neighbour tables
   prepare_errors();
 }
 
@@ -246,11 +249,36 @@ std::uint32_t McViewExtractor::find(int level, std::int64_t x, std::int64_t y,
   return it == index_.end() ? kNoCell : it->second;
 }
 
-// The same-level neighbour of cell c at offset kNear[j], or kNoCell.
-std::uint32_t McViewExtractor::neighbour(std::uint32_t c, int j) const {
-  const auto& q = coords_[c];
-  return find(level_[c], std::int64_t{q[0]} + kNear[j][0], std::int64_t{q[1]} + kNear[j][1],
-              std::int64_t{q[2]} + kNear[j][2]);
+// Per located cell, the neighbour tables the walk reads instead of looking
+// cells up: its face and edge neighbours (kNear[0 .. 17], kNoCell where
+// none), and the coarser cells the numbering's neighbour rule needs expanded
+// before it (for each of the 26 positions around it, the finest cell
+// coarser than it that holds the position; its parent included, duplicates
+// dropped).
+void McViewExtractor::prepare_neighbours() {
+  const auto cells = static_cast<std::uint32_t>(model_.cell_count());
+  near_.assign(static_cast<std::size_t>(kSplitting) * cells, kNoCell);
+  needs_begin_.assign(cells + 1, 0);
+  needs_.clear();
+  for (std::uint32_t c = 0; c < cells; ++c) {
+    needs_begin_[c] = static_cast<std::uint32_t>(needs_.size());
+    if (!located(c)) continue;
+    const int level = level_[c];
+    const auto& q = coords_[c];
+    for (int j = 0; j < 26; ++j) {
+      const std::int64_t x = std::int64_t{q[0]} + kNear[j][0], y = std::int64_t{q[1]} + kNear[j][1],
+                         z = std::int64_t{q[2]} + kNear[j][2];
+      if (x < 0 || y < 0 || z < 0 || x >> level || y >> level || z >> level) continue;  // outside
+      if (j < kSplitting) near_[kSplitting * std::size_t{c} + j] = find(level, x, y, z);
+      for (int l = level - 1; l >= 0; --l)
+        if (auto a = find(l, x >> (level - l), y >> (level - l), z >> (level - l)); a != kNoCell) {
+          if (std::find(needs_.begin() + needs_begin_[c], needs_.end(), a) == needs_.end())
+            needs_.push_back(a);
+          break;
+        }
+    }
+  }
+  needs_begin_[cells] = static_cast<std::uint32_t>(needs_.size());
 }
 
 // Expands c after its parent and the coarser cells the neighbour rule needs
@@ -258,18 +286,7 @@ std::uint32_t McViewExtractor::neighbour(std::uint32_t c, int j) const {
 void McViewExtractor::expand(std::uint32_t c, bool forced) {
   if (expanded_[c]) return;
   if (parent_[c] != kNoCell) expand(parent_[c], forced);
-  const int level = level_[c];
-  const auto& q = coords_[c];
-  for (const auto& d : kNear) {
-    const std::int64_t x = std::int64_t{q[0]} + d[0], y = std::int64_t{q[1]} + d[1],
-                       z = std::int64_t{q[2]} + d[2];
-    if (x < 0 || y < 0 || z < 0 || x >> level || y >> level || z >> level) continue;  // outside
-    for (int l = level - 1; l >= 0; --l)
-      if (auto a = find(l, x >> (level - l), y >> (level - l), z >> (level - l)); a != kNoCell) {
-        expand(a, true);
-        break;
-      }
-  }
+  for (std::uint32_t k = needs_begin_[c]; k < needs_begin_[c + 1]; ++k) expand(needs_[k], true);
   expanded_[c] = 1;
   expanded_list_.push_back(c);
   ++stats_->expanded;

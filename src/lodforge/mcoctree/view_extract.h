@@ -26,9 +26,8 @@
 ///
 /// Cracks. The model stores each cell's triangles for the split states of
 /// uniform extraction, where the expanded nodes are those of priority 1..N.
-/// A view-dependent cut keeps three rules, forcing expansions until they hold
-/// (integer work: hash look-ups of same-level neighbours and priority
-/// compares):
+/// A view-dependent cut keeps these rules, forcing expansions until they hold
+/// (integer and array work: neighbour tables made once, priority compares):
 ///
 ///   rule                                     | forces
 ///   -----------------------------------------+---------------------------------
@@ -50,10 +49,12 @@
 /// parent is, as it shows nothing at full resolution) and takes no part in
 /// the crack rules of its neighbours, whose border there is open anyway.
 ///
-/// Cost: preparation (McViewExtractor's constructor) is O(cells + triangles x
-/// depth) with the error bounds computed on all threads; an extraction is
-/// O(visited nodes) hash look-ups (27 + 18 per expanded node, expected O(1)
-/// each) plus O(output) copies. Deterministic.
+/// Cost: preparation (McViewExtractor's constructor) is O(cells) hash
+/// look-ups for the neighbour tables (18 same-level neighbours and the few
+/// coarser cells the neighbour rule needs, 4 bytes each per cell) plus
+/// O(triangles x depth) for the error bounds, on all threads; an extraction
+/// is O(1) table reads per visited node (a few tens) plus O(output) copies.
+/// Deterministic.
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
@@ -124,7 +125,9 @@ class McViewExtractor {
   void prepare_tree();
   void prepare_errors();
   std::uint32_t find(int level, std::int64_t x, std::int64_t y, std::int64_t z) const;
-  std::uint32_t neighbour(std::uint32_t c, int j) const;
+  void prepare_neighbours();
+  /// The same-level neighbour of cell c at offset j (face or edge, 0..17).
+  std::uint32_t neighbour(std::uint32_t c, int j) const { return near_[18 * std::size_t{c} + j]; }
   bool located(std::uint32_t c) const { return coords_[c][0] != McNode::kNone; }
   void expand(std::uint32_t c, bool forced);
   double on_screen(std::uint32_t c, const Frame& frame) const;
@@ -137,7 +140,10 @@ class McViewExtractor {
   std::vector<std::uint8_t> level_;
   std::vector<std::array<std::uint32_t, 3>> coords_;
   std::vector<float> error_;
-  std::unordered_map<std::uint64_t, std::uint32_t> index_;  // (level, coords) -> cell
+  std::unordered_map<std::uint64_t, std::uint32_t>
+      index_;                                       // (level, coords) -> cell, while preparing
+  std::vector<std::uint32_t> near_;                 // 18 per cell
+  std::vector<std::uint32_t> needs_begin_, needs_;  // per cell: coarser cells needed
   // Per extraction.
   std::vector<std::uint8_t> expanded_;
   std::vector<std::uint32_t> expanded_list_, queue_;

@@ -117,7 +117,8 @@ BENCHMARK(BM_McoExtractMesh)
 // three bounding-box diagonals from the bunny, a 1080-pixel-high screen,
 // pixel budget = Arg 0; then uniform extraction (BM_McoUniformAtViewCount) at
 // the priority nearest the same triangle count. ns_per_tri compares them;
-// prepare_ms is the extractor's one-time preparation (not in the loop).
+// prepare_ms is the extractor's one-time preparation (not in the loop);
+// expanded / forced: nodes expanded, of which first by a crack rule.
 McViewOptions view_options(const McLodModel& m, double pixel_error) {
   Box3 box;
   for (const auto& p : m.positions) box.add(p);
@@ -140,12 +141,16 @@ void BM_McoViewExtract(benchmark::State& state) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const McViewOptions o = view_options(*m, static_cast<double>(state.range(0)));
   std::size_t tris = 0, level = 0;
+  McViewResult r;
   for (auto _ : state) {
-    McViewResult r = ex.extract(o);
+    r = ex.extract(o);
     level = r.mesh.triangle_count();
     tris += level;
   }
   per_triangle_counters(state, level, tris);
+  state.counters["expanded"] = static_cast<double>(r.expanded);
+  state.counters["forced"] = static_cast<double>(r.forced);
+  state.counters["pixel_error"] = r.pixel_error;
   state.counters["prepare_ms"] = prepare;
   state.counters["percent"] =
       100.0 * static_cast<double>(level) / static_cast<double>(m->full_triangles());

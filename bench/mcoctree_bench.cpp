@@ -22,6 +22,7 @@
 #include "lodforge/mcoctree/build_mc_octree.h"
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mcoctree/mc_lod_model.h"
+#include "lodforge/mcoctree/view_extract.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/simplify/quadric_collapse.h"
 
@@ -109,6 +110,77 @@ void BM_McoExtractMesh(benchmark::State& state) {
 }
 BENCHMARK(BM_McoExtractMesh)
     ->ArgsProduct({{5, 20, 50, 100}, {128}})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+// View-dependent extraction (view_extract.h) as a standalone mesh: a camera
+// three bounding-box diagonals from the bunny, a 1080-pixel-high screen,
+// pixel budget = Arg 0; then uniform extraction (BM_McoUniformAtViewCount) at
+// the priority nearest the same triangle count. ns_per_tri compares them;
+// prepare_ms is the extractor's one-time preparation (not in the loop);
+// expanded / forced: nodes expanded, of which first by a crack rule.
+McViewOptions view_options(const McLodModel& m, double pixel_error) {
+  Box3 box;
+  for (const auto& p : m.positions) box.add(p);
+  const Vec3 eye = box.center() + normalized(Vec3{0.3f, 0.2f, 1.0f}) * (3 * box.diagonal());
+  return {.camera = {.position = eye, .look_at = box.center()}, .pixel_error = pixel_error};
+}
+
+void per_triangle_counters(benchmark::State& state, std::size_t level_tris, std::size_t total) {
+  state.counters["triangles"] = static_cast<double>(level_tris);
+  state.counters["ns_per_tri"] = benchmark::Counter(
+      static_cast<double>(total), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_McoViewExtract(benchmark::State& state) {
+  if (!bunny()) return state.SkipWithError("bunny missing");
+  const McLodModel* m = lod_model(128);
+  const auto t0 = std::chrono::steady_clock::now();
+  McViewExtractor ex(*m);
+  const double prepare =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const McViewOptions o = view_options(*m, static_cast<double>(state.range(0)));
+  std::size_t tris = 0, level = 0;
+  McViewResult r;
+  for (auto _ : state) {
+    r = ex.extract(o);
+    level = r.mesh.triangle_count();
+    tris += level;
+  }
+  per_triangle_counters(state, level, tris);
+  state.counters["expanded"] = static_cast<double>(r.expanded);
+  state.counters["forced"] = static_cast<double>(r.forced);
+  state.counters["pixel_error"] = r.pixel_error;
+  state.counters["prepare_ms"] = prepare;
+  state.counters["percent"] =
+      100.0 * static_cast<double>(level) / static_cast<double>(m->full_triangles());
+}
+BENCHMARK(BM_McoViewExtract)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Arg(8)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+void BM_McoUniformAtViewCount(benchmark::State& state) {
+  if (!bunny()) return state.SkipWithError("bunny missing");
+  const McLodModel* m = lod_model(128);
+  McViewExtractor view(*m);
+  const std::size_t target =
+      view.extract(view_options(*m, static_cast<double>(state.range(0)))).mesh.triangle_count();
+  const std::uint32_t n = priority_for_triangles(*m, target);
+  McExtractor ex(*m);
+  TriangleMesh out;
+  std::size_t tris = 0;
+  for (auto _ : state) tris += ex.extract(n, out);
+  per_triangle_counters(state, out.triangle_count(), tris);
+}
+BENCHMARK(BM_McoUniformAtViewCount)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Arg(8)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

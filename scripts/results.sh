@@ -132,6 +132,7 @@ section() {
       done
       commands+=("$B/bench/mcoctree_bench --benchmark_filter='BM_McoExtract/|BM_McoMemory|BM_McoBuildBesideMeshopt'")
       commands+=("$B/bench/mcoctree_query_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true")
+      commands+=("$B/bench/mcoctree_bench --benchmark_filter='BM_McoViewExtract|BM_McoUniformAtViewCount' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true")
       for m in horse.ply fandisk.obj cow.obj bun_zipper.ply teapot.obj suzanne.obj; do
         commands+=("$B/lodforge mco build $D/meshes/$m -o $W/${m%.*}.mco -q")
       done

@@ -280,6 +280,66 @@ TEST_F(McoCli, QueryBadArguments) {
   EXPECT_THAT(r.err, HasSubstr("--ray or --point"));
 }
 
+// View-dependent extraction: the camera's options, the summary line, fewer
+// triangles looking away, and a coarser budget giving fewer triangles.
+TEST_F(McoCli, ExtractViewDependent) {
+  std::string m = model();
+  const auto full = info_json(m)["full_triangles"].get<std::size_t>();
+  auto view = [&](const std::string& name, const std::string& flags) {
+    auto r = run_lodforge("mco extract " + m + " -o " + path(name) + " " + flags);
+    EXPECT_EQ(r.exit_code, 0) << flags << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("view-dependent")) << flags;
+    EXPECT_THAT(r.err, HasSubstr("worst projected error")) << flags;
+    return read_mesh(path(name)).triangle_count();
+  };
+  const auto fine = view("fine.ply", "--camera 0,0,4 --look-at 0,0,0 --pixels 400");
+  const auto coarse = view("coarse.ply",
+                           "--camera 0,0,4 --look-at 0,0,0 --up 0,1,0 --fov 0.8 --pixels 400 "
+                           "--pixel-error 20");
+  const auto away = view("away.obj", "--camera 0,0,4 --look-at 0,0,8");
+  EXPECT_LE(fine, full);
+  EXPECT_LT(coarse, fine);
+  EXPECT_LE(away * 20, full);
+}
+
+// Bad numbers name the option and the expected form (exit 1, nothing
+// written); --camera excludes the uniform targets and needs --look-at, and
+// the view options need --camera (usage errors, exit 2).
+TEST_F(McoCli, ExtractViewDependentBadArguments) {
+  std::string m = model();
+  const std::string out = path("v.ply");
+  const std::string base = "mco extract " + m + " -o " + out + " ";
+  const std::pair<const char*, const char*> bad[] = {
+      {"--camera", "1,2"},     {"--look-at", "1,x,2"},  {"--up", "0,1,0,1"},
+      {"--fov", "wide"},       {"--fov", "4"},          {"--pixels", "0"},
+      {"--pixel-error", "-1"}, {"--pixel-error", "nan"}};
+  for (auto [option, value] : bad) {
+    std::string flags = "--camera 0,0,4 --look-at 0,0,0";
+    if (std::string(option) == "--camera") flags = "--look-at 0,0,0";
+    if (std::string(option) == "--look-at") flags = "--camera 0,0,4";
+    auto r = run_lodforge(base + flags + " " + option + " " + value);
+    EXPECT_EQ(r.exit_code, 1) << option << " " << value << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr(std::string(option) + " '" + value + "': expected "))
+        << option << " " << value;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  auto r = run_lodforge(base + "--camera 0,0,4 --look-at 0,0,4");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("look-at equals the camera position"));
+  for (const char* target : {"--percent 50", "--triangles 100", "--priority 3"}) {
+    r = run_lodforge(base + "--camera 0,0,4 --look-at 0,0,0 " + target);
+    EXPECT_EQ(r.exit_code, 2) << target;
+    EXPECT_THAT(r.err, HasSubstr("excludes")) << target;
+  }
+  r = run_lodforge(base + "--camera 0,0,4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--look-at"));
+  r = run_lodforge(base + "--pixel-error 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("requires --camera"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(McoCli, ScanThenBuildFromTheScans) {
   std::string scans = path("scans");
   auto r = run_lodforge("mco scan " + mesh_ + " --views 6 --resolution 64 -o " + scans);

@@ -1,6 +1,8 @@
 // `lodforge mco build MESH|DIR|CONF -o MODEL.mco [--resolution N] [--close-holes]
 //                    [--metric area|distance] [--surface-vertices] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
+// `lodforge mco extract MODEL.mco -o OUT --camera X,Y,Z --look-at X,Y,Z [--up X,Y,Z]
+//                      [--fov RAD] [--pixels H] [--pixel-error E]`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco query MODEL.mco (--ray OX,OY,OZ,DX,DY,DZ | --point X,Y,Z)...
 //                    [--percent P | --priority N]`
@@ -13,10 +15,12 @@
 #include <array>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
@@ -33,6 +37,7 @@
 #include "lodforge/mcoctree/mco_file.h"
 #include "lodforge/mcoctree/range_scan.h"
 #include "lodforge/mcoctree/scan_mesh.h"
+#include "lodforge/mcoctree/view_extract.h"
 #include "lodforge/mesh/mesh_io.h"
 
 namespace lodforge::apps {
@@ -249,12 +254,82 @@ LoadedModel load_model(const std::string& path, std::int64_t max_priority = -1,
   return out;
 }
 
+// The numbers of a comma-separated option value, exactly `count` of them,
+// finite floats; DataError naming the option and the expected form.
+std::vector<float> parse_numbers(const std::string& value, std::size_t count,
+                                 const std::string& option, const std::string& form) {
+  std::vector<float> out;
+  const char* p = value.data();
+  const char* const end = p + value.size();
+  while (p <= end) {
+    const char* comma = std::find(p, end, ',');
+    double x = 0;
+    auto [stop, ec] = std::from_chars(p, comma, x);
+    if (ec != std::errc{} || stop != comma || !std::isfinite(static_cast<float>(x))) {
+      out.clear();
+      break;
+    }
+    out.push_back(static_cast<float>(x));
+    p = comma + 1;
+  }
+  if (out.size() != count)
+    throw DataError(fmt::format("{} '{}': expected {} ({} finite numbers separated by commas)",
+                                option, value, form, count));
+  return out;
+}
+
 struct Extract {
   std::string input, output;
   std::int64_t triangles = -1, priority = -1;
   double percent = -1;
   bool quiet = false;
+  // View-dependent extraction (--camera): the camera as given, parsed in run.
+  std::string camera, look_at, up = "0,1,0", fov, pixels, pixel_error;
 };
+
+Vec3 parse_vec3(const std::string& value, const std::string& option) {
+  auto v = parse_numbers(value, 3, option, "X,Y,Z");
+  return {v[0], v[1], v[2]};
+}
+
+// One number of an option, in (0, most]; `fallback` when not given.
+double parse_positive(const std::string& value, const std::string& option, const std::string& form,
+                      double most, double fallback) {
+  if (value.empty()) return fallback;
+  const double x = parse_numbers(value, 1, option, form)[0];
+  if (!(x > 0 && x <= most))
+    throw DataError(fmt::format("{} '{}': expected {} (a number > 0{})", option, value, form,
+                                most < HUGE_VAL ? fmt::format(" and below {:g}", most) : ""));
+  return x;
+}
+
+// `mco extract --camera`: the view-dependent cut of the whole model.
+int run_view_extract(const Extract& e) {
+  McViewOptions o;
+  o.camera.position = parse_vec3(e.camera, "--camera");
+  if (e.look_at.empty())
+    throw CLI::ValidationError("mco extract", "--camera needs --look-at X,Y,Z");
+  o.camera.look_at = parse_vec3(e.look_at, "--look-at");
+  o.camera.up = parse_vec3(e.up, "--up");
+  o.camera.fov =
+      parse_positive(e.fov, "--fov", "RAD", std::nextafter(std::numbers::pi, 0.0), o.camera.fov);
+  o.camera.pixels = parse_positive(e.pixels, "--pixels", "H", HUGE_VAL, o.camera.pixels);
+  o.pixel_error = parse_positive(e.pixel_error, "--pixel-error", "E", HUGE_VAL, o.pixel_error);
+  const LoadedModel loaded = load_model(e.input, -1, e.quiet);
+  if (loaded.summary.truncated())
+    throw DataError(e.input + ": view-dependent extraction needs the whole model");
+  const McViewResult r = extract_mc_view(loaded.model, o);
+  write_mesh(r.mesh, e.output);
+  fmt::print(stderr,
+             "{}: view-dependent, {} triangles ({:.1f}% of {}), {} vertices, worst projected "
+             "error {:.3g} px (budget {:g}), {} nodes expanded ({} for crack-freedom)\n",
+             e.output, r.mesh.triangle_count(),
+             100.0 * double(r.mesh.triangle_count()) /
+                 double(std::max<std::uint64_t>(loaded.model.full_triangles(), 1)),
+             loaded.model.full_triangles(), r.mesh.vertex_count(), r.pixel_error, o.pixel_error,
+             r.expanded, r.forced);
+  return 0;
+}
 
 void add_mco_extract(CLI::App* mco, Runner& run) {
   auto e = std::make_shared<Extract>();
@@ -274,11 +349,24 @@ void add_mco_extract(CLI::App* mco, Runner& run) {
                  ->check(CLI::NonNegativeNumber);
   ot->excludes(op)->excludes(on);
   op->excludes(on);
+  auto* oc = extract->add_option("--camera", e->camera,
+                                 "View-dependent: the camera position X,Y,Z (with --look-at)");
+  oc->excludes(ot)->excludes(op)->excludes(on);
+  auto view = [&](const char* name, auto& value, const char* what) {
+    return extract->add_option(name, value, what)->needs(oc);
+  };
+  view("--look-at", e->look_at, "View-dependent: the point looked at, X,Y,Z");
+  view("--up", e->up, "View-dependent: the up direction X,Y,Z (default 0,1,0)");
+  view("--fov", e->fov, "View-dependent: vertical field of view in radians (default pi/4)");
+  view("--pixels", e->pixels, "View-dependent: screen height in pixels (default 1080)");
+  view("--pixel-error", e->pixel_error,
+       "View-dependent: largest projected error in pixels (default 1)");
   extract->add_flag("-q,--quiet", e->quiet, "No warnings (the one-line summary stays)");
   extract->callback([e, &run] {
     run = [e] {
       check_output_paths(std::array{OutputPath{e->output, "the extracted mesh"}},
                          std::array{e->input});
+      if (!e->camera.empty()) return run_view_extract(*e);
       // --priority N reads only what priorities 0..N need (the file is
       // progressive: a prefix, e.g. a partial download, is enough).
       const LoadedModel loaded = load_model(e->input, e->priority, e->quiet);
@@ -377,30 +465,6 @@ struct Query {
   double percent = -1;
   bool quiet = false;
 };
-
-// The numbers of a comma-separated option value, exactly `count` of them,
-// finite floats; DataError naming the option and the expected form.
-std::vector<float> parse_numbers(const std::string& value, std::size_t count,
-                                 const std::string& option, const std::string& form) {
-  std::vector<float> out;
-  const char* p = value.data();
-  const char* const end = p + value.size();
-  while (p <= end) {
-    const char* comma = std::find(p, end, ',');
-    double x = 0;
-    auto [stop, ec] = std::from_chars(p, comma, x);
-    if (ec != std::errc{} || stop != comma || !std::isfinite(static_cast<float>(x))) {
-      out.clear();
-      break;
-    }
-    out.push_back(static_cast<float>(x));
-    p = comma + 1;
-  }
-  if (out.size() != count)
-    throw DataError(fmt::format("{} '{}': expected {} ({} finite numbers separated by commas)",
-                                option, value, form, count));
-  return out;
-}
 
 std::vector<float> parse_ray(const std::string& value) {
   auto v = parse_numbers(value, 6, "--ray", "OX,OY,OZ,DX,DY,DZ");

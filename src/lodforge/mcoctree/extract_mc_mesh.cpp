@@ -116,6 +116,11 @@ McExtractor::McExtractor(const McOctree& tree)
 McExtractor::McExtractor(const McLodModel& model) : model_(&model) {}
 
 std::size_t McExtractor::extract(std::uint32_t priority, TriangleMesh& out) {
+  extract_mc_indices(*model_, priority, indices_);
+  return mesh_of(indices_, out);
+}
+
+std::size_t McExtractor::mesh_of(const std::vector<Triangle>& indices, TriangleMesh& out) {
   const McLodModel& m = *model_;
   out.positions.clear();
   out.normals.clear();
@@ -125,7 +130,6 @@ std::size_t McExtractor::extract(std::uint32_t priority, TriangleMesh& out) {
   out.materials.clear();
   out.lines.clear();
   centroids_ = 0;
-  extract_mc_indices(m, priority, indices_);
   if (seen_.size() != m.positions.size()) {
     seen_.assign(m.positions.size(), {0, 0});
     epoch_ = 0;
@@ -141,7 +145,7 @@ std::size_t McExtractor::extract(std::uint32_t priority, TriangleMesh& out) {
   // sequential), then renumber the triangles.
   Seen* seen = seen_.data();
   std::uint32_t end = 0;
-  for (const auto& t : indices_)
+  for (const auto& t : indices)
     for (auto v : t) {
       seen[v].epoch = epoch_;
       end = std::max(end, v + 1);
@@ -166,9 +170,9 @@ std::size_t McExtractor::extract(std::uint32_t priority, TriangleMesh& out) {
   out.positions.resize(next);
   out.normals.resize(next);
   if (colored) out.colors.resize(next);
-  out.triangles.resize(indices_.size());
-  for (std::size_t i = 0; i < indices_.size(); ++i)
-    for (int k = 0; k < 3; ++k) out.triangles[i][k] = seen[indices_[i][k]].index;
+  out.triangles.resize(indices.size());
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    for (int k = 0; k < 3; ++k) out.triangles[i][k] = seen[indices[i][k]].index;
   for (auto v : m.centroids) centroids_ += seen_[v].epoch == epoch_;
   return out.triangles.size();
 }

@@ -81,6 +81,11 @@ class McExtractor {
   /// Priority N (clamped) as a standalone mesh into `out` (its arrays
   /// reused). Returns the triangle count.
   std::size_t extract(std::uint32_t priority, TriangleMesh& out);
+  /// The standalone mesh of an index buffer into model().positions (any cut
+  /// of the model, e.g. a view-dependent one) into `out`: the used vertices
+  /// in table order with decoded normals and colours. Returns the triangle
+  /// count.
+  std::size_t mesh_of(const std::vector<Triangle>& indices, TriangleMesh& out);
   /// Priority N (clamped) as an index buffer into model().positions.
   const std::vector<Triangle>& indices(std::uint32_t priority) {
     extract_mc_indices(*model_, priority, indices_);

@@ -132,6 +132,12 @@ void per_triangle_counters(benchmark::State& state, std::size_t level_tris, std:
       static_cast<double>(total), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The pixel budgets of the view-dependent rows and their uniform peers.
+void pixel_budgets(benchmark::internal::Benchmark* b) {
+  for (int e : {1, 2, 4, 8}) b->Arg(e);
+  b->Unit(benchmark::kMicrosecond)->UseRealTime();
+}
+
 void BM_McoViewExtract(benchmark::State& state) {
   if (!bunny()) return state.SkipWithError("bunny missing");
   const McLodModel* m = lod_model(128);
@@ -155,13 +161,7 @@ void BM_McoViewExtract(benchmark::State& state) {
   state.counters["percent"] =
       100.0 * static_cast<double>(level) / static_cast<double>(m->full_triangles());
 }
-BENCHMARK(BM_McoViewExtract)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(4)
-    ->Arg(8)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
+BENCHMARK(BM_McoViewExtract)->Apply(pixel_budgets);
 
 void BM_McoUniformAtViewCount(benchmark::State& state) {
   if (!bunny()) return state.SkipWithError("bunny missing");
@@ -176,13 +176,7 @@ void BM_McoUniformAtViewCount(benchmark::State& state) {
   for (auto _ : state) tris += ex.extract(n, out);
   per_triangle_counters(state, out.triangle_count(), tris);
 }
-BENCHMARK(BM_McoUniformAtViewCount)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(4)
-    ->Arg(8)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
+BENCHMARK(BM_McoUniformAtViewCount)->Apply(pixel_budgets);
 
 // Memory of the run-time model against the build-time tree, per
 // full-resolution triangle (one iteration: a size, not a time).

@@ -12,17 +12,13 @@
 #include "lodforge/mcoctree/extract_mc_mesh.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
+#include "mcoctree/capped_model.h"
 #include "mesh/test_meshes.h"
 
 namespace lodforge {
 namespace {
 
 const std::string kBunny = std::string(LODFORGE_SHARED_DATA) + "/meshes/bun_zipper.ply";
-
-McLodModel model_of(const TriangleMesh& mesh, int resolution) {
-  return compile_mc_lod(
-      build_mc_octree(mesh, {.resolution = resolution, .holes = McHoles::kCapped}).tree);
-}
 
 // ---- Brute force over every triangle, written independently of mc_query.cpp.
 

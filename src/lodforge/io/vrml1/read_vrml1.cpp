@@ -28,6 +28,7 @@
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
+#include "lodforge/core/huge_pages.h"
 #include "lodforge/io/vrml1/lexer.h"
 #include "lodforge/scene/schema.h"
 
@@ -564,7 +565,7 @@ class Parser {
   // A long array grows in one allocation instead of about log2(n) copies:
   // after its first kSampleValues values, the values are reserved that the
   // text up to the next ']' holds at the bytes per value seen so far (a
-  // guess; a wrong one costs only growth as usual).
+  // guess; a wrong one costs only growth as usual), on huge pages.
   static constexpr std::size_t kSampleValues = 4096;
   template <class T>
   void reserve_for_rest(std::vector<T>& values, const char* start) {
@@ -573,6 +574,7 @@ class Parser {
     if (close == std::string_view::npos) return;
     const double per_value = double(lex_.cursor() - start) / double(values.size());
     values.reserve(values.size() + std::size_t(double(close) / per_value * 1.02) + 16);
+    advise_huge_pages(values);
   }
 
   FieldValue parse_value(FieldType type, const Token& field,

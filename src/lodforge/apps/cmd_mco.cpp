@@ -576,7 +576,11 @@ void add_mco_query(CLI::App* mco, Runner& run) {
       if (!qs->quiet)
         fmt::print(stderr, "{}: priority {} of {}, {} triangles, {} queries\n", qs->input,
                    q.priority(), loaded.model.priorities(), q.mesh().triangle_count(), out.size());
-      fmt::print("{}\n", out.dump(2));
+      // One answer per line: a JSON array, readable and easy to grep.
+      std::string lines = "[";
+      for (std::size_t k = 0; k < out.size(); ++k)
+        lines += (k ? ",\n  " : "\n  ") + out[k].dump();
+      fmt::print("{}\n]\n", lines);
       return 0;
     };
   });

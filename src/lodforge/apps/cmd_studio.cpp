@@ -1,9 +1,12 @@
 // `lodforge studio SCENE... [--port N] [--host H] [--open]`: the local web
 // page over the scenes (src/lodforge/studio/).
 #include <fmt/core.h>
+#include <pthread.h>
+#include <signal.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/studio/studio_server.h"
@@ -36,6 +39,27 @@ AssetFolders asset_folders() {
   return {LODFORGE_STUDIO_WEB, LODFORGE_STUDIO_THREE, LODFORGE_STUDIO_CODEMIRROR};
 }
 
+// Serves until Ctrl-C (SIGINT) or SIGTERM, which end the server as stop()
+// does, so its destructor runs and removes the folder of uploaded scenes.
+// The signals are blocked in every thread (the server's workers inherit the
+// mask) and taken by one waiting thread.
+void serve_until_signal(studio::StudioServer& server) {
+  sigset_t ending;
+  sigemptyset(&ending);
+  sigaddset(&ending, SIGINT);
+  sigaddset(&ending, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &ending, nullptr);
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&ending, &signal);
+    server.stop();
+  });
+  server.serve();
+  // Ended otherwise: the waiter is woken by a signal of its own.
+  pthread_kill(waiter.native_handle(), SIGTERM);
+  waiter.join();
+}
+
 int run_studio(const Settings& s) {
   const AssetFolders assets = asset_folders();
   studio::StudioServer server(studio::StudioOptions{.scenes = s.scenes,
@@ -54,7 +78,7 @@ int run_studio(const Settings& s) {
     if (std::system(command.c_str()) != 0)
       fmt::print(stderr, "could not start a browser; open {} by hand\n", url);
   }
-  server.serve();
+  serve_until_signal(server);
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "apps/run_command.h"
 #include "core/temp_dir.h"
@@ -169,6 +170,26 @@ TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("written as .gltf or .glb"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("d.wrl")));
+}
+
+// The contact sheet of a glTF output's levels, one panel per MSFT_lod level.
+TEST_F(TempDirTest, LodGltfLevelsSheet) {
+  const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                            "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
+  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("t.glb") + " -q").exit_code, 0);
+  const CommandResult r = run_lodforge("render " + path("t.glb") + " --levels -o " + path("t.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("t.png")));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(\((\d+)x(\d+), (\d+) levels\))"))) << r.err;
+  EXPECT_GE(std::stoi(m[3]), 3) << r.err;
+  // --distances draws the other scene kinds; for glTF it says what does.
+  const CommandResult d =
+      run_lodforge("render " + path("t.glb") + " --distances 1,10 -o " + path("d.png"));
+  EXPECT_EQ(d.exit_code, 1);
+  EXPECT_NE(d.err.find("drawn by --levels or --level K"), std::string::npos) << d.err;
+  EXPECT_FALSE(fs::exists(path("d.png")));
 }
 
 TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {

@@ -31,6 +31,9 @@
 #include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
+#include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/scene_mesh.h"
+#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/render/color_bar.h"
@@ -172,9 +175,15 @@ Drawing drawing(scene::FlatScene flat, TextureLoader& loader) {
 // The scene of a contact sheet showing its LOD nodes.
 scene::Scene read_lod_scene(const std::string& path, std::string_view option,
                             const SceneReadSettings& read) {
+  if (gltf::is_gltf_path(path))
+    throw DataError(fmt::format(
+        "{}: {} draws VRML 1.0, Inventor, VRML97 and X3D scenes; a glTF scene's levels are "
+        "drawn by --levels or --level K",
+        path, option));
   if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
-    throw DataError(
-        fmt::format("{}: {} needs a VRML 1.0 or Inventor scene with LOD nodes", path, option));
+    throw DataError(fmt::format(
+        "{}: {} needs a scene with LOD nodes (VRML 1.0, Inventor, VRML97, X3D; --levels: glTF)",
+        path, option));
   return read_scene(path, read).scene;
 }
 
@@ -197,7 +206,16 @@ int sheet_columns(std::size_t n) {
 int render_levels(const std::string& input, const std::string& output, const RenderOptions& options,
                   const SceneReadSettings& read, TextureLoader& loader) {
   std::vector<Drawing> levels;
-  if (is_vrml97_input(input)) {
+  if (gltf::is_gltf_path(input)) {
+    // Its triangles in world space, as the plain picture draws them.
+    const gltf::GltfReadResult g = gltf::read_gltf_file(input);
+    if (!read.quiet)
+      for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", input, w);
+    for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k) {
+      levels.push_back(drawing({.mesh = gltf::scene_mesh(g.scene.model, int(k))}, loader));
+      check_coordinate_range(levels.back().flat.mesh, input);
+    }
+  } else if (is_vrml97_input(input)) {
     const vrml97::ReadResult scene = read_vrml97_input(input);
     const std::size_t count = vrml97_lod_level_count(scene.scene);
     for (std::size_t k = 0; k < count; ++k)

@@ -28,6 +28,17 @@ int mesh_at_level(const tinygltf::Model& model, std::size_t n, int lod_level) {
 
 }  // namespace
 
+std::size_t lod_level_count(const tinygltf::Model& model) {
+  std::size_t most = 0;
+  for (const auto& node : model.nodes) {
+    const auto lod = node.extensions.find("MSFT_lod");
+    if (lod == node.extensions.end()) continue;
+    const tinygltf::Value& ids = lod->second.Get("ids");
+    if (ids.IsArray()) most = std::max(most, ids.ArrayLen());
+  }
+  return 1 + most;
+}
+
 TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level) {
   TriangleMesh out;
   const auto placements = node_placements(model);

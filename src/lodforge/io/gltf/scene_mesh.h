@@ -14,4 +14,8 @@ namespace lodforge::gltf {
 /// primitive_mesh, or for an MSFT_lod id that is not a node with a mesh.
 TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level = 0);
 
+/// The levels scene_mesh can show: 1 + the most `MSFT_lod` ids of a node
+/// (1 when no node has any).
+std::size_t lod_level_count(const tinygltf::Model& model);
+
 }  // namespace lodforge::gltf

@@ -21,11 +21,20 @@
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge::detail {
+namespace {
+
+// A pseudo-normal shorter than this fraction of its weights' sum has
+// cancelled (a fold): a regular vertex or edge keeps most of it, a needle
+// of a 1-degree half-angle about 0.017.
+constexpr float kFold = 0.01f;
+
+}  // namespace
 
 SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
   const auto& P = mesh_.positions;
   face_normal_.resize(mesh_.triangles.size());
   std::vector<Vec3> vertex_normal(P.size());
+  std::vector<float> vertex_angle(P.size(), 0.0f);
   for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
     const auto& f = mesh_.triangles[t];
     Vec3 n = normalized(cross(P[f[1]] - P[f[0]], P[f[2]] - P[f[0]]));
@@ -34,6 +43,7 @@ SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
       Vec3 a = normalized(P[f[(k + 1) % 3]] - P[f[k]]), b = normalized(P[f[(k + 2) % 3]] - P[f[k]]);
       float angle = std::acos(std::clamp(dot(a, b), -1.0f, 1.0f));
       vertex_normal[f[k]] += n * angle;
+      vertex_angle[f[k]] += angle;
     }
   }
   adjacency_ = build_adjacency(mesh_);
@@ -48,6 +58,16 @@ SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
     open_edge_[e] = 1;
     open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = 1;
   }
+  // A fold (faces turned back onto each other: a fin of no volume) has
+  // pseudo-normals that cancel, whose direction is rounding noise: the side
+  // of a point nearest it is unknown, as by a rim, and the flood decides.
+  for (std::size_t v = 0; v < P.size(); ++v)
+    if (vertex_angle[v] > 0 && length(vertex_normal[v]) < kFold * vertex_angle[v])
+      open_vertex_[v] = 1;
+  for (std::size_t e = 0; e < adjacency_.edges.size(); ++e)
+    if (adjacency_.edge_valence(static_cast<std::uint32_t>(e)) == 2 &&
+        length(edge_normal_[e]) < 2 * kFold)
+      open_edge_[e] = 1;
   if (!mesh_.has_normals()) {
     mesh_.normals.resize(P.size());
     for (std::size_t v = 0; v < P.size(); ++v) mesh_.normals[v] = normalized(vertex_normal[v]);

@@ -32,7 +32,9 @@ class SignedDistance {
   struct Sample {
     float distance;  ///< signed: negative inside
     ClosestPoint at;
-    bool open;  ///< nearest an open rim: the side is unknown (distance >= 0)
+    /// Nearest an open rim, or a fold (faces turned back onto each other,
+    /// whose pseudo-normals cancel): the side is unknown (distance >= 0).
+    bool open;
   };
   /// The signed distance of p (an exact closest-point query; `hint` as in
   /// TriangleBvh, it never changes the answer).

@@ -158,7 +158,8 @@ int run_mco_build(const Build& b) {
                  "may take minutes\n",
                  b.input, b.resolution, bytes / double(std::uint64_t{1} << 30));
     r = build_with_bar(mesh);
-    what = fmt::format("{} triangles", mesh.triangle_count());
+    what = fmt::format("{} triangles ({} part bridge{})", mesh.triangle_count(),
+                       r.stats.part_bridges, r.stats.part_bridges == 1 ? "" : "s");
   }
   McLodModel model = compile_mc_lod(r.tree);
   write_mco_file(model, b.output);

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lodforge/mcoctree/part_bridges.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge::detail {
@@ -471,6 +472,8 @@ Lattice make_mesh_lattice(const SignedDistance& sd, int resolution, McBuildStats
   // the boundary's signs (nearest sign wins).
   flood_fill(lat, seeds, stats);
   repair_signs(lat, sd, stats);
+  // A closed mesh's parts stay whole across places thinner than a cell.
+  if (!sd.has_rims()) stats.part_bridges = bridge_mesh_parts(lat, sd).bridges;
   return lat;
 }
 

@@ -72,10 +72,11 @@ class SignedDistance {
 /// boundary outside; every other point, and the band points nearest an open
 /// rim, by a breadth-first flood fill from those; then every flooded point
 /// whose sign disagrees with a neighbour's gets an exact one (repeated until
-/// no sign changes). Fills stats' band_points, flooded_points and
-/// sign_repairs; reports "signs" (slabs of the lattice) to `progress`. The
-/// result depends neither on the threads nor on how work is split. Throws
-/// DataError when the mesh's vertices are all at one point.
+/// no sign changes); a closed mesh's inside regions of one part are then
+/// joined by bridges (bridge_mesh_parts). Fills stats' band_points,
+/// flooded_points, sign_repairs and part_bridges; reports "signs" (slabs of the lattice) to
+/// `progress`. The result depends neither on the threads nor on how work is split. Throws DataError
+/// when the mesh's vertices are all at one point.
 Lattice make_mesh_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats,
                           const ProgressCallback& progress);
 

@@ -32,6 +32,7 @@ if [ "${1:-}" = "--sanitize" ]; then
         QuadricCollapseBunny.MeanDeviationNoWorseThanMeshoptimizer
         QuadricCollapseBunny.RegionalFirstPhaseCostsLittleQuality
         BuildMcOctree.BunnyHolesStayOpen
+        BridgeMeshParts.SharedClosedMeshesKeepTheirParts
         GenerateLod.BunnySceneLevelsStayWithinTheErrorRangeOnScreen
         RangeScan.StanfordBunnyFromScansCoversBunZipper
         VertexDecimation.BunnyRegionalFirstPhaseCostsLittleQuality

@@ -56,19 +56,19 @@ SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
   open_vertex_.assign(P.size(), 0);
   open_edge_.assign(adjacency_.edges.size(), 0);
   for (auto e : adjacency_.boundary_edges) {
-    open_edge_[e] = 1;
-    open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = 1;
+    open_edge_[e] = kRimFeature;
+    open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = kRimFeature;
   }
   // A fold (faces turned back onto each other: a fin of no volume) has
-  // pseudo-normals that cancel, whose direction is rounding noise: the side
-  // of a point nearest it is unknown, as by a rim, and the flood decides.
+  // pseudo-normals that cancel, whose direction is rounding noise: a point
+  // nearest it is outside (sample).
   for (std::size_t v = 0; v < P.size(); ++v)
     if (vertex_angle[v] > 0 && length(vertex_normal[v]) < kFold * vertex_angle[v])
-      open_vertex_[v] = 1;
+      open_vertex_[v] |= kFoldFeature;
   for (std::size_t e = 0; e < adjacency_.edges.size(); ++e)
     if (adjacency_.edge_valence(static_cast<std::uint32_t>(e)) == 2 &&
         length(edge_normal_[e]) < 2 * kFold)
-      open_edge_[e] = 1;
+      open_edge_[e] |= kFoldFeature;
   if (!mesh_.has_normals()) {
     mesh_.normals.resize(P.size());
     for (std::size_t v = 0; v < P.size(); ++v) mesh_.normals[v] = normalized(vertex_normal[v]);
@@ -80,29 +80,37 @@ SignedDistance::Sample SignedDistance::operator()(const Vec3& p, std::uint32_t h
 }
 
 SignedDistance::Sample SignedDistance::sample(const Vec3& p, const ClosestPoint& cp) const {
-  auto [n, open] = feature(cp);
+  auto [n, kind] = feature_kind(cp);
   float d = std::sqrt(cp.distance_squared);
   // Nearest to a hole's rim the pseudo-normal's side is a half-plane that
   // runs off to infinity: such points are left to the flood fill.
-  if (open) return {d, cp, true};
+  if (kind & kRimFeature) return {d, cp, true};
+  // Nearest a fold the side is outside: the fold's faces enclose no volume,
+  // and a point inside the solid next to it is nearer one of its faces.
+  if (kind & kFoldFeature) return {d, cp, false};
   return {dot(p - cp.point, n) < 0 ? -d : d, cp, false};
 }
 
 std::pair<Vec3, bool> SignedDistance::feature(const ClosestPoint& cp) const {
+  auto [n, kind] = feature_kind(cp);
+  return {n, (kind & kRimFeature) != 0};
+}
+
+std::pair<Vec3, std::uint8_t> SignedDistance::feature_kind(const ClosestPoint& cp) const {
   const auto& b = cp.barycentric;
   const auto& f = mesh_.triangles[cp.triangle];
   constexpr float kTol = 1e-5f;
   int zeros = (b[0] < kTol) + (b[1] < kTol) + (b[2] < kTol);
   if (zeros >= 2) {
     int k = b[0] >= b[1] && b[0] >= b[2] ? 0 : b[1] >= b[2] ? 1 : 2;
-    return {vertex_normal_[f[k]], open_vertex_[f[k]] != 0};
+    return {vertex_normal_[f[k]], open_vertex_[f[k]]};
   }
   if (zeros == 1) {
     int side = b[2] < kTol ? 0 : b[0] < kTol ? 1 : 2;
     auto e = adjacency_.triangle_edges[cp.triangle][side];
-    if (e != MeshAdjacency::kNoEdge) return {edge_normal_[e], open_edge_[e] != 0};
+    if (e != MeshAdjacency::kNoEdge) return {edge_normal_[e], open_edge_[e]};
   }
-  return {face_normal_[cp.triangle], false};
+  return {face_normal_[cp.triangle], 0};
 }
 
 // The Morton build: the hierarchy answers a few thousand queries (an open

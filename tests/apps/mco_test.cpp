@@ -112,6 +112,28 @@ TEST_F(McoCli, BuildSaysWhenTheModelDoesNotKeepTheInputsParts) {
   ASSERT_EQ(apart.exit_code, 0) << apart.err;
   EXPECT_NE(apart.err.find("where the input has 1"), std::string::npos) << apart.err;
   EXPECT_NE(apart.err.find("A finer --resolution"), std::string::npos) << apart.err;
+  // A closed part smaller than a cell leaves no surface: the build names it
+  // and the resolution that keeps it, and at that resolution it is kept.
+  TriangleMesh speck = test::make_icosphere(2);
+  const TriangleMesh tiny = test::make_cube(0.03f, {3, 0, 0});
+  const auto base = static_cast<std::uint32_t>(speck.positions.size());
+  speck.positions.insert(speck.positions.end(), tiny.positions.begin(), tiny.positions.end());
+  for (Triangle t : tiny.triangles)
+    speck.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const std::string specks = path("speck.ply");
+  write_mesh(speck, specks);
+  auto gone = run_lodforge("mco build " + specks + " -o " + path("speck.mco") + " --resolution 20");
+  ASSERT_EQ(gone.exit_code, 0) << gone.err;
+  const std::string keep = "--resolution 269 would keep it";  // 2 x 4.03 / 0.03
+  EXPECT_NE(gone.err.find("the input's part of 12 triangles in [3 0 0]..[3.03 0.03 0.03] left no "
+                          "surface"),
+            std::string::npos)
+      << gone.err;
+  EXPECT_NE(gone.err.find(keep), std::string::npos) << gone.err;
+  auto kept_at =
+      run_lodforge("mco build " + specks + " -o " + path("speck.mco") + " --resolution 269");
+  ASSERT_EQ(kept_at.exit_code, 0) << kept_at.err;
+  EXPECT_EQ(kept_at.err.find("connected part"), std::string::npos) << kept_at.err;
   // The teapot's lid, body and handle touch: at the default resolution they join.
   const std::string teapot = std::string(LODFORGE_SHARED_DATA) + "/meshes/teapot.obj";
   if (!fs::exists(teapot)) GTEST_SKIP() << teapot << " missing";

@@ -32,7 +32,6 @@ if [ "${1:-}" = "--sanitize" ]; then
         QuadricCollapseBunny.MeanDeviationNoWorseThanMeshoptimizer
         QuadricCollapseBunny.RegionalFirstPhaseCostsLittleQuality
         BuildMcOctree.BunnyHolesStayOpen
-        BridgeMeshParts.SharedClosedMeshesKeepTheirParts
         GenerateLod.BunnySceneLevelsStayWithinTheErrorRangeOnScreen
         RangeScan.StanfordBunnyFromScansCoversBunZipper
         VertexDecimation.BunnyRegionalFirstPhaseCostsLittleQuality

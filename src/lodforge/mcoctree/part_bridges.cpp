@@ -17,9 +17,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numeric>
 #include <queue>
-#include <unordered_map>
 
 #include "lodforge/core/union_find.h"
 #include "lodforge/mesh/adjacency.h"
@@ -92,42 +90,63 @@ UnionFind group_by_part(const Lattice& lat, const Regions& r, const SignedDistan
   return groups;
 }
 
-// Joins region `from` to another region of its group, not yet joined to it,
-// by the minimax path through exact points; false when there is none.
-bool bridge(Lattice& lat, Regions& r, UnionFind& groups, UnionFind& joined, std::uint32_t from,
-            PartBridges& out) {
-  using Item = std::pair<float, std::size_t>;  // largest |distance| so far, exact point
+constexpr std::size_t kStart = std::numeric_limits<std::size_t>::max();
+
+// Makes the outside points on the way from exact point e back to where its
+// search started inside, their distances negated.
+void raise_path(Lattice& lat, const std::vector<std::size_t>& from, std::size_t e,
+                PartBridges& out) {
+  for (; e != kStart; e = from[e]) {
+    std::uint8_t& st = lat.state[lat.distance[e].idx];
+    if (st & kInside) continue;
+    st |= kInside;
+    lat.distance[e].distance = -lat.distance[e].distance;
+    ++out.points;
+  }
+}
+
+// One search from every region at once through the exact points, settled in
+// order of the largest |distance| on the way there (Kruskal's order for a
+// minimum bottleneck forest): a point belongs to the region whose search
+// reached it first, and where a settled point of one region meets a settled
+// point of another, unjoined one of its group, the two ways back are the
+// bridge. A region's search does not pass another's points (a piece of one
+// part goes round another part). Stops when every group is one piece.
+void bridge_regions(Lattice& lat, const Regions& r, UnionFind& groups, PartBridges& out) {
+  std::vector<std::size_t> pieces(r.size.size(), 0);
+  for (std::uint32_t g = 0; g < r.size.size(); ++g) ++pieces[groups.find(g)];
+  std::size_t split = std::count_if(pieces.begin(), pieces.end(), [](auto n) { return n > 1; });
+  std::vector<std::uint32_t> owner = r.of_exact;
+  std::vector<std::size_t> from(owner.size(), kStart);
+  std::vector<std::uint8_t> settled(owner.size(), 0);
+  using Item = std::pair<float, std::size_t>;  // largest |distance| on the way, exact point
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  std::unordered_map<std::size_t, std::size_t> parent;
-  constexpr std::size_t kStart = std::numeric_limits<std::size_t>::max();
-  for (std::size_t e = 0; e < r.of_exact.size(); ++e)
-    if (r.of_exact[e] != kNoRegion && joined.find(r.of_exact[e]) == joined.find(from))
-      open.push({0.0f, e}), parent.emplace(e, kStart);
-  const std::uint32_t group = groups.find(from);
-  while (!open.empty()) {
+  for (std::size_t e = 0; e < owner.size(); ++e)
+    if (owner[e] != kNoRegion) open.push({0.0f, e});
+  UnionFind joined(r.size.size());
+  while (!open.empty() && split > 0) {
     const auto [key, e] = open.top();
     open.pop();
-    const std::uint32_t region = r.of_exact[e];
-    if (region != kNoRegion && joined.find(region) != joined.find(from)) {
-      if (groups.find(region) != group) continue;  // another part's: not a way through
-      for (std::size_t p = parent[e]; p != kStart; p = parent[p]) {
-        if (lat.state[lat.distance[p].idx] & kInside) continue;
-        lat.state[lat.distance[p].idx] |= kInside;
-        lat.distance[p].distance = -lat.distance[p].distance;
-        ++out.points;
-      }
-      joined.unite(region, from);
-      return true;
-    }
+    if (settled[e]) continue;
+    settled[e] = 1;
+    const std::uint32_t mine = owner[e];
     lattice_neighbours(lat, lat.distance[e].idx, [&](std::int64_t q) {
       if (!(lat.state[q] & kExact) || lat.on_border(q)) return;
       const std::size_t eq = exact_index(lat, q);
-      if (!parent.emplace(eq, e).second) return;
-      const bool in = r.of_exact[eq] != kNoRegion;
-      open.push({std::max(key, in ? 0.0f : std::abs(lat.distance[eq].distance)), eq});
+      const std::uint32_t theirs = owner[eq];
+      if (theirs == kNoRegion) {
+        owner[eq] = mine, from[eq] = e;
+        open.push({std::max(key, std::abs(lat.distance[eq].distance)), eq});
+      } else if (settled[eq] && groups.find(theirs) == groups.find(mine) &&
+                 joined.find(theirs) != joined.find(mine)) {
+        raise_path(lat, from, e, out);
+        raise_path(lat, from, eq, out);
+        joined.unite(theirs, mine);
+        ++out.bridges;
+        if (--pieces[groups.find(mine)] == 1) --split;
+      }
     });
   }
-  return false;
 }
 
 }  // namespace
@@ -138,19 +157,7 @@ PartBridges bridge_mesh_parts(Lattice& lat, const SignedDistance& sd) {
   out.regions = r.size.size();
   if (out.regions < 2) return out;
   UnionFind groups = group_by_part(lat, r, sd);
-  // Each region of a group but its largest bridges to another (the smallest
-  // first: a piece to the body rather than the body to a piece).
-  std::vector<std::uint32_t> order(r.size.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return r.size[a] < r.size[b]; });
-  std::vector<std::size_t> pieces(r.size.size(), 0);
-  for (std::uint32_t g = 0; g < r.size.size(); ++g) ++pieces[groups.find(g)];
-  UnionFind joined(r.size.size());
-  for (std::uint32_t from : order) {
-    std::size_t& left = pieces[groups.find(from)];
-    if (left > 1 && bridge(lat, r, groups, joined, from, out)) --left, ++out.bridges;
-  }
+  bridge_regions(lat, r, groups, out);
   return out;
 }
 

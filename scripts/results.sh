@@ -133,8 +133,11 @@ section() {
       commands+=("$B/bench/mcoctree_bench --benchmark_filter='BM_McoExtract/|BM_McoMemory|BM_McoBuildBesideMeshopt'")
       commands+=("$B/bench/mcoctree_query_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true")
       commands+=("$B/bench/mcoctree_bench --benchmark_filter='BM_McoViewExtract|BM_McoUniformAtViewCount' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true")
-      for m in horse.ply fandisk.obj cow.obj bun_zipper.ply teapot.obj suzanne.obj; do
-        commands+=("$B/lodforge mco build $D/meshes/$m -o $W/${m%.*}.mco -q")
+      for m in horse.ply fandisk.obj cow.obj rocker-arm.obj nefertiti.obj igea.ply bun_zipper.ply teapot.obj suzanne.obj; do
+        commands+=("$B/lodforge mco build $D/meshes/$m -o $W/${m%.*}.mco -q --threads 2")
+        for r in 100 200 400; do
+          commands+=("$B/lodforge mco build $D/meshes/$m -o $W/${m%.*}_$r.mco -q --threads 2 --resolution $r")
+        done
       done
       commands+=(
         "$B/lodforge mco build $D/range/bunny/bun.conf --resolution 200 -o $W/scans200.mco -q && ls -l $W/scans200.mco"

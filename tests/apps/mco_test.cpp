@@ -90,19 +90,50 @@ TEST_F(McoCli, BuildInfoExtract) {
 
 // --metric distance orders the expansions by the distance metric: a model of
 // the same full resolution, numbered differently; an unknown metric is a usage error.
-// A part thinner than a cell comes apart, parts closer than a cell join:
-// the build says so (and where), and says nothing when the parts are kept.
+// A part thinner than a cell comes apart (unless the mesh is closed: then
+// bridges keep it whole), parts closer than a cell join: the build says so
+// (and where), and says nothing when the parts are kept.
 TEST_F(McoCli, BuildSaysWhenTheModelDoesNotKeepTheInputsParts) {
   auto kept = run_lodforge("mco build " + mesh_ + " -o " + path("t.mco") + " --resolution 20");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
   EXPECT_EQ(kept.err.find("connected part"), std::string::npos) << kept.err;
-  // A tube half a cell thick.
-  const std::string thin = path("thin.ply");
-  write_mesh(test::make_torus(1.0f, 0.03f, 64, 8), thin);
-  auto apart = run_lodforge("mco build " + thin + " -o " + path("thin.mco") + " --resolution 20");
+  // A tube half a cell thick: closed, it is kept whole by bridges; open (one
+  // triangle missing: no bridges), it comes apart.
+  TriangleMesh tube = test::make_torus(1.0f, 0.03f, 64, 8);
+  const std::string thin = path("thin.ply"), open = path("open.ply");
+  write_mesh(tube, thin);
+  auto bridged = run_lodforge("mco build " + thin + " -o " + path("thin.mco") + " --resolution 20");
+  ASSERT_EQ(bridged.exit_code, 0) << bridged.err;
+  EXPECT_EQ(bridged.err.find("connected part"), std::string::npos) << bridged.err;
+  EXPECT_NE(bridged.err.find("part bridges)"), std::string::npos) << bridged.err;
+  tube.triangles.pop_back();
+  write_mesh(tube, open);
+  auto apart = run_lodforge("mco build " + open + " -o " + path("open.mco") + " --resolution 20");
   ASSERT_EQ(apart.exit_code, 0) << apart.err;
   EXPECT_NE(apart.err.find("where the input has 1"), std::string::npos) << apart.err;
   EXPECT_NE(apart.err.find("A finer --resolution"), std::string::npos) << apart.err;
+  // A closed part smaller than a cell leaves no surface: the build names it
+  // and the resolution that keeps it, and at that resolution it is kept.
+  TriangleMesh speck = test::make_icosphere(2);
+  const TriangleMesh tiny = test::make_cube(0.03f, {3, 0, 0});
+  const auto base = static_cast<std::uint32_t>(speck.positions.size());
+  speck.positions.insert(speck.positions.end(), tiny.positions.begin(), tiny.positions.end());
+  for (Triangle t : tiny.triangles)
+    speck.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const std::string specks = path("speck.ply");
+  write_mesh(speck, specks);
+  auto gone = run_lodforge("mco build " + specks + " -o " + path("speck.mco") + " --resolution 20");
+  ASSERT_EQ(gone.exit_code, 0) << gone.err;
+  const std::string keep = "--resolution 269 would keep it";  // 2 x 4.03 / 0.03
+  EXPECT_NE(gone.err.find("the input's part of 12 triangles in [3 0 0]..[3.03 0.03 0.03] left no "
+                          "surface"),
+            std::string::npos)
+      << gone.err;
+  EXPECT_NE(gone.err.find(keep), std::string::npos) << gone.err;
+  auto kept_at =
+      run_lodforge("mco build " + specks + " -o " + path("speck.mco") + " --resolution 269");
+  ASSERT_EQ(kept_at.exit_code, 0) << kept_at.err;
+  EXPECT_EQ(kept_at.err.find("connected part"), std::string::npos) << kept_at.err;
   // The teapot's lid, body and handle touch: at the default resolution they join.
   const std::string teapot = std::string(LODFORGE_SHARED_DATA) + "/meshes/teapot.obj";
   if (!fs::exists(teapot)) GTEST_SKIP() << teapot << " missing";

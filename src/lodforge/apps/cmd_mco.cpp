@@ -91,11 +91,27 @@ std::string box_text(const Box3& b) {
                      b.hi.x, b.hi.y, b.hi.z);
 }
 
+// Names each input part that left no surface and the resolution that would
+// keep it.
+void warn_vanished_parts(const std::string& input, const TriangleMesh& mesh,
+                         const McPartsCheck& parts, float cell) {
+  for (const McPart& p : parts.vanished) {
+    const int keep = resolution_to_keep(p, mesh.bounds());
+    fmt::print(stderr,
+               "warning: {}: the input's part of {} triangles in {} left no surface (thinner "
+               "than about a cell, {:.4g}); {}\n",
+               input, p.triangles, box_text(p.bounds), cell,
+               keep <= 1000 ? fmt::format("--resolution {} would keep it", keep)
+                            : std::string("no resolution up to 1000 keeps it"));
+  }
+}
+
 // Says when the model's surface does not keep the input's connected parts,
 // and where its smallest parts are.
 void warn_lost_parts(const std::string& input, const TriangleMesh& mesh, const McLodModel& model) {
-  const McPartsCheck parts = check_mc_parts(mesh, extract_mc_mesh(model).mesh);
+  const McPartsCheck parts = check_mc_parts(mesh, extract_mc_mesh(model).mesh, 3, model.cell_size);
   if (parts.kept()) return;
+  warn_vanished_parts(input, mesh, parts, model.cell_size);
   const std::string counts =
       fmt::format("{}: at full resolution the model has {} connected part{} where the input has {}",
                   input, parts.model_parts, parts.model_parts == 1 ? "" : "s", parts.input_parts);
@@ -158,7 +174,8 @@ int run_mco_build(const Build& b) {
                  "may take minutes\n",
                  b.input, b.resolution, bytes / double(std::uint64_t{1} << 30));
     r = build_with_bar(mesh);
-    what = fmt::format("{} triangles", mesh.triangle_count());
+    what = fmt::format("{} triangles ({} part bridge{})", mesh.triangle_count(),
+                       r.stats.part_bridges, r.stats.part_bridges == 1 ? "" : "s");
   }
   McLodModel model = compile_mc_lod(r.tree);
   write_mco_file(model, b.output);

@@ -80,13 +80,16 @@ struct McBuildOptions {
 double mc_build_bytes(const Box3& box, int resolution);
 
 struct McBuildStats {
-  std::size_t band_points = 0;      ///< lattice points with an exact signed distance
-  std::size_t flooded_points = 0;   ///< signs from the flood fill (range scans: from the vote)
-  std::size_t sign_repairs = 0;     ///< flooded points later given an exact distance
-  std::size_t carved_points = 0;    ///< range scans: points a line of sight shows empty
-  std::size_t filled_voids = 0;     ///< range scans: enclosed outside regions made inside
-  std::size_t dropped_parts = 0;    ///< range scans: small inside regions (bubbles) made outside
-  std::size_t sign_flips = 0;       ///< range scans: lone outside corners (pits) made inside
+  std::size_t band_points = 0;     ///< lattice points with an exact signed distance
+  std::size_t flooded_points = 0;  ///< signs from the flood fill (range scans: from the vote)
+  std::size_t sign_repairs = 0;    ///< flooded points later given an exact distance
+  std::size_t carved_points = 0;   ///< range scans: points a line of sight shows empty
+  std::size_t filled_voids = 0;    ///< range scans: enclosed outside regions made inside
+  std::size_t dropped_parts = 0;   ///< range scans: small inside regions (bubbles) made outside
+  std::size_t sign_flips = 0;      ///< range scans: lone outside corners (pits) made inside
+  /// Closed meshes: bridges of lattice points made inside so that a part
+  /// thinner than a cell somewhere stays in one piece (part_bridges.h).
+  std::size_t part_bridges = 0;
   std::size_t leaves = 0;           ///< finest cells with a crossing
   std::size_t expansion_waits = 0;  ///< times a node was popped while a neighbour was too coarse
   std::size_t hole_nodes = 0;       ///< nodes left without triangles over the input's holes
@@ -119,6 +122,12 @@ struct McBuildResult {
 /// triangles (its signs are cleared). The model's borders then follow the
 /// input's rims to within about a cell, at every level; closed inputs invent
 /// nothing and stay closed.
+///
+/// Parts (closed meshes): where a part is thinner than a cell the lattice may
+/// hold its inside in separate pieces; pieces nearest one connected part of
+/// the input are joined by bridges of lattice points along the thin place
+/// (part_bridges.h), so that the model's full-resolution surface has the
+/// input's parts, about a cell thick where the input is thinner.
 ///
 /// Throws DataError for a mesh without triangles (or with only degenerate
 /// ones), with a triangle index out of range, with colours not one per

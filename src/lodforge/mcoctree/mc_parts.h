@@ -24,13 +24,26 @@ struct McPartsCheck {
   /// The model's smallest parts, fewest triangles first (ties: first found),
   /// at most `most` of them; empty when the counts are equal.
   std::vector<McPart> smallest;
+  /// The input's parts whose bounds, grown by `near`, meet no model part's
+  /// bounds (a part thinner than about a cell that left no surface), in the
+  /// input's order, at most `most`; empty when the counts are equal or
+  /// `near` is 0.
+  std::vector<McPart> vanished;
   bool kept() const { return input_parts == model_parts; }
 };
 
 /// Compares the parts of `input` with those of `full` (extract_mc_mesh of
-/// the model at full resolution). O(V + F) expected. Never throws beyond
+/// the model at full resolution); `near`: how far a model part may lie from
+/// an input part it stands for (a cell; 0: vanished parts are not looked
+/// for). O(V + F + input parts x model parts) expected. Never throws beyond
 /// allocation.
 McPartsCheck check_mc_parts(const TriangleMesh& input, const TriangleMesh& full,
-                            std::size_t most = 3);
+                            std::size_t most = 3, float near = 0);
+
+/// The resolution (cells across the longest side of `box`, the input's
+/// bounds) at which `part` is about two cells across its thinnest side, so
+/// that the lattice has points inside it; above 1000 (the largest allowed)
+/// when it is that thin.
+int resolution_to_keep(const McPart& part, const Box3& box);
 
 }  // namespace lodforge

@@ -18,14 +18,24 @@
 #include <cmath>
 #include <limits>
 
+#include "lodforge/mcoctree/part_bridges.h"
 #include "lodforge/metrics/closest_point_on_triangle.h"
 
 namespace lodforge::detail {
+namespace {
+
+// A pseudo-normal shorter than this fraction of its weights' sum has
+// cancelled (a fold): a regular vertex or edge keeps most of it, a needle
+// of a 1-degree half-angle about 0.017.
+constexpr float kFold = 0.01f;
+
+}  // namespace
 
 SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
   const auto& P = mesh_.positions;
   face_normal_.resize(mesh_.triangles.size());
   std::vector<Vec3> vertex_normal(P.size());
+  std::vector<float> vertex_angle(P.size(), 0.0f);
   for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
     const auto& f = mesh_.triangles[t];
     Vec3 n = normalized(cross(P[f[1]] - P[f[0]], P[f[2]] - P[f[0]]));
@@ -34,6 +44,7 @@ SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
       Vec3 a = normalized(P[f[(k + 1) % 3]] - P[f[k]]), b = normalized(P[f[(k + 2) % 3]] - P[f[k]]);
       float angle = std::acos(std::clamp(dot(a, b), -1.0f, 1.0f));
       vertex_normal[f[k]] += n * angle;
+      vertex_angle[f[k]] += angle;
     }
   }
   adjacency_ = build_adjacency(mesh_);
@@ -45,9 +56,19 @@ SignedDistance::SignedDistance(TriangleMesh mesh) : mesh_(std::move(mesh)) {
   open_vertex_.assign(P.size(), 0);
   open_edge_.assign(adjacency_.edges.size(), 0);
   for (auto e : adjacency_.boundary_edges) {
-    open_edge_[e] = 1;
-    open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = 1;
+    open_edge_[e] = kRimFeature;
+    open_vertex_[adjacency_.edges[e][0]] = open_vertex_[adjacency_.edges[e][1]] = kRimFeature;
   }
+  // A fold (faces turned back onto each other: a fin of no volume) has
+  // pseudo-normals that cancel, whose direction is rounding noise: a point
+  // nearest it is outside (sample).
+  for (std::size_t v = 0; v < P.size(); ++v)
+    if (vertex_angle[v] > 0 && length(vertex_normal[v]) < kFold * vertex_angle[v])
+      open_vertex_[v] |= kFoldFeature;
+  for (std::size_t e = 0; e < adjacency_.edges.size(); ++e)
+    if (adjacency_.edge_valence(static_cast<std::uint32_t>(e)) == 2 &&
+        length(edge_normal_[e]) < 2 * kFold)
+      open_edge_[e] |= kFoldFeature;
   if (!mesh_.has_normals()) {
     mesh_.normals.resize(P.size());
     for (std::size_t v = 0; v < P.size(); ++v) mesh_.normals[v] = normalized(vertex_normal[v]);
@@ -59,29 +80,37 @@ SignedDistance::Sample SignedDistance::operator()(const Vec3& p, std::uint32_t h
 }
 
 SignedDistance::Sample SignedDistance::sample(const Vec3& p, const ClosestPoint& cp) const {
-  auto [n, open] = feature(cp);
+  auto [n, kind] = feature_kind(cp);
   float d = std::sqrt(cp.distance_squared);
   // Nearest to a hole's rim the pseudo-normal's side is a half-plane that
   // runs off to infinity: such points are left to the flood fill.
-  if (open) return {d, cp, true};
+  if (kind & kRimFeature) return {d, cp, true};
+  // Nearest a fold the side is outside: the fold's faces enclose no volume,
+  // and a point inside the solid next to it is nearer one of its faces.
+  if (kind & kFoldFeature) return {d, cp, false};
   return {dot(p - cp.point, n) < 0 ? -d : d, cp, false};
 }
 
 std::pair<Vec3, bool> SignedDistance::feature(const ClosestPoint& cp) const {
+  auto [n, kind] = feature_kind(cp);
+  return {n, (kind & kRimFeature) != 0};
+}
+
+std::pair<Vec3, std::uint8_t> SignedDistance::feature_kind(const ClosestPoint& cp) const {
   const auto& b = cp.barycentric;
   const auto& f = mesh_.triangles[cp.triangle];
   constexpr float kTol = 1e-5f;
   int zeros = (b[0] < kTol) + (b[1] < kTol) + (b[2] < kTol);
   if (zeros >= 2) {
     int k = b[0] >= b[1] && b[0] >= b[2] ? 0 : b[1] >= b[2] ? 1 : 2;
-    return {vertex_normal_[f[k]], open_vertex_[f[k]] != 0};
+    return {vertex_normal_[f[k]], open_vertex_[f[k]]};
   }
   if (zeros == 1) {
     int side = b[2] < kTol ? 0 : b[0] < kTol ? 1 : 2;
     auto e = adjacency_.triangle_edges[cp.triangle][side];
-    if (e != MeshAdjacency::kNoEdge) return {edge_normal_[e], open_edge_[e] != 0};
+    if (e != MeshAdjacency::kNoEdge) return {edge_normal_[e], open_edge_[e]};
   }
-  return {face_normal_[cp.triangle], false};
+  return {face_normal_[cp.triangle], 0};
 }
 
 // The Morton build: the hierarchy answers a few thousand queries (an open
@@ -451,6 +480,8 @@ Lattice make_mesh_lattice(const SignedDistance& sd, int resolution, McBuildStats
   // the boundary's signs (nearest sign wins).
   flood_fill(lat, seeds, stats);
   repair_signs(lat, sd, stats);
+  // A closed mesh's parts stay whole across places thinner than a cell.
+  if (!sd.has_rims()) stats.part_bridges = bridge_mesh_parts(lat, sd).bridges;
   return lat;
 }
 

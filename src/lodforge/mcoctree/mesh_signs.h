@@ -32,7 +32,11 @@ class SignedDistance {
   struct Sample {
     float distance;  ///< signed: negative inside
     ClosestPoint at;
-    bool open;  ///< nearest an open rim: the side is unknown (distance >= 0)
+    /// Nearest an open rim: the side is unknown (distance >= 0). Nearest a
+    /// fold (a vertex or edge whose faces turn back onto each other, so that
+    /// its pseudo-normal cancels) the side is outside: the fold encloses no
+    /// volume, and a point inside the solid next to it is nearer a face.
+    bool open;
   };
   /// The signed distance of p (an exact closest-point query; `hint` as in
   /// TriangleBvh, it never changes the answer).
@@ -40,7 +44,7 @@ class SignedDistance {
   /// The signed distance of p whose closest surface point is cp.
   Sample sample(const Vec3& p, const ClosestPoint& cp) const;
   /// The pseudo-normal at a closest point and whether its feature (face,
-  /// edge or vertex) is on an open rim.
+  /// edge or vertex) is on an open rim (a fold is not).
   std::pair<Vec3, bool> feature(const ClosestPoint& cp) const;
   bool has_rims() const { return !adjacency_.boundary_edges.empty(); }
   const TriangleMesh& mesh() const { return mesh_; }
@@ -56,6 +60,10 @@ class SignedDistance {
   Vec3 normal_at(const ClosestPoint& cp) const;
 
  private:
+  // Kinds of feature (bits): on an open rim, on a fold.
+  static constexpr std::uint8_t kRimFeature = 1, kFoldFeature = 2;
+  std::pair<Vec3, std::uint8_t> feature_kind(const ClosestPoint& cp) const;
+
   TriangleMesh mesh_;
   MeshAdjacency adjacency_;
   std::vector<Vec3> face_normal_, vertex_normal_, edge_normal_;
@@ -70,10 +78,11 @@ class SignedDistance {
 /// boundary outside; every other point, and the band points nearest an open
 /// rim, by a breadth-first flood fill from those; then every flooded point
 /// whose sign disagrees with a neighbour's gets an exact one (repeated until
-/// no sign changes). Fills stats' band_points, flooded_points and
-/// sign_repairs; reports "signs" (slabs of the lattice) to `progress`. The
-/// result depends neither on the threads nor on how work is split. Throws
-/// DataError when the mesh's vertices are all at one point.
+/// no sign changes); a closed mesh's inside regions of one part are then
+/// joined by bridges (bridge_mesh_parts). Fills stats' band_points,
+/// flooded_points, sign_repairs and part_bridges; reports "signs" (slabs of the lattice) to
+/// `progress`. The result depends neither on the threads nor on how work is split. Throws DataError
+/// when the mesh's vertices are all at one point.
 Lattice make_mesh_lattice(const SignedDistance& sd, int resolution, McBuildStats& stats,
                           const ProgressCallback& progress);
 

@@ -11,29 +11,10 @@
 #include <cassert>
 #include <numeric>
 
+#include "lodforge/core/union_find.h"
 #include "lodforge/mesh/weld.h"
 
 namespace lodforge {
-namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
-  std::uint32_t find(std::uint32_t a) {
-    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
-    return a;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
-
-}  // namespace
 
 std::uint32_t MeshAdjacency::find_edge(std::uint32_t a, std::uint32_t b) const {
   if (a == b) return kNoEdge;

@@ -331,6 +331,12 @@ TEST_F(McoCli, ExtractViewDependent) {
   EXPECT_LE(fine, full);
   EXPECT_LT(coarse, fine);
   EXPECT_LE(away * 20, full);
+  // From near, a narrow screen culls what a wide one shows.
+  const auto narrow = view("narrow.ply", "--camera 0,0,1.6 --look-at 0,0,0 --aspect 1:4");
+  const auto wide = view("wide.ply", "--camera 0,0,1.6 --look-at 0,0,0 --aspect 4/1");
+  EXPECT_LT(narrow, wide);
+  EXPECT_EQ(view("square.ply", "--camera 0,0,1.6 --look-at 0,0,0 --aspect 1"),
+            view("square2.ply", "--camera 0,0,1.6 --look-at 0,0,0 --aspect 3:3"));
 }
 
 // Bad numbers name the option and the expected form (exit 1, nothing
@@ -341,9 +347,10 @@ TEST_F(McoCli, ExtractViewDependentBadArguments) {
   const std::string out = path("v.ply");
   const std::string base = "mco extract " + m + " -o " + out + " ";
   const std::pair<const char*, const char*> bad[] = {
-      {"--camera", "1,2"},     {"--look-at", "1,x,2"},  {"--up", "0,1,0,1"},
-      {"--fov", "wide"},       {"--fov", "4"},          {"--pixels", "0"},
-      {"--pixel-error", "-1"}, {"--pixel-error", "nan"}};
+      {"--camera", "1,2"},     {"--look-at", "1,x,2"},   {"--up", "0,1,0,1"},
+      {"--fov", "wide"},       {"--fov", "4"},           {"--pixels", "0"},
+      {"--pixel-error", "-1"}, {"--pixel-error", "nan"}, {"--aspect", "0"},
+      {"--aspect", "4:0"},     {"--aspect", "wide"}};
   for (auto [option, value] : bad) {
     std::string flags = "--camera 0,0,4 --look-at 0,0,0";
     if (std::string(option) == "--camera") flags = "--look-at 0,0,0";

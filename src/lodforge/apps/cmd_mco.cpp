@@ -2,7 +2,7 @@
 //                    [--metric area|distance] [--surface-vertices] [--threads T]`
 // `lodforge mco extract MODEL.mco -o OUT (--triangles N | --percent P | --priority N)`
 // `lodforge mco extract MODEL.mco -o OUT --camera X,Y,Z --look-at X,Y,Z [--up X,Y,Z]
-//                      [--fov RAD] [--pixels H] [--pixel-error E]`
+//                      [--fov RAD] [--pixels H] [--aspect W:H] [--pixel-error E]`
 // `lodforge mco info MODEL.mco [--json]`
 // `lodforge mco query MODEL.mco (--ray OX,OY,OZ,DX,DY,DZ | --point X,Y,Z)...
 //                    [--percent P | --priority N]`
@@ -301,7 +301,7 @@ struct Extract {
   double percent = -1;
   bool quiet = false;
   // View-dependent extraction (--camera): the camera as given, parsed in run.
-  std::string camera, look_at, up = "0,1,0", fov, pixels, pixel_error;
+  std::string camera, look_at, up = "0,1,0", fov, pixels, aspect, pixel_error;
 };
 
 Vec3 parse_vec3(const std::string& value, const std::string& option) {
@@ -320,6 +320,27 @@ double parse_positive(const std::string& value, const std::string& option, const
   return x;
 }
 
+// --aspect: W:H (16:9), W/H or one number (1.778); `fallback` when not given.
+double parse_aspect(const std::string& value, double fallback) {
+  if (value.empty()) return fallback;
+  const DataError bad(fmt::format(
+      "--aspect '{}': expected W:H, W/H or a number (the screen's width over its height, > 0)",
+      value));
+  std::string v = value;
+  std::replace_if(
+      v.begin(), v.end(), [](char c) { return c == ':' || c == '/'; }, ',');
+  const bool ratio = v.find(',') != std::string::npos;
+  std::vector<float> n;
+  try {
+    n = parse_numbers(v, ratio ? 2 : 1, "--aspect", "W:H");
+  } catch (const DataError&) {
+    throw bad;
+  }
+  const double a = ratio ? double(n[0]) / double(n[1]) : double(n[0]);
+  if (!(n[0] > 0) || (ratio && !(n[1] > 0)) || !std::isfinite(a)) throw bad;
+  return a;
+}
+
 // `mco extract --camera`: the view-dependent cut of the whole model.
 int run_view_extract(const Extract& e) {
   McViewOptions o;
@@ -331,6 +352,7 @@ int run_view_extract(const Extract& e) {
   o.camera.fov =
       parse_positive(e.fov, "--fov", "RAD", std::nextafter(std::numbers::pi, 0.0), o.camera.fov);
   o.camera.pixels = parse_positive(e.pixels, "--pixels", "H", HUGE_VAL, o.camera.pixels);
+  o.camera.aspect = parse_aspect(e.aspect, o.camera.aspect);
   o.pixel_error = parse_positive(e.pixel_error, "--pixel-error", "E", HUGE_VAL, o.pixel_error);
   const LoadedModel loaded = load_model(e.input, -1, e.quiet);
   if (loaded.summary.truncated())
@@ -376,6 +398,8 @@ void add_mco_extract(CLI::App* mco, Runner& run) {
   view("--up", e->up, "View-dependent: the up direction X,Y,Z (default 0,1,0)");
   view("--fov", e->fov, "View-dependent: vertical field of view in radians (default pi/4)");
   view("--pixels", e->pixels, "View-dependent: screen height in pixels (default 1080)");
+  view("--aspect", e->aspect,
+       "View-dependent: screen width over height, W:H, W/H or a number (default 16:9)");
   view("--pixel-error", e->pixel_error,
        "View-dependent: largest projected error in pixels (default 1)");
   extract->add_flag("-q,--quiet", e->quiet, "No warnings (the one-line summary stays)");
@@ -595,8 +619,7 @@ void add_mco_query(CLI::App* mco, Runner& run) {
                    q.priority(), loaded.model.priorities(), q.mesh().triangle_count(), out.size());
       // One answer per line: a JSON array, readable and easy to grep.
       std::string lines = "[";
-      for (std::size_t k = 0; k < out.size(); ++k)
-        lines += (k ? ",\n  " : "\n  ") + out[k].dump();
+      for (std::size_t k = 0; k < out.size(); ++k) lines += (k ? ",\n  " : "\n  ") + out[k].dump();
       fmt::print("{}\n]\n", lines);
       return 0;
     };

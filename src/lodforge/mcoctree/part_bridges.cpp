@@ -125,7 +125,9 @@ void bridge_regions(Lattice& lat, const Regions& r, UnionFind& groups, PartBridg
     if (owner[e] != kNoRegion) open.push({0.0f, e});
   UnionFind joined(r.size.size());
   while (!open.empty() && split > 0) {
-    const auto [key, e] = open.top();
+    // Named copies, not a structured binding: the lambda below captures them.
+    const float key = open.top().first;
+    const std::size_t e = open.top().second;
     open.pop();
     if (settled[e]) continue;
     settled[e] = 1;

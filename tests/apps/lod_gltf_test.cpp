@@ -13,6 +13,7 @@
 #include "core/temp_dir.h"
 #include "gltf/gltf_corpus.h"
 #include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/render/texture_image.h"
 #include "vrml97/vrml97_corpus.h"
 
 namespace lodforge::testing {
@@ -190,6 +191,23 @@ TEST_F(TempDirTest, LodGltfLevelsSheet) {
   EXPECT_EQ(d.exit_code, 1);
   EXPECT_NE(d.err.find("drawn by --levels or --level K"), std::string::npos) << d.err;
   EXPECT_FALSE(fs::exists(path("d.png")));
+}
+
+// `render` draws a glTF scene in its materials' base colours (the Stag's
+// browns and blacks), not grey.
+TEST_F(TempDirTest, RenderGltfInItsMaterialsColours) {
+  const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                            "/gltf/castle-engine__demo-models/animation/gltf_skinned_animation/"
+                            "animals_from_quaternius/Stag.gltf";
+  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+  const CommandResult r =
+      run_lodforge("render " + input + " -o " + path("stag.png") + " --size 200x200");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_texture(path("stag.png")).image;
+  std::size_t brown = 0;
+  for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4)
+    if (image.pixels[i] > image.pixels[i + 2] + 30) ++brown;
+  EXPECT_GT(brown, 500u);
 }
 
 TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {

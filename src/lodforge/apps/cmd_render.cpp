@@ -207,12 +207,13 @@ int render_levels(const std::string& input, const std::string& output, const Ren
                   const SceneReadSettings& read, TextureLoader& loader) {
   std::vector<Drawing> levels;
   if (gltf::is_gltf_path(input)) {
-    // Its triangles in world space, as the plain picture draws them.
+    // Its triangles in world space in their base colours, as the plain
+    // picture draws them.
     const gltf::GltfReadResult g = gltf::read_gltf_file(input);
     if (!read.quiet)
       for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", input, w);
     for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k) {
-      levels.push_back(drawing({.mesh = gltf::scene_mesh(g.scene.model, int(k))}, loader));
+      levels.push_back(drawing({.mesh = gltf::scene_mesh(g.scene.model, int(k), true)}, loader));
       check_coordinate_range(levels.back().flat.mesh, input);
     }
   } else if (is_vrml97_input(input)) {

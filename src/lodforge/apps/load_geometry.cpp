@@ -41,11 +41,12 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
     return scene::FlatScene{.mesh = std::move(m)};
   };
   if (gltf::is_gltf_path(path)) {
-    // A glTF scene: its triangles in world space (no appearance).
+    // A glTF scene: its triangles in world space, with the materials' base
+    // colours when drawn (no textures).
     gltf::GltfReadResult g = gltf::read_gltf_file(path);
     if (!read.quiet)
       for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", name, w);
-    return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level));
+    return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level, appearance));
   }
   if (is_vrml97_input(path)) {
     // A VRML97 / X3D classic scene: its shapes in world space, with their

@@ -32,8 +32,6 @@
 #include "lodforge/core/error.h"
 #include "lodforge/core/output_path.h"
 #include "lodforge/io/gltf/read_gltf.h"
-#include "lodforge/io/gltf/scene_mesh.h"
-#include "lodforge/mesh/coordinate_range.h"
 #include "lodforge/mesh/mesh_io.h"
 #include "lodforge/metrics/colorize_deviation.h"
 #include "lodforge/render/color_bar.h"
@@ -207,15 +205,8 @@ int render_levels(const std::string& input, const std::string& output, const Ren
                   const SceneReadSettings& read, TextureLoader& loader) {
   std::vector<Drawing> levels;
   if (gltf::is_gltf_path(input)) {
-    // Its triangles in world space in their base colours, as the plain
-    // picture draws them.
-    const gltf::GltfReadResult g = gltf::read_gltf_file(input);
-    if (!read.quiet)
-      for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", input, w);
-    for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k) {
-      levels.push_back(drawing({.mesh = gltf::scene_mesh(g.scene.model, int(k), true)}, loader));
-      check_coordinate_range(levels.back().flat.mesh, input);
-    }
+    for (scene::FlatScene& flat : load_gltf_levels(input, read))
+      levels.push_back(drawing(std::move(flat), loader));
   } else if (is_vrml97_input(input)) {
     const vrml97::ReadResult scene = read_vrml97_input(input);
     const std::size_t count = vrml97_lod_level_count(scene.scene);

@@ -31,6 +31,14 @@ bool has_scene_header(std::string_view data) {
 
 namespace {
 
+// A glTF file read, its warnings on stderr unless `quiet`.
+gltf::GltfReadResult read_gltf_reported(const std::string& path, bool quiet) {
+  gltf::GltfReadResult g = gltf::read_gltf_file(path);
+  if (!quiet)
+    for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", path, w);
+  return g;
+}
+
 // A mesh file as it is, or a scene flattened at `lod_level` (with its
 // appearance when asked), checked against the coordinate range.
 scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSettings& read,
@@ -43,9 +51,7 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
   if (gltf::is_gltf_path(path)) {
     // A glTF scene: its triangles in world space, with the materials' base
     // colours when drawn (no textures).
-    gltf::GltfReadResult g = gltf::read_gltf_file(path);
-    if (!read.quiet)
-      for (const auto& w : g.warnings) fmt::print(stderr, "warning: {}: {}\n", name, w);
+    const gltf::GltfReadResult g = read_gltf_reported(path, read.quiet);
     return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level, appearance));
   }
   if (is_vrml97_input(path)) {
@@ -97,6 +103,17 @@ TriangleMesh load_geometry(const std::string& path, int lod_level, const SceneRe
 scene::FlatScene load_drawing(const std::string& path, int lod_level,
                               const SceneReadSettings& read) {
   return load(path, lod_level, read, true);
+}
+
+std::vector<scene::FlatScene> load_gltf_levels(const std::string& path,
+                                               const SceneReadSettings& read) {
+  const gltf::GltfReadResult g = read_gltf_reported(path, read.quiet);
+  std::vector<scene::FlatScene> levels;
+  for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k) {
+    levels.push_back({.mesh = gltf::scene_mesh(g.scene.model, int(k), true)});
+    check_coordinate_range(levels.back().mesh, path);
+  }
+  return levels;
 }
 
 }  // namespace lodforge::apps

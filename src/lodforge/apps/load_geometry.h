@@ -35,4 +35,9 @@ TriangleMesh load_geometry(const std::string& path, int lod_level = 0,
 scene::FlatScene load_drawing(const std::string& path, int lod_level = 0,
                               const SceneReadSettings& read = {});
 
+/// A glTF scene (read once) as load_drawing draws it at each of its levels:
+/// level 0, then each MSFT_lod level (gltf::lod_level_count of them in all).
+std::vector<scene::FlatScene> load_gltf_levels(const std::string& path,
+                                               const SceneReadSettings& read = {});
+
 }  // namespace lodforge::apps

@@ -36,7 +36,7 @@ std::size_t exact_index(const Lattice& lat, std::int64_t idx) {
 
 struct Regions {
   std::vector<std::uint32_t> of_exact;  // per lat.distance entry: its inside region
-  std::vector<std::size_t> size;        // points per region
+  std::uint32_t count = 0;              // regions
 };
 
 // The 6-connected inside regions, by breadth-first search from each unseen
@@ -50,13 +50,11 @@ Regions inside_regions(Lattice& lat) {
   const auto count = static_cast<std::int64_t>(lat.state.size());
   for (std::int64_t seed = 0; seed < count; ++seed) {
     if ((lat.state[seed] & (kInside | kSeen)) != kInside) continue;
-    const auto id = static_cast<std::uint32_t>(r.size.size());
+    const std::uint32_t id = r.count++;
     queue.assign(1, static_cast<std::uint32_t>(seed));
     lat.state[seed] |= kSeen;
-    std::size_t points = 0;
     for (std::size_t head = 0; head < queue.size(); ++head) {
       if (head >= (1u << 20) && 2 * head >= queue.size()) {
-        points += head;
         queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
@@ -68,7 +66,6 @@ Regions inside_regions(Lattice& lat) {
         queue.push_back(static_cast<std::uint32_t>(q));
       });
     }
-    r.size.push_back(points + queue.size());
   }
   for (auto& s : lat.state) s &= static_cast<std::uint8_t>(~kSeen);
   return r;
@@ -79,7 +76,7 @@ UnionFind group_by_part(const Lattice& lat, const Regions& r, const SignedDistan
   const std::vector<std::uint32_t> part = triangle_parts(sd.mesh());
   std::vector<std::uint32_t> first(
       part.empty() ? 0 : *std::max_element(part.begin(), part.end()) + 1, kNoRegion);
-  UnionFind groups(r.size.size());
+  UnionFind groups(r.count);
   for (std::size_t e = 0; e < lat.distance.size(); ++e) {
     const std::uint32_t region = r.of_exact[e];
     if (region == kNoRegion) continue;
@@ -113,8 +110,8 @@ void raise_path(Lattice& lat, const std::vector<std::size_t>& from, std::size_t 
 // bridge. A region's search does not pass another's points (a piece of one
 // part goes round another part). Stops when every group is one piece.
 void bridge_regions(Lattice& lat, const Regions& r, UnionFind& groups, PartBridges& out) {
-  std::vector<std::size_t> pieces(r.size.size(), 0);
-  for (std::uint32_t g = 0; g < r.size.size(); ++g) ++pieces[groups.find(g)];
+  std::vector<std::size_t> pieces(r.count, 0);
+  for (std::uint32_t g = 0; g < r.count; ++g) ++pieces[groups.find(g)];
   std::size_t split = std::count_if(pieces.begin(), pieces.end(), [](auto n) { return n > 1; });
   std::vector<std::uint32_t> owner = r.of_exact;
   std::vector<std::size_t> from(owner.size(), kStart);
@@ -123,7 +120,7 @@ void bridge_regions(Lattice& lat, const Regions& r, UnionFind& groups, PartBridg
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
   for (std::size_t e = 0; e < owner.size(); ++e)
     if (owner[e] != kNoRegion) open.push({0.0f, e});
-  UnionFind joined(r.size.size());
+  UnionFind joined(r.count);
   while (!open.empty() && split > 0) {
     // Named copies, not a structured binding: the lambda below captures them.
     const float key = open.top().first;
@@ -156,7 +153,7 @@ void bridge_regions(Lattice& lat, const Regions& r, UnionFind& groups, PartBridg
 PartBridges bridge_mesh_parts(Lattice& lat, const SignedDistance& sd) {
   PartBridges out;
   Regions r = inside_regions(lat);
-  out.regions = r.size.size();
+  out.regions = r.count;
   if (out.regions < 2) return out;
   UnionFind groups = group_by_part(lat, r, sd);
   bridge_regions(lat, r, groups, out);

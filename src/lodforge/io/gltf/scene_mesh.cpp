@@ -13,13 +13,20 @@ namespace lodforge::gltf {
 
 namespace {
 
+// A node's MSFT_lod ids (the nodes of its levels 1..n); null without any.
+const tinygltf::Value* lod_ids(const tinygltf::Node& node) {
+  const auto lod = node.extensions.find("MSFT_lod");
+  if (lod == node.extensions.end()) return nullptr;
+  const tinygltf::Value& ids = lod->second.Get("ids");
+  return ids.IsArray() && ids.ArrayLen() > 0 ? &ids : nullptr;
+}
+
 // The mesh node `n` draws at `lod_level` (MSFT_lod's ids name the levels).
 int mesh_at_level(const tinygltf::Model& model, std::size_t n, int lod_level) {
   const auto& node = model.nodes[n];
-  const auto lod = node.extensions.find("MSFT_lod");
-  if (lod_level <= 0 || lod == node.extensions.end()) return node.mesh;
-  const tinygltf::Value& ids = lod->second.Get("ids");
-  if (!ids.IsArray() || ids.ArrayLen() == 0) return node.mesh;
+  const tinygltf::Value* level_ids = lod_level > 0 ? lod_ids(node) : nullptr;
+  if (!level_ids) return node.mesh;
+  const tinygltf::Value& ids = *level_ids;
   const int k = std::min(lod_level, int(ids.ArrayLen())) - 1;
   const int id = ids.Get(k).IsNumber() ? ids.Get(k).GetNumberAsInt() : -1;
   if (id < 0 || std::size_t(id) >= model.nodes.size() || model.nodes[std::size_t(id)].mesh < 0)
@@ -49,12 +56,8 @@ void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, Tria
 
 std::size_t lod_level_count(const tinygltf::Model& model) {
   std::size_t most = 0;
-  for (const auto& node : model.nodes) {
-    const auto lod = node.extensions.find("MSFT_lod");
-    if (lod == node.extensions.end()) continue;
-    const tinygltf::Value& ids = lod->second.Get("ids");
-    if (ids.IsArray()) most = std::max(most, ids.ArrayLen());
-  }
+  for (const auto& node : model.nodes)
+    if (const tinygltf::Value* ids = lod_ids(node)) most = std::max(most, ids->ArrayLen());
   return 1 + most;
 }
 

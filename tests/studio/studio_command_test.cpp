@@ -11,22 +11,19 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <thread>
+
+#include "apps/run_command.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 std::string read_all(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return lodforge::testing::read_text(p.string());
 }
 
 // Starts `lodforge studio scene --port 0` with stderr into `log`.

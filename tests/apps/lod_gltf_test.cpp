@@ -13,6 +13,7 @@
 #include "core/temp_dir.h"
 #include "gltf/gltf_corpus.h"
 #include "lodforge/io/gltf/read_gltf.h"
+#include "lodforge/io/gltf/scene_mesh.h"
 #include "lodforge/render/texture_image.h"
 #include "vrml97/vrml97_corpus.h"
 
@@ -185,12 +186,50 @@ TEST_F(TempDirTest, LodGltfLevelsSheet) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(\((\d+)x(\d+), (\d+) levels\))"))) << r.err;
   EXPECT_GE(std::stoi(m[3]), 3) << r.err;
-  // --distances draws the other scene kinds; for glTF it says what does.
   const CommandResult d =
-      run_lodforge("render " + path("t.glb") + " --distances 1,10 -o " + path("d.png"));
-  EXPECT_EQ(d.exit_code, 1);
-  EXPECT_NE(d.err.find("drawn by --levels or --level K"), std::string::npos) << d.err;
-  EXPECT_FALSE(fs::exists(path("d.png")));
+      run_lodforge("render " + path("t.glb") + " --distances 1,10,100 -o " + path("d.png"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(d.err.find("3 distances"), std::string::npos) << d.err;
+  EXPECT_TRUE(fs::exists(path("d.png")));
+}
+
+// What a viewer draws of a glTF output from a camera: each MSFT_lod node at
+// the level its MSFT_screencoverage chooses. Just inside and just beyond each
+// switching distance lodforge wrote (lodforge_lod, measured from the centre
+// of the mesh's box), the level before and the level after; beyond the
+// vanishing distance nothing.
+TEST_F(TempDirTest, GltfLevelSeenFromADistanceIsTheOneItsCoverageChooses) {
+  const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                            "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
+  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("t.glb") + " -q").exit_code, 0);
+  const tinygltf::Model model = gltf::read_gltf_file(path("t.glb")).scene.model;
+  const auto lod = std::find_if(model.nodes.begin(), model.nodes.end(),
+                                [](const auto& n) { return n.extensions.count("MSFT_lod") > 0; });
+  ASSERT_NE(lod, model.nodes.end());
+  const tinygltf::Value& info = lod->extras.Get("lodforge_lod");
+  const tinygltf::Value& levels = info.Get("levels");
+  ASSERT_GE(levels.ArrayLen(), 3u);
+  // The scene is the torus node alone: its box centre is the scene's.
+  const TriangleMesh full = gltf::scene_mesh(model);
+  Box3 box;
+  for (const Vec3& p : full.positions) box.add(p);
+  const Vec3 along{0.6f, 0.0f, 0.8f};
+  const double angle = info.Get("camera_angle").GetNumberAsDouble();
+  auto drawn_at = [&](double d) {
+    return gltf::scene_mesh_seen_from(model, {box.center() + along * float(d), angle})
+        .triangle_count();
+  };
+  for (std::size_t k = 1; k < levels.ArrayLen(); ++k) {
+    const double at = levels.Get(int(k)).Get("switch_distance").GetNumberAsDouble();
+    const auto before = std::size_t(levels.Get(int(k) - 1).Get("triangles").GetNumberAsInt());
+    const auto after = std::size_t(levels.Get(int(k)).Get("triangles").GetNumberAsInt());
+    EXPECT_EQ(drawn_at(at * 0.999), before) << "level " << k << " at " << at;
+    EXPECT_EQ(drawn_at(at * 1.001), after) << "level " << k << " at " << at;
+  }
+  const double vanish = info.Get("vanishing_distance").GetNumberAsDouble();
+  EXPECT_GT(drawn_at(vanish * 0.999), 0u);
+  EXPECT_EQ(drawn_at(vanish * 1.001), 0u);
 }
 
 // `render` draws a glTF scene in its materials' base colours (the Stag's

@@ -6,8 +6,9 @@
 // (flattened at LOD level K) in its materials' colours and its textures, or with --levels
 // a contact sheet of every LOD level side by side with its triangle count
 // under it (the original's Figure 5.5), or with --distances what a browser
-// shows from each distance (every LOD choosing by its own distance) beside the
-// same view at full detail, so popping shows.
+// shows from each distance (every LOD choosing by its own distance; a glTF
+// node its MSFT_lod level by screen coverage) beside the same view at full
+// detail, so popping shows.
 #include <fmt/core.h>
 
 #include <array>
@@ -170,17 +171,12 @@ Drawing drawing(scene::FlatScene flat, TextureLoader& loader) {
   return d;
 }
 
-// The scene of a contact sheet showing its LOD nodes.
+// The VRML 1.0 / Inventor scene of a contact sheet showing its LOD nodes.
 scene::Scene read_lod_scene(const std::string& path, std::string_view option,
                             const SceneReadSettings& read) {
-  if (gltf::is_gltf_path(path))
-    throw DataError(fmt::format(
-        "{}: {} draws VRML 1.0, Inventor, VRML97 and X3D scenes; a glTF scene's levels are "
-        "drawn by --levels or --level K",
-        path, option));
   if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
     throw DataError(fmt::format(
-        "{}: {} needs a scene with LOD nodes (VRML 1.0, Inventor, VRML97, X3D; --levels: glTF)",
+        "{}: {} needs a scene with LOD nodes (VRML 1.0, Inventor, VRML97, X3D or glTF)",
         path, option));
   return read_scene(path, read).scene;
 }
@@ -255,7 +251,11 @@ int render_distances(const std::string& input, const std::string& output,
   // an eye, and its angle of view.
   std::function<scene::FlatScene(std::optional<Vec3>)> flat;
   float angle = 0;
-  if (is_vrml97_input(input)) {
+  if (gltf::is_gltf_path(input)) {
+    GltfViews views = load_gltf_views(input, read);
+    flat = std::move(views.draw);
+    angle = views.height_angle;
+  } else if (is_vrml97_input(input)) {
     auto scene = std::make_shared<vrml97::ReadResult>(read_vrml97_input(input));
     flat = [&, scene](std::optional<Vec3> eye) {
       return flatten_vrml97_input(*scene, input, {.viewpoint = eye}, read.quiet || eye).flat;
@@ -327,11 +327,10 @@ void add_render_command(CLI::App& app, Runner& run) {
                                "Contact sheet of every LOD level with its triangle count (scenes)")
                      ->excludes(level);
   auto* distances =
-      cmd->add_option(
-             "--distances", s->distances,
-             "Comma-separated camera distances from the scene's centre, e.g. 2,10,40: one "
-             "row each, every LOD choosing by its own distance beside every LOD at child 0 "
-             "(scenes)")
+      cmd->add_option("--distances", s->distances,
+                      "Comma-separated camera distances from the scene's centre, e.g. 2,10,40: one "
+                      "row each, every LOD choosing by its own distance (glTF: MSFT_lod by screen "
+                      "coverage) beside every LOD at child 0 (scenes)")
           ->excludes(level)
           ->excludes(levels);
   cmd->add_option("-o,--output", s->output, "Output PNG file (- = stdout)")->required();

@@ -116,4 +116,23 @@ std::vector<scene::FlatScene> load_gltf_levels(const std::string& path,
   return levels;
 }
 
+GltfViews load_gltf_views(const std::string& path, const SceneReadSettings& read) {
+  auto g = std::make_shared<const gltf::GltfReadResult>(read_gltf_reported(path, read.quiet));
+  GltfViews views{.height_angle = float(kPi / 4)};
+  for (const tinygltf::Camera& c : g->scene.model.cameras)
+    if (c.type == "perspective" && c.perspective.yfov > 0) {
+      views.height_angle = float(c.perspective.yfov);
+      break;
+    }
+  views.draw = [g, path, angle = views.height_angle](std::optional<Vec3> eye) {
+    const tinygltf::Model& model = g->scene.model;
+    scene::FlatScene flat{
+        .mesh = eye ? gltf::scene_mesh_seen_from(model, {.eye = *eye, .height_angle = angle}, true)
+                    : gltf::scene_mesh(model, 0, true)};
+    check_coordinate_range(flat.mesh, path);
+    return flat;
+  };
+  return views;
+}
+
 }  // namespace lodforge::apps

@@ -2,6 +2,8 @@
 /// Geometry for the commands that work on one surface (render, compare,
 /// simplify): a mesh file as it is, or a VRML 1.0 / Open Inventor scene
 /// flattened to one mesh in world space (one LOD level of it).
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,5 +41,16 @@ scene::FlatScene load_drawing(const std::string& path, int lod_level = 0,
 /// level 0, then each MSFT_lod level (gltf::lod_level_count of them in all).
 std::vector<scene::FlatScene> load_gltf_levels(const std::string& path,
                                                const SceneReadSettings& read = {});
+
+/// A glTF scene (read once) as a viewer draws it from a camera: `draw(eye)`
+/// as load_drawing draws it, with every MSFT_lod node at the level its screen
+/// coverage chooses from `eye` (gltf::scene_mesh_seen_from; level 0 without
+/// an eye) for a camera `height_angle` high: the first perspective camera's
+/// yfov, else pi/4.
+struct GltfViews {
+  std::function<scene::FlatScene(std::optional<Vec3> eye)> draw;
+  float height_angle = 0;
+};
+GltfViews load_gltf_views(const std::string& path, const SceneReadSettings& read = {});
 
 }  // namespace lodforge::apps

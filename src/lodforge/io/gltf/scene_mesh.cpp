@@ -3,6 +3,10 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include "lodforge/core/error.h"
 #include "lodforge/io/gltf/accessor_data.h"
@@ -61,13 +65,19 @@ std::size_t lod_level_count(const tinygltf::Model& model) {
   return 1 + most;
 }
 
-TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level, bool colors) {
+namespace {
+
+// Every node's mesh as `mesh_of(n)` chooses it (< 0: nothing), in world
+// space, in one mesh.
+template <class MeshOf>
+TriangleMesh gather(const tinygltf::Model& model, const std::vector<NodePlacement>& placements,
+                    MeshOf mesh_of, bool colors) {
   TriangleMesh out;
-  const auto placements = node_placements(model);
   std::vector<std::vector<TriangleMesh>> meshes(model.meshes.size());
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-    const int mi = mesh_at_level(model, n, lod_level);
-    if (mi < 0 || !placements[n].in_scene) continue;
+    if (!placements[n].in_scene) continue;
+    const int mi = mesh_of(n);
+    if (mi < 0) continue;
     auto& parts = meshes[std::size_t(mi)];
     if (parts.empty())
       for (const auto& p : model.meshes[std::size_t(mi)].primitives) {
@@ -85,6 +95,65 @@ TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level, bool colors
     }
   }
   return out;
+}
+
+// The bounding sphere of a node's level-0 mesh in world space, as lodforge
+// lod takes it: about the centre of the mesh's box through its farthest
+// vertex, placed by the node's transform and scaled by its largest scale.
+std::pair<Vec3, double> world_sphere(const tinygltf::Model& model, const NodePlacement& placed,
+                                     int mesh) {
+  std::vector<Vec3> points;
+  for (const auto& p : model.meshes[std::size_t(mesh)].primitives) {
+    const TriangleMesh part = primitive_mesh(model, p, mesh);
+    points.insert(points.end(), part.positions.begin(), part.positions.end());
+  }
+  Box3 box;
+  for (const Vec3& v : points) box.add(v);
+  if (box.empty()) return {Vec3{}, 0.0};
+  double r = 0;
+  for (const Vec3& v : points) r = std::max(r, double(length(v - box.center())));
+  return {placed.world.transform_point(box.center()), r * placed.world.max_scale()};
+}
+
+// The level node n shows at screen coverage c (-1: none), by its
+// MSFT_screencoverage; `levels` simplified levels.
+int level_at_coverage(const tinygltf::Node& node, int levels, double c) {
+  const tinygltf::Value& cov = node.extras.Get("MSFT_screencoverage");
+  if (!cov.IsArray()) return 0;
+  const int n = int(cov.ArrayLen());
+  for (int i = 0; i < n && i <= levels; ++i) {
+    if (!cov.Get(i).IsNumber()) return 0;
+    if (c > cov.Get(i).GetNumberAsDouble()) return i;
+  }
+  return n > levels ? -1 : levels;
+}
+
+}  // namespace
+
+TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level, bool colors) {
+  return gather(
+      model, node_placements(model),
+      [&](std::size_t n) { return mesh_at_level(model, n, lod_level); }, colors);
+}
+
+double screen_coverage(double radius, double distance, double height_angle) {
+  const double t = std::tan(height_angle / 2);
+  return distance > 0 && t > 0 ? radius / (distance * t) : std::numeric_limits<double>::infinity();
+}
+
+TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageView& view,
+                                  bool colors) {
+  const auto placements = node_placements(model);
+  auto mesh_of = [&](std::size_t n) {
+    const tinygltf::Node& node = model.nodes[n];
+    const tinygltf::Value* ids = lod_ids(node);
+    if (!ids || node.mesh < 0) return mesh_at_level(model, n, 0);
+    const auto [centre, radius] = world_sphere(model, placements[n], node.mesh);
+    const double c = screen_coverage(radius, double(length(view.eye - centre)), view.height_angle);
+    const int level = level_at_coverage(node, int(ids->ArrayLen()), c);
+    return level < 0 ? -1 : mesh_at_level(model, n, level);
+  };
+  return gather(model, placements, mesh_of, colors);
 }
 
 }  // namespace lodforge::gltf

@@ -17,6 +17,29 @@ namespace lodforge::gltf {
 /// not a node with a mesh.
 TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level = 0, bool colors = false);
 
+/// A camera choosing levels by screen coverage: at `eye`, `height_angle`
+/// (radians) high.
+struct CoverageView {
+  Vec3 eye;
+  double height_angle = 0.785398;
+};
+
+/// The screen coverage of a bounding sphere of radius `radius` whose centre
+/// is `distance` from the eye: the fraction of the screen height it covers,
+/// radius / (distance tan(height_angle / 2)) (what MSFT_screencoverage holds).
+double screen_coverage(double radius, double distance, double height_angle);
+
+/// As scene_mesh, but a node with `MSFT_lod` draws the level its
+/// `MSFT_screencoverage` (in the node's extras) chooses for `view`, as a
+/// viewer does: value k is the coverage below which level k gives way to
+/// level k + 1, a value past the last level the coverage below which the node
+/// is not drawn at all. The coverage is that of the sphere about the centre
+/// of the node's level-0 mesh's bounding box through its farthest vertex,
+/// placed and scaled (by its largest scale) by the node's transform. A node
+/// without coverages draws level 0.
+TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageView& view,
+                                  bool colors = false);
+
 /// The levels scene_mesh can show: 1 + the most `MSFT_lod` ids of a node
 /// (1 when no node has any).
 std::size_t lod_level_count(const tinygltf::Model& model);

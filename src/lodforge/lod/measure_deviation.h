@@ -12,7 +12,10 @@
 namespace lodforge {
 
 struct DeviationOptions {
-  std::size_t samples = 20000;  ///< area samples per direction (plus vertices and edges)
+  /// Area samples of the reference's side (plus vertices and edges); a
+  /// level's side takes one per level triangle, at least min(20 000, this)
+  /// and at most this.
+  std::size_t samples = 20000;
   std::uint64_t seed = 1;
   /// The farthest samples of each direction whose neighbourhood is searched
   /// for a larger distance (hill climbing inside their triangle).

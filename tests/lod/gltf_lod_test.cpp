@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gltf/gltf_builder.h"
@@ -94,12 +95,9 @@ TEST(GltfLod, SharedMeshGetsOneSetOfLevelMeshesAndEachNodeItsLevelNodes) {
   EXPECT_EQ(m.meshes[0], input);
   EXPECT_EQ(m.extensionsUsed, std::vector<std::string>{"MSFT_lod"});
   EXPECT_TRUE(m.extensionsRequired.empty());
-  // The morphed mesh stays whole, with a warning naming it.
-  EXPECT_EQ(m.nodes[2].extensions.count("MSFT_lod"), 0u);
-  ASSERT_FALSE(r.log.entries().empty());
-  EXPECT_NE(r.log.entries()[0].text.find("mesh 1 'morphed': kept at full detail because it has "
-                                         "morph targets"),
-            std::string::npos);
+  // The morphed mesh gets levels too, without a warning.
+  EXPECT_EQ(m.nodes[2].extensions.count("MSFT_lod"), 1u);
+  EXPECT_TRUE(r.log.entries().empty());
   // Switch distances scale with the node, coverages do not and decrease.
   const auto& ea = m.nodes[0].extras.Get("lodforge_lod").Get("levels");
   const auto& eb = m.nodes[1].extras.Get("lodforge_lod").Get("levels");
@@ -148,11 +146,90 @@ TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttribute
   }
 }
 
+// The morphed grid also skinned (two joints, weights by x) and its morph
+// weights animated.
+gltf::GltfScene morphed_skinned_animated() {
+  gltf::GltfScene s = shared_and_morphed();
+  auto& m = s.model;
+  tinygltf::Primitive& p = m.meshes[1].primitives[0];
+  const auto positions = gltf::read_accessor(m, p.attributes.at("POSITION")).values;
+  std::vector<float> weights;
+  std::vector<std::uint16_t> joints;
+  for (std::size_t v = 0; v < positions.size() / 3; ++v) {
+    const auto x = float(positions[3 * v]);
+    weights.insert(weights.end(), {x, 1 - x, 0, 0});
+    joints.insert(joints.end(), {0, 1, 0, 0});
+  }
+  p.attributes["WEIGHTS_0"] = testing::add_floats(m, weights, TINYGLTF_TYPE_VEC4);
+  p.attributes["JOINTS_0"] =
+      testing::add_accessor(m, joints, TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  m.nodes.resize(5);  // nodes 3 and 4: the joints
+  tinygltf::Skin skin;
+  skin.joints = {3, 4};
+  m.skins.push_back(skin);
+  m.nodes[2].skin = 0;
+  m.scenes[0].nodes.insert(m.scenes[0].nodes.end(), {3, 4});
+  tinygltf::Animation a;
+  tinygltf::AnimationSampler sampler;
+  sampler.input = testing::add_floats(m, {0, 1}, TINYGLTF_TYPE_SCALAR);
+  sampler.output = testing::add_floats(m, {0, 1}, TINYGLTF_TYPE_SCALAR);
+  a.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 2;
+  channel.target_path = "weights";
+  a.channels.push_back(channel);
+  m.animations.push_back(a);
+  return s;
+}
+
+// A level vertex of a skinned, morphed mesh carries one input vertex's joints,
+// weights and morph displacement; its level nodes have the node's skin and
+// the animation of its morph weights.
+TEST(GltfLod, SkinsMorphTargetsAndTheirAnimationsFollowTheLevels) {
+  gltf::GltfScene s = morphed_skinned_animated();
+  const LodResult r = gltf_lod(s, {.threads = 1});
+  EXPECT_TRUE(r.log.entries().empty());
+  const auto& m = s.model;
+  const auto& ids = ids_of(m.nodes[2]);
+  ASSERT_GE(ids.size(), 2u);
+  for (const auto& id : ids) {
+    const int level = id.GetNumberAsInt();
+    EXPECT_EQ(m.nodes[std::size_t(level)].skin, 0);
+    EXPECT_EQ(std::count_if(m.animations[0].channels.begin(), m.animations[0].channels.end(),
+                            [&](const auto& c) {
+                              return c.target_node == level && c.target_path == "weights";
+                            }),
+              1);
+    const tinygltf::Primitive& p =
+        m.meshes[std::size_t(m.nodes[std::size_t(level)].mesh)].primitives[0];
+    ASSERT_EQ(p.targets.size(), 1u);
+    const auto count = m.accessors[std::size_t(p.attributes.at("POSITION"))].count;
+    for (const char* name : {"JOINTS_0", "WEIGHTS_0"})
+      EXPECT_EQ(m.accessors[std::size_t(p.attributes.at(name))].count, count) << name;
+    const tinygltf::Accessor& displacement = m.accessors[std::size_t(p.targets[0].at("POSITION"))];
+    EXPECT_EQ(displacement.count, count);
+    EXPECT_EQ(displacement.minValues.size(), 3u);  // required of a target's POSITION
+    // Displacement = the source's position (the target is the grid itself),
+    // weights = (x, 1 - x) of the same source, joints unchanged.
+    const auto d = gltf::read_accessor(m, p.targets[0].at("POSITION")).values;
+    const auto w = gltf::read_accessor(m, p.attributes.at("WEIGHTS_0")).values;
+    const auto j = gltf::read_accessor(m, p.attributes.at("JOINTS_0")).values;
+    for (std::size_t v = 0; v < count; ++v) {
+      EXPECT_NEAR(d[3 * v] * 40, std::round(d[3 * v] * 40), 1e-4) << v;
+      EXPECT_NEAR(w[4 * v], d[3 * v], 1e-6) << v;
+      EXPECT_NEAR(w[4 * v + 1], 1 - d[3 * v], 1e-6) << v;
+      EXPECT_EQ(j[4 * v + 1], 1) << v;
+    }
+  }
+}
+
 TEST(GltfLod, CompressedVertexDataStaysWholeWithAWarning) {
   // Draco keeps the real vertices in its own stream: the accessors' data is not the mesh.
   gltf::GltfScene s = shared_and_morphed();
-  s.model.meshes[0].primitives[0].extensions["KHR_draco_mesh_compression"] =
-      tinygltf::Value(tinygltf::Value::Object{});
+  for (auto& mesh : s.model.meshes)
+    mesh.primitives[0].extensions["KHR_draco_mesh_compression"] =
+        tinygltf::Value(tinygltf::Value::Object{});
   const LodResult r = gltf_lod(s, {.threads = 1});
   EXPECT_TRUE(s.model.nodes[0].extensions.empty());
   EXPECT_TRUE(s.model.extensionsUsed.empty());

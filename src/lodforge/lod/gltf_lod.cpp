@@ -89,6 +89,9 @@ struct PrimitiveLevels {
   double vanish = 0;                      ///< where it is dropped, unit scale
   std::vector<int> index_accessors;       ///< per level 1..n (-1: not written)
   std::map<std::string, int> attributes;  ///< the shared vertex set of levels 1..n
+  /// Its morph targets over that vertex set (a moved vertex takes its
+  /// source vertex's displacement).
+  std::vector<std::map<std::string, int>> targets;
 };
 
 // One level of a mesh: per primitive of the mesh, -1 (left out), 0 (the
@@ -124,16 +127,17 @@ double camera_angle_of(const Model& m, const LodOptions& o) {
   return o.range.camera_angle;
 }
 
-// Why a mesh stays at full detail ("" if it need not): the weights of
-// skins and morph targets, and vertex data held by a compression extension
-// (KHR_draco_mesh_compression, EXT_meshopt_compression), are not simplified.
+// Why a mesh stays at full detail ("" if it need not): vertex data held by a
+// compression extension (KHR_draco_mesh_compression, EXT_meshopt_compression)
+// is not simplified.
 std::string full_detail_reason(const Model& m, const MeshJob& job) {
   for (const auto& p : m.meshes[std::size_t(job.mesh)].primitives) {
-    if (!p.targets.empty()) return "it has morph targets (simplifying it needs the weights)";
     if (p.extensions.count("KHR_draco_mesh_compression"))
       return "a primitive has the extension KHR_draco_mesh_compression";
     auto attributes = p.attributes;
     if (p.indices >= 0) attributes["indices"] = p.indices;
+    for (const auto& target : p.targets)
+      for (const auto& [name, index] : target) attributes["target " + name] = index;
     for (const auto& [name, index] : attributes) {
       const auto& a = m.accessors[std::size_t(index)];
       if (a.bufferView < 0 && !a.sparse.isSparse)
@@ -143,9 +147,6 @@ std::string full_detail_reason(const Model& m, const MeshJob& job) {
                            m.bufferViews[std::size_t(a.bufferView)].extensions.begin()->first);
     }
   }
-  for (int n : job.nodes)
-    if (m.nodes[std::size_t(n)].skin >= 0)
-      return fmt::format("node {} skins it (simplifying it needs the weights)", n);
   return "";
 }
 
@@ -193,12 +194,18 @@ class VertexSet {
   std::vector<Vec3> moved_;
 };
 
+// What an extended accessor holds: a vertex attribute, POSITION (moved
+// vertices take their new position; min and max) or a morph target's POSITION
+// displacement (min and max).
+enum class Extended { kAttribute, kPosition, kTargetPosition };
+
 // Accessor `index` extended by the vertices `set` appended: the input's
 // elements, then each appended vertex's source element (its position, for
 // POSITION, where it moved). Raw bytes where the accessor has a buffer view,
-// else decoded as floats. POSITION gets its min and max.
+// else decoded as floats.
 int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet& set,
-                      bool position) {
+                      Extended what) {
+  const bool position = what == Extended::kPosition;
   const tinygltf::Accessor a = m.accessors[std::size_t(index)];
   const std::size_t n = a.count, total = set.size();
   const auto components = std::size_t(tinygltf::GetNumComponentsInType(std::uint32_t(a.type)));
@@ -239,13 +246,15 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
     }
     e.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   }
-  if (position) {
+  if (what != Extended::kAttribute) {
     const gltf::AccessorValues v = gltf::read_accessor(m, index);
     e.minValues.assign(components, INFINITY);
     e.maxValues.assign(components, -INFINITY);
     for (std::size_t i = 0; i < total; ++i)
       for (std::size_t c = 0; c < components; ++c) {
-        const double x = i < n ? v.values[i * components + c] : (&set.moved()[i - n].x)[c];
+        const std::size_t src = i < n ? i : set.sources()[i - n];
+        const double x =
+            position && i >= n ? (&set.moved()[i - n].x)[c] : v.values[src * components + c];
         e.minValues[c] = std::min(e.minValues[c], x);
         e.maxValues[c] = std::max(e.maxValues[c], x);
       }
@@ -301,8 +310,14 @@ void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
   if (set.sources().empty()) return;  // no vertex moved: the levels use the input's vertices
   std::map<std::string, int> extended;
   for (const auto& [name, accessor] : attributes)
-    extended[name] = extended_accessor(out, m, accessor, set, name == "POSITION");
+    extended[name] = extended_accessor(
+        out, m, accessor, set, name == "POSITION" ? Extended::kPosition : Extended::kAttribute);
   pl.attributes = std::move(extended);
+  for (auto& target : pl.targets)
+    for (auto& [name, accessor] : target)
+      accessor =
+          extended_accessor(out, m, accessor, set,
+                            name == "POSITION" ? Extended::kTargetPosition : Extended::kAttribute);
 }
 
 ChooseLevelsOptions choose_options(const LodOptions& o, const RangeOptions& range) {
@@ -359,6 +374,7 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
     pl.radius = bounding_radius(input.positions);
     pl.triangles = input.triangle_count();
     pl.attributes = p.attributes;
+    pl.targets = p.targets;
     if (pl.triangles > 0) {
       ChosenLevels chosen = choose_levels(input, pl.radius, c);
       pl.levels = std::move(chosen.levels);
@@ -446,6 +462,7 @@ void write_level_meshes(BufferAppender& out, Model& m, MeshJob& job) {
       if (c > 0) {
         const PrimitiveLevels& pl = job.primitives[std::size_t(which[i])];
         p.attributes = pl.attributes;
+        p.targets = pl.targets;
         p.indices = pl.index_accessors[std::size_t(c - 1)];
         p.mode = TINYGLTF_MODE_TRIANGLES;
       }
@@ -459,6 +476,23 @@ void write_level_meshes(BufferAppender& out, Model& m, MeshJob& job) {
 double node_scale(const gltf::NodePlacement& p) {
   const double s = p.world.max_scale();
   return s > 0 && std::isfinite(s) ? s : 1.0;
+}
+
+// The animation channels of node `n`'s morph weights, given to its level
+// nodes too (the same samplers), so a level shown in its place moves as it.
+void animate_weights_of_levels(Model& m, int n, const Value::Array& level_nodes) {
+  for (auto& animation : m.animations) {
+    const std::size_t count = animation.channels.size();
+    for (std::size_t c = 0; c < count; ++c) {
+      if (animation.channels[c].target_node != n || animation.channels[c].target_path != "weights")
+        continue;
+      for (const Value& id : level_nodes) {
+        tinygltf::AnimationChannel copy = animation.channels[c];
+        copy.target_node = id.GetNumberAsInt();
+        animation.channels.push_back(std::move(copy));
+      }
+    }
+  }
 }
 
 // MSFT_lod with new level nodes on every node drawing the mesh, and the
@@ -477,6 +511,8 @@ void attach_lod(Model& m, const MeshJob& job, const std::vector<gltf::NodePlacem
       tinygltf::Node level;
       if (!node.name.empty()) level.name = fmt::format("{}_lod{}", node.name, k + 1);
       level.mesh = job.level_meshes[k];
+      level.skin = node.skin;
+      level.weights = node.weights;
       level.matrix = node.matrix;
       level.translation = node.translation;
       level.rotation = node.rotation;
@@ -484,6 +520,7 @@ void attach_lod(Model& m, const MeshJob& job, const std::vector<gltf::NodePlacem
       m.nodes.push_back(std::move(level));
       ids.emplace_back(int(m.nodes.size() - 1));
     }
+    animate_weights_of_levels(m, n, ids);
     tinygltf::Node& node = m.nodes[std::size_t(n)];
     node.extensions["MSFT_lod"] = Value(Value::Object{{"ids", Value(std::move(ids))}});
     if (!node.extras.IsObject() && node.extras.Type() != tinygltf::NULL_TYPE) {

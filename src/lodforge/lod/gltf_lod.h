@@ -28,11 +28,15 @@
 /// the distance where the mesh vanishes (its diameter is within the error
 /// range). Coverage does not depend on the node's scale (r and d both scale).
 ///
-/// A mesh with morph targets, or used by a skinned node, stays at full
-/// detail with a warning naming it: simplifying it needs the weights. A mesh
-/// used by several nodes gets one set of level meshes; each node gets its
-/// own level nodes. `MSFT_lod` goes into extensionsUsed only, so a viewer
-/// without it draws level 0.
+/// A skinned or morphed mesh gets levels too (measured in its rest pose):
+/// each level vertex keeps one input vertex's joints and weights and its
+/// morph targets' displacements (those of the vertex the simplifier kept,
+/// which moved vertices take as they are); the level nodes get the node's
+/// skin and morph weights, and the animation channels of those weights. A
+/// mesh whose vertex data is compressed (Draco, meshopt) stays at full detail
+/// with a warning naming it. A mesh used by several nodes gets one set of level meshes; each node
+/// gets its own level nodes. `MSFT_lod` goes into extensionsUsed only, so a viewer without it draws
+/// level 0.
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/lod/generate_lod.h"
 

@@ -174,12 +174,20 @@ TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
   EXPECT_FALSE(fs::exists(path("d.wrl")));
 }
 
+// The corpus torus through `lod` to t.glb.
+class TorusLod : public TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                              "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
+    if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+    ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("t.glb") + " -q").exit_code, 0);
+  }
+};
+
 // The contact sheet of a glTF output's levels, one panel per MSFT_lod level.
-TEST_F(TempDirTest, LodGltfLevelsSheet) {
-  const std::string input = std::string(LODFORGE_SHARED_DATA) +
-                            "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
-  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
-  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("t.glb") + " -q").exit_code, 0);
+TEST_F(TorusLod, LevelsSheetAndDistances) {
   const CommandResult r = run_lodforge("render " + path("t.glb") + " --levels -o " + path("t.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("t.png")));
@@ -198,11 +206,7 @@ TEST_F(TempDirTest, LodGltfLevelsSheet) {
 // switching distance lodforge wrote (lodforge_lod, measured from the centre
 // of the mesh's box), the level before and the level after; beyond the
 // vanishing distance nothing.
-TEST_F(TempDirTest, GltfLevelSeenFromADistanceIsTheOneItsCoverageChooses) {
-  const std::string input = std::string(LODFORGE_SHARED_DATA) +
-                            "/gltf/castle-engine__demo-models/x3d/inline_geometry/torus.glb";
-  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
-  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("t.glb") + " -q").exit_code, 0);
+TEST_F(TorusLod, LevelSeenFromADistanceIsTheOneItsCoverageChooses) {
   const tinygltf::Model model = gltf::read_gltf_file(path("t.glb")).scene.model;
   const auto lod = std::find_if(model.nodes.begin(), model.nodes.end(),
                                 [](const auto& n) { return n.extensions.count("MSFT_lod") > 0; });

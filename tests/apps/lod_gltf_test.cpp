@@ -253,6 +253,36 @@ TEST_F(TempDirTest, RenderGltfInItsMaterialsColours) {
   EXPECT_GT(brown, 500u);
 }
 
+// `render` draws a glTF scene's base-colour textures: the Fox (a white
+// material with an orange texture, an external PNG) is orange, white with
+// --no-textures; its levels in a .glb written by `lod` are orange too.
+TEST_F(TempDirTest, RenderGltfTextures) {
+  const std::string input = std::string(LODFORGE_SHARED_DATA) +
+                            "/gltf/castle-engine__demo-models/animation/gltf_skinned_animation/"
+                            "fox_from_khronos/Fox.gltf";
+  if (!fs::exists(input)) GTEST_SKIP() << "corpus missing: " << input;
+  auto orange = [&](const std::string& png) {
+    const Image image = read_texture(png).image;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4)
+      if (image.pixels[i] > 120 && image.pixels[i] > image.pixels[i + 2] + 60) ++n;
+    return n;
+  };
+  ASSERT_EQ(run_lodforge("render " + input + " -o " + path("a.png") + " --size 200x200").exit_code,
+            0);
+  EXPECT_GT(orange(path("a.png")), 500u);
+  ASSERT_EQ(
+      run_lodforge("render " + input + " -o " + path("b.png") + " --size 200x200 --no-textures")
+          .exit_code,
+      0);
+  EXPECT_EQ(orange(path("b.png")), 0u);
+  ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("fox.glb") + " -q").exit_code, 0);
+  const CommandResult r =
+      run_lodforge("render " + path("fox.glb") + " --levels --size 200x200 -o " + path("c.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(orange(path("c.png")), 1000u);
+}
+
 TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {
   const std::string bad =
       write("bad.gltf", R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 3}]})");

@@ -224,6 +224,82 @@ TEST(GltfLod, SkinsMorphTargetsAndTheirAnimationsFollowTheLevels) {
   }
 }
 
+// A wavy 40 x 40 grid textured as two islands: u = x in [0, 0.5] left of
+// x = 0.5, u = 1.6 - x in [0.6, 1.1] right of it; the seam column's vertices
+// are doubled, one per island.
+gltf::GltfScene seamed_grid() {
+  gltf::GltfScene s;
+  auto& m = s.model;
+  const int n = 40, half = n / 2;
+  std::vector<float> p, uv;
+  auto vertex = [&](int i, int j, bool right) {
+    const float x = float(i) / n, y = float(j) / n;
+    p.insert(p.end(), {x, y, 0.05f * std::sin(9 * x) * std::cos(7 * y)});
+    uv.insert(uv.end(), {right ? 1.6f - x : x, y});
+    return std::uint32_t(p.size() / 3 - 1);
+  };
+  std::vector<std::uint32_t> left((half + 1) * (n + 1)), right((n - half + 1) * (n + 1));
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= half; ++i) left[std::size_t(j * (half + 1) + i)] = vertex(i, j, false);
+    for (int i = half; i <= n; ++i)
+      right[std::size_t(j * (n - half + 1) + i - half)] = vertex(i, j, true);
+  }
+  std::vector<std::uint32_t> idx;
+  auto cells = [&](const std::vector<std::uint32_t>& v, int columns) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < columns; ++i) {
+        const auto at = [&](int a, int b) { return v[std::size_t(b * (columns + 1) + a)]; };
+        idx.insert(idx.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1),
+                               at(i, j + 1)});
+      }
+  };
+  cells(left, half);
+  cells(right, n - half);
+  tinygltf::Primitive prim;
+  prim.attributes["POSITION"] = testing::add_floats(m, p, TINYGLTF_TYPE_VEC3);
+  prim.attributes["TEXCOORD_0"] = testing::add_floats(m, uv, TINYGLTF_TYPE_VEC2);
+  prim.indices = testing::add_indices(m, idx);
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Mesh mesh;
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  m.nodes.emplace_back();
+  m.nodes[0].mesh = 0;
+  tinygltf::Scene scene;
+  scene.nodes = {0};
+  m.scenes.push_back(scene);
+  return s;
+}
+
+// Every corner of a level triangle takes its texture coordinates from the
+// island the triangle lies on: the simplifier keeps texture seams, so a
+// level vertex's source vertex is on its triangle's side of the seam.
+TEST(GltfLod, LevelTrianglesKeepTheirTextureIsland) {
+  gltf::GltfScene s = seamed_grid();
+  gltf_lod(s, {.threads = 1});
+  const auto& m = s.model;
+  const auto& ids = ids_of(m.nodes[0]);
+  ASSERT_GE(ids.size(), 2u);
+  for (const auto& id : ids) {
+    const auto& p =
+        m.meshes[std::size_t(m.nodes[std::size_t(id.GetNumberAsInt())].mesh)].primitives[0];
+    const auto xyz = gltf::read_accessor(m, p.attributes.at("POSITION")).values;
+    const auto uv = gltf::read_accessor(m, p.attributes.at("TEXCOORD_0")).values;
+    const auto idx = gltf::read_accessor(m, p.indices).values;
+    std::size_t wrong = 0;
+    for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+      double cx = 0;
+      for (int k = 0; k < 3; ++k) cx += xyz[3 * std::size_t(idx[t + std::size_t(k)])] / 3;
+      for (int k = 0; k < 3; ++k) {
+        const double u = uv[2 * std::size_t(idx[t + std::size_t(k)])];
+        if (cx < 0.5 ? u > 0.5 + 1e-4 : u < 0.6 - 1e-4) ++wrong;
+      }
+    }
+    EXPECT_EQ(wrong, 0u) << "level node " << id.GetNumberAsInt() << ", " << idx.size() / 3
+                         << " triangles";
+  }
+}
+
 TEST(GltfLod, CompressedVertexDataStaysWholeWithAWarning) {
   // Draco keeps the real vertices in its own stream: the accessors' data is not the mesh.
   gltf::GltfScene s = shared_and_morphed();

@@ -116,7 +116,9 @@ class TextureLoader {
     for (const scene::SceneTexture& t : textures) {
       Texture image;
       try {
-        image = t.filename.empty() ? sfimage_texture(t.image) : file(t.filename);
+        image = !t.encoded.empty()   ? decode_texture(t.encoded, scene_ + ": embedded image")
+                : t.filename.empty() ? sfimage_texture(t.image)
+                                     : file(t.filename);
       } catch (const DataError& e) {
         warn(t, e.what());
       }
@@ -175,9 +177,9 @@ Drawing drawing(scene::FlatScene flat, TextureLoader& loader) {
 scene::Scene read_lod_scene(const std::string& path, std::string_view option,
                             const SceneReadSettings& read) {
   if (!is_scene_path(path) && format_from_path(path) != MeshFormat::kAuto)
-    throw DataError(fmt::format(
-        "{}: {} needs a scene with LOD nodes (VRML 1.0, Inventor, VRML97, X3D or glTF)",
-        path, option));
+    throw DataError(
+        fmt::format("{}: {} needs a scene with LOD nodes (VRML 1.0, Inventor, VRML97, X3D or glTF)",
+                    path, option));
   return read_scene(path, read).scene;
 }
 

@@ -39,6 +39,16 @@ gltf::GltfReadResult read_gltf_reported(const std::string& path, bool quiet) {
   return g;
 }
 
+// A glTF scene's mesh (gltf::scene_mesh) with its base-colour textures when
+// it has its appearance, checked against the coordinate range.
+scene::FlatScene gltf_drawing(const tinygltf::Model& model, TriangleMesh mesh,
+                              const std::string& name) {
+  check_coordinate_range(mesh, name);
+  scene::FlatScene flat{.mesh = std::move(mesh)};
+  if (flat.mesh.has_materials()) flat.textures = gltf::drawn_textures(model, flat.mesh);
+  return flat;
+}
+
 // A mesh file as it is, or a scene flattened at `lod_level` (with its
 // appearance when asked), checked against the coordinate range.
 scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSettings& read,
@@ -50,9 +60,10 @@ scene::FlatScene load(const std::string& path, int lod_level, const SceneReadSet
   };
   if (gltf::is_gltf_path(path)) {
     // A glTF scene: its triangles in world space, with the materials' base
-    // colours when drawn (no textures).
+    // colours and textures when drawn.
     const gltf::GltfReadResult g = read_gltf_reported(path, read.quiet);
-    return mesh_checked(gltf::scene_mesh(g.scene.model, lod_level, appearance));
+    return gltf_drawing(g.scene.model, gltf::scene_mesh(g.scene.model, lod_level, appearance),
+                        name);
   }
   if (is_vrml97_input(path)) {
     // A VRML97 / X3D classic scene: its shapes in world space, with their
@@ -109,10 +120,9 @@ std::vector<scene::FlatScene> load_gltf_levels(const std::string& path,
                                                const SceneReadSettings& read) {
   const gltf::GltfReadResult g = read_gltf_reported(path, read.quiet);
   std::vector<scene::FlatScene> levels;
-  for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k) {
-    levels.push_back({.mesh = gltf::scene_mesh(g.scene.model, int(k), true)});
-    check_coordinate_range(levels.back().mesh, path);
-  }
+  for (std::size_t k = 0, n = gltf::lod_level_count(g.scene.model); k < n; ++k)
+    levels.push_back(
+        gltf_drawing(g.scene.model, gltf::scene_mesh(g.scene.model, int(k), true), path));
   return levels;
 }
 
@@ -126,11 +136,11 @@ GltfViews load_gltf_views(const std::string& path, const SceneReadSettings& read
     }
   views.draw = [g, path, angle = views.height_angle](std::optional<Vec3> eye) {
     const tinygltf::Model& model = g->scene.model;
-    scene::FlatScene flat{
-        .mesh = eye ? gltf::scene_mesh_seen_from(model, {.eye = *eye, .height_angle = angle}, true)
-                    : gltf::scene_mesh(model, 0, true)};
-    check_coordinate_range(flat.mesh, path);
-    return flat;
+    return gltf_drawing(
+        model,
+        eye ? gltf::scene_mesh_seen_from(model, {.eye = *eye, .height_angle = angle}, true)
+            : gltf::scene_mesh(model, 0, true),
+        path);
   };
   return views;
 }

@@ -361,6 +361,35 @@ void level0_statistics(const Model& m, MeshJob& job) {
 }
 
 // The levels of each triangle primitive, and the mesh's bounding radius.
+// `input` (primitive_mesh of `p`) with the primitive's NORMAL, TEXCOORD_0 and
+// COLOR_0 (RGB), where they have one element per vertex: the simplifier then
+// keeps the seams where they differ between coincident vertices (texture
+// islands, hard edges), and each level vertex's source vertex lies on its
+// triangle's side of them.
+void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleMesh& input) {
+  auto values = [&](const char* name, int components) -> std::vector<double> {
+    const auto a = p.attributes.find(name);
+    if (a == p.attributes.end()) return {};
+    gltf::AccessorValues v = gltf::read_accessor(m, a->second);
+    if (v.count != input.positions.size() || v.components < components) return {};
+    std::vector<double> out;
+    for (std::size_t i = 0; i < v.count; ++i)
+      for (int k = 0; k < components; ++k)
+        out.push_back(v.values[i * std::size_t(v.components) + std::size_t(k)]);
+    return out;
+  };
+  if (const auto n = values("NORMAL", 3); !n.empty())
+    for (std::size_t i = 0; i < input.positions.size(); ++i)
+      input.normals.push_back(
+          normalized(Vec3{float(n[3 * i]), float(n[3 * i + 1]), float(n[3 * i + 2])}));
+  if (const auto t = values("TEXCOORD_0", 2); !t.empty())
+    for (std::size_t i = 0; i < input.positions.size(); ++i)
+      input.texcoords.push_back({float(t[2 * i]), float(t[2 * i + 1])});
+  if (const auto c = values("COLOR_0", 3); !c.empty())
+    for (std::size_t i = 0; i < input.positions.size(); ++i)
+      input.colors.push_back({float(c[3 * i]), float(c[3 * i + 1]), float(c[3 * i + 2])});
+}
+
 void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions& c) {
   std::vector<Vec3> all;
   const auto& primitives = m.meshes[std::size_t(job.mesh)].primitives;
@@ -369,6 +398,7 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
     TriangleMesh input = gltf::primitive_mesh(m, p, job.mesh);
     all.insert(all.end(), input.positions.begin(), input.positions.end());
     if (!is_triangles(p.mode) || !p.attributes.count("POSITION")) continue;
+    add_seam_attributes(m, p, input);
     PrimitiveLevels pl;
     pl.primitive = int(i);
     pl.radius = bounding_radius(input.positions);

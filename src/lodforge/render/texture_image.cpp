@@ -22,22 +22,27 @@ constexpr int kMaxSide = 16384;
 
 Texture read_texture(const std::string& path) {
   const std::string bytes = read_file(path);
+  return decode_texture(
+      std::span(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()), path);
+}
+
+Texture decode_texture(std::span<const unsigned char> bytes, const std::string& name) {
   if (bytes.size() > std::size_t(INT_MAX))
-    throw DataError(fmt::format("{}: the image file is too large", path));
+    throw DataError(fmt::format("{}: the image file is too large", name));
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int w = 0, h = 0, components = 0;
   // The size first, so a huge image is refused before it is decoded.
   if (!stbi_info_from_memory(data, size, &w, &h, &components))
-    throw DataError(fmt::format("{}: not an image this reader decodes ({})", path,
+    throw DataError(fmt::format("{}: not an image this reader decodes ({})", name,
                                 stbi_failure_reason() ? stbi_failure_reason() : "unknown format"));
   if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide)
     throw DataError(
-        fmt::format("{}: image of {}x{} pixels; at most {} a side are read", path, w, h, kMaxSide));
+        fmt::format("{}: image of {}x{} pixels; at most {} a side are read", name, w, h, kMaxSide));
   const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(data, size, &w, &h, &components, 4), stbi_image_free);
   if (!pixels)
-    throw DataError(fmt::format("{}: the image cannot be decoded ({})", path,
+    throw DataError(fmt::format("{}: the image cannot be decoded ({})", name,
                                 stbi_failure_reason() ? stbi_failure_reason() : "unknown error"));
   Texture t;
   t.image = Image(w, h);

@@ -25,6 +25,10 @@ struct Texture {
 /// stb_image decodes, or is larger than 16384 pixels a side.
 Texture read_texture(const std::string& path);
 
+/// As read_texture, from an image file's bytes in memory (a glTF file's
+/// embedded images); `name` names it in the errors.
+Texture decode_texture(std::span<const unsigned char> bytes, const std::string& name);
+
 /// The texture of an SFImage value: width, height, components (1..4), then
 /// width * height pixels, each one integer holding its components from the
 /// most significant byte down (0xFF0000 is red in an RGB image), from the

@@ -34,6 +34,7 @@ TriangleMesh flatten_scene(const Scene& scene, const FlattenOptions& options = {
 struct SceneTexture {
   std::string filename;             ///< empty when the image is inline
   std::vector<std::int32_t> image;  ///< SFImage values: width, height, components, pixels
+  std::vector<unsigned char> encoded;  ///< an image file's bytes (a glTF file's embedded image)
   bool repeat_s = true;             ///< wrapS REPEAT (else CLAMP)
   bool repeat_t = true;             ///< wrapT REPEAT (else CLAMP)
   int line = 0;                     ///< where the Texture2 was read

@@ -3,6 +3,9 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cctype>
+#include <map>
+#include <string>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -56,6 +59,24 @@ void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, Tria
                       base.z * float(c.values[i * std::size_t(c.components) + 2])};
 }
 
+// `part` with its base-colour texture: texture coordinates (t = 1 - v: glTF's
+// v runs down the image) and, per triangle, the texture's index in the model
+// (scene::kUntextured without one or without its coordinates).
+void add_texture(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part) {
+  part.texcoords.assign(part.positions.size(), Vec2{});
+  part.materials.assign(part.triangles.size(), scene::kUntextured);
+  if (p.material < 0 || std::size_t(p.material) >= model.materials.size()) return;
+  const auto& info = model.materials[std::size_t(p.material)].pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0 || std::size_t(info.index) >= model.textures.size()) return;
+  const auto uv = p.attributes.find(fmt::format("TEXCOORD_{}", info.texCoord));
+  if (uv == p.attributes.end()) return;
+  const AccessorValues t = read_accessor(model, uv->second);
+  if (t.components != 2 || t.count != part.positions.size()) return;
+  for (std::size_t i = 0; i < t.count; ++i)
+    part.texcoords[i] = {float(t.values[2 * i]), 1 - float(t.values[2 * i + 1])};
+  part.materials.assign(part.triangles.size(), std::uint32_t(info.index));
+}
+
 }  // namespace
 
 std::size_t lod_level_count(const tinygltf::Model& model) {
@@ -82,7 +103,10 @@ TriangleMesh gather(const tinygltf::Model& model, const std::vector<NodePlacemen
     if (parts.empty())
       for (const auto& p : model.meshes[std::size_t(mi)].primitives) {
         parts.push_back(primitive_mesh(model, p, mi));
-        if (colors) add_colors(model, p, parts.back());
+        if (colors) {
+          add_colors(model, p, parts.back());
+          add_texture(model, p, parts.back());
+        }
       }
     for (const auto& part : parts) {
       const auto base = std::uint32_t(out.positions.size());
@@ -92,6 +116,8 @@ TriangleMesh gather(const tinygltf::Model& model, const std::vector<NodePlacemen
         out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
       for (const auto& l : part.lines) out.lines.push_back({l[0] + base, l[1] + base});
       out.colors.insert(out.colors.end(), part.colors.begin(), part.colors.end());
+      out.texcoords.insert(out.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+      out.materials.insert(out.materials.end(), part.materials.begin(), part.materials.end());
     }
   }
   return out;
@@ -129,6 +155,68 @@ int level_at_coverage(const tinygltf::Node& node, int levels, double c) {
 }
 
 }  // namespace
+
+namespace {
+
+// "%20" and the like decoded (a URI's escapes).
+std::string unescaped(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    const auto hex = [&](std::size_t k) {
+      return k < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[k]));
+    };
+    if (uri[i] == '%' && hex(i + 1) && hex(i + 2)) {
+      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+      i += 2;
+    } else {
+      out.push_back(uri[i]);
+    }
+  }
+  return out;
+}
+
+// Texture `t` of the model as a renderer loads it.
+scene::SceneTexture scene_texture(const tinygltf::Model& model, int t) {
+  scene::SceneTexture out;
+  const tinygltf::Texture& texture = model.textures[std::size_t(t)];
+  if (texture.sampler >= 0 && std::size_t(texture.sampler) < model.samplers.size()) {
+    const tinygltf::Sampler& s = model.samplers[std::size_t(texture.sampler)];
+    out.repeat_s = s.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    out.repeat_t = s.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  }
+  if (texture.source < 0 || std::size_t(texture.source) >= model.images.size()) return out;
+  const tinygltf::Image& image = model.images[std::size_t(texture.source)];
+  if (!image.image.empty()) {
+    out.encoded = image.image;
+  } else if (image.bufferView >= 0 && std::size_t(image.bufferView) < model.bufferViews.size()) {
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(image.bufferView)];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) return out;
+    const auto& data = model.buffers[std::size_t(view.buffer)].data;
+    if (view.byteOffset + view.byteLength <= data.size())
+      out.encoded.assign(data.begin() + std::ptrdiff_t(view.byteOffset),
+                         data.begin() + std::ptrdiff_t(view.byteOffset + view.byteLength));
+  } else {
+    out.filename = unescaped(image.uri);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, TriangleMesh& mesh) {
+  std::vector<scene::SceneTexture> out;
+  std::map<std::uint32_t, std::uint32_t> slot;
+  for (std::uint32_t& m : mesh.materials) {
+    if (m == scene::kUntextured || m >= model.textures.size()) {
+      m = scene::kUntextured;
+      continue;
+    }
+    const auto [it, added] = slot.try_emplace(m, std::uint32_t(out.size()));
+    if (added) out.push_back(scene_texture(model, int(m)));
+    m = it->second;
+  }
+  return out;
+}
 
 TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level, bool colors) {
   return gather(

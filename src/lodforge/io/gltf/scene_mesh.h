@@ -5,13 +5,16 @@
 #include <tiny_gltf.h>
 
 #include "lodforge/mesh/triangle_mesh.h"
+#include "lodforge/scene/flatten_scene.h"
 
 namespace lodforge::gltf {
 
 /// Positions, triangles and lines; with `colors`, also each vertex's colour:
 /// its primitive's base colour (the material's baseColorFactor, white
-/// without a material) times its COLOR_0 when it has one, RGB (textures are
-/// not sampled). `lod_level` K > 0 draws, for a node with `MSFT_lod`, the
+/// without a material) times its COLOR_0 when it has one, RGB; and its
+/// base-colour texture: texture coordinates (#V, t = 1 - glTF's v) and per
+/// triangle the texture's index in the model (materials, scene::kUntextured
+/// without one); drawn_textures turns those into images to draw. `lod_level` K > 0 draws, for a node with `MSFT_lod`, the
 /// mesh of its level K (its coarsest level when it has fewer) in the node's
 /// place. Throws DataError as primitive_mesh, or for an MSFT_lod id that is
 /// not a node with a mesh.
@@ -39,6 +42,14 @@ double screen_coverage(double radius, double distance, double height_angle);
 /// without coverages draws level 0.
 TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageView& view,
                                   bool colors = false);
+
+/// The base-colour textures of a scene_mesh(..., colors = true) mesh, as a
+/// renderer loads them: one per texture the mesh uses, its triangles'
+/// `materials` renumbered into this list. An embedded image (a buffer view or
+/// a data URI) comes as its bytes, an external one as its URI (percent-escapes
+/// decoded; relative to the glTF file); wrap modes from the sampler (mirrored
+/// repeat drawn as repeat).
+std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, TriangleMesh& mesh);
 
 /// The levels scene_mesh can show: 1 + the most `MSFT_lod` ids of a node
 /// (1 when no node has any).

@@ -260,6 +260,10 @@ gltf::GltfScene seamed_grid() {
   prim.attributes["TEXCOORD_0"] = testing::add_floats(m, uv, TINYGLTF_TYPE_VEC2);
   prim.indices = testing::add_indices(m, idx);
   prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = 0;  // a base-colour texture on TEXCOORD_0
+  m.materials.emplace_back();
+  m.materials[0].pbrMetallicRoughness.baseColorTexture.index = 0;
+  m.textures.emplace_back();
   tinygltf::Mesh mesh;
   mesh.primitives.push_back(prim);
   m.meshes.push_back(mesh);
@@ -272,8 +276,9 @@ gltf::GltfScene seamed_grid() {
 }
 
 // Every corner of a level triangle takes its texture coordinates from the
-// island the triangle lies on: the simplifier keeps texture seams, so a
-// level vertex's source vertex is on its triangle's side of the seam.
+// island the triangle lies on: the simplifier keeps the seams of texture
+// coordinates a texture uses, so a level vertex's source vertex is on its
+// triangle's side of the seam.
 TEST(GltfLod, LevelTrianglesKeepTheirTextureIsland) {
   gltf::GltfScene s = seamed_grid();
   gltf_lod(s, {.threads = 1});
@@ -298,6 +303,41 @@ TEST(GltfLod, LevelTrianglesKeepTheirTextureIsland) {
     EXPECT_EQ(wrong, 0u) << "level node " << id.GetNumberAsInt() << ", " << idx.size() / 3
                          << " triangles";
   }
+}
+
+// A flat-shaded grid (three vertices per triangle, each with the face's
+// normal and its own texture coordinates, no texture) still gets levels:
+// normals and untextured coordinates are no seams the simplifier keeps.
+TEST(GltfLod, FlatShadedUntexturedMeshGetsLevels) {
+  gltf::GltfScene s = shared_and_morphed();
+  auto& m = s.model;
+  tinygltf::Primitive& prim = m.meshes[0].primitives[0];
+  const auto p = gltf::read_accessor(m, prim.attributes.at("POSITION")).values;
+  const auto idx = gltf::read_accessor(m, prim.indices).values;
+  std::vector<float> xyz, nrm, uv;
+  std::vector<std::uint32_t> flat;
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+    Vec3 c[3];
+    for (int k = 0; k < 3; ++k) {
+      const auto v = std::size_t(idx[t + std::size_t(k)]);
+      c[k] = {float(p[3 * v]), float(p[3 * v + 1]), float(p[3 * v + 2])};
+    }
+    const Vec3 n = normalized(cross(c[1] - c[0], c[2] - c[0]));
+    for (int k = 0; k < 3; ++k) {
+      xyz.insert(xyz.end(), {c[k].x, c[k].y, c[k].z});
+      nrm.insert(nrm.end(), {n.x, n.y, n.z});
+      uv.insert(uv.end(), {float(k % 2), float(k / 2)});
+      flat.push_back(std::uint32_t(flat.size()));
+    }
+  }
+  prim.attributes = {{"POSITION", testing::add_floats(m, xyz, TINYGLTF_TYPE_VEC3)},
+                     {"NORMAL", testing::add_floats(m, nrm, TINYGLTF_TYPE_VEC3)},
+                     {"TEXCOORD_0", testing::add_floats(m, uv, TINYGLTF_TYPE_VEC2)}};
+  prim.indices = testing::add_indices(m, flat);
+  prim.material = -1;
+  gltf_lod(s, {.threads = 1});
+  ASSERT_EQ(m.nodes[0].extensions.count("MSFT_lod"), 1u);
+  EXPECT_GE(ids_of(m.nodes[0]).size(), 2u);
 }
 
 TEST(GltfLod, CompressedVertexDataStaysWholeWithAWarning) {

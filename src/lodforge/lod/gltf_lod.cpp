@@ -360,14 +360,32 @@ void level0_statistics(const Model& m, MeshJob& job) {
   job.stats.levels.assign(1, l0);
 }
 
-// The levels of each triangle primitive, and the mesh's bounding radius.
-// `input` (primitive_mesh of `p`) with the primitive's NORMAL, TEXCOORD_0 and
-// COLOR_0 (RGB), where they have one element per vertex: the simplifier then
-// keeps the seams where they differ between coincident vertices (texture
-// islands, hard edges), and each level vertex's source vertex lies on its
-// triangle's side of them.
+// The texture coordinate set the primitive's material samples its textures
+// with (the base colour's first, then the normal, occlusion, emissive and
+// metallic-roughness textures'); -1 when it has no texture.
+int textured_coordinates(const Model& m, const tinygltf::Primitive& p) {
+  if (p.material < 0 || std::size_t(p.material) >= m.materials.size()) return -1;
+  const tinygltf::Material& mat = m.materials[std::size_t(p.material)];
+  const auto& pbr = mat.pbrMetallicRoughness;
+  for (const auto& [index, set] :
+       {std::pair{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
+        {mat.normalTexture.index, mat.normalTexture.texCoord},
+        {mat.occlusionTexture.index, mat.occlusionTexture.texCoord},
+        {mat.emissiveTexture.index, mat.emissiveTexture.texCoord},
+        {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord}})
+    if (index >= 0) return set;
+  return -1;
+}
+
+// `input` (primitive_mesh of `p`) with the texture coordinates its material's
+// textures use and its COLOR_0 (RGB), where they have one element per
+// vertex: the simplifier then keeps the seams where they differ between
+// coincident vertices (texture islands, colour borders), and each level
+// vertex's source vertex lies on its triangle's side of them. Normals are
+// not given: a flat-shaded mesh splits every vertex by them, and a seam at
+// every vertex would leave nothing to simplify.
 void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleMesh& input) {
-  auto values = [&](const char* name, int components) -> std::vector<double> {
+  auto values = [&](const std::string& name, int components) -> std::vector<double> {
     const auto a = p.attributes.find(name);
     if (a == p.attributes.end()) return {};
     gltf::AccessorValues v = gltf::read_accessor(m, a->second);
@@ -378,18 +396,16 @@ void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleM
         out.push_back(v.values[i * std::size_t(v.components) + std::size_t(k)]);
     return out;
   };
-  if (const auto n = values("NORMAL", 3); !n.empty())
-    for (std::size_t i = 0; i < input.positions.size(); ++i)
-      input.normals.push_back(
-          normalized(Vec3{float(n[3 * i]), float(n[3 * i + 1]), float(n[3 * i + 2])}));
-  if (const auto t = values("TEXCOORD_0", 2); !t.empty())
-    for (std::size_t i = 0; i < input.positions.size(); ++i)
-      input.texcoords.push_back({float(t[2 * i]), float(t[2 * i + 1])});
+  if (const int set = textured_coordinates(m, p); set >= 0)
+    if (const auto t = values(fmt::format("TEXCOORD_{}", set), 2); !t.empty())
+      for (std::size_t i = 0; i < input.positions.size(); ++i)
+        input.texcoords.push_back({float(t[2 * i]), float(t[2 * i + 1])});
   if (const auto c = values("COLOR_0", 3); !c.empty())
     for (std::size_t i = 0; i < input.positions.size(); ++i)
       input.colors.push_back({float(c[3 * i]), float(c[3 * i + 1]), float(c[3 * i + 2])});
 }
 
+// The levels of each triangle primitive, and the mesh's bounding radius.
 void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions& c) {
   std::vector<Vec3> all;
   const auto& primitives = m.meshes[std::size_t(job.mesh)].primitives;

@@ -228,9 +228,8 @@ namespace {
 constexpr std::size_t kFewestLevelSamples = 20000;
 
 std::size_t level_samples(const TriangleMesh& level, std::size_t reference_samples) {
-  return std::clamp<std::size_t>(level.triangle_count(),
-                                 std::min(kFewestLevelSamples, reference_samples),
-                                 reference_samples);
+  return std::clamp<std::size_t>(
+      level.triangle_count(), std::min(kFewestLevelSamples, reference_samples), reference_samples);
 }
 
 // A face map fit to start searches from: one reference triangle per level

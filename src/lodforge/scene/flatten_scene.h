@@ -32,12 +32,12 @@ TriangleMesh flatten_scene(const Scene& scene, const FlattenOptions& options = {
 /// A Texture2 as the scene gives it; reading the image is the caller's
 /// (a file name is relative to the folder of the file the node was read from).
 struct SceneTexture {
-  std::string filename;             ///< empty when the image is inline
-  std::vector<std::int32_t> image;  ///< SFImage values: width, height, components, pixels
+  std::string filename;                ///< empty when the image is inline
+  std::vector<std::int32_t> image;     ///< SFImage values: width, height, components, pixels
   std::vector<unsigned char> encoded;  ///< an image file's bytes (a glTF file's embedded image)
-  bool repeat_s = true;             ///< wrapS REPEAT (else CLAMP)
-  bool repeat_t = true;             ///< wrapT REPEAT (else CLAMP)
-  int line = 0;                     ///< where the Texture2 was read
+  bool repeat_s = true;                ///< wrapS REPEAT (else CLAMP)
+  bool repeat_t = true;                ///< wrapT REPEAT (else CLAMP)
+  int line = 0;                        ///< where the Texture2 was read
 };
 
 /// Triangles of a flattened scene without a texture (FlatScene::mesh.materials).

@@ -14,10 +14,11 @@ namespace lodforge::gltf {
 /// without a material) times its COLOR_0 when it has one, RGB; and its
 /// base-colour texture: texture coordinates (#V, t = 1 - glTF's v) and per
 /// triangle the texture's index in the model (materials, scene::kUntextured
-/// without one); drawn_textures turns those into images to draw. `lod_level` K > 0 draws, for a node with `MSFT_lod`, the
-/// mesh of its level K (its coarsest level when it has fewer) in the node's
-/// place. Throws DataError as primitive_mesh, or for an MSFT_lod id that is
-/// not a node with a mesh.
+/// without one); drawn_textures turns those into images to draw.
+/// `lod_level` K > 0 draws, for a node with `MSFT_lod`, the mesh of its level
+/// K (its coarsest level when it has fewer) in the node's place. Throws
+/// DataError as primitive_mesh, or for an MSFT_lod id that is not a node with
+/// a mesh.
 TriangleMesh scene_mesh(const tinygltf::Model& model, int lod_level = 0, bool colors = false);
 
 /// A camera choosing levels by screen coverage: at `eye`, `height_angle`

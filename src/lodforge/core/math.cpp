@@ -96,4 +96,13 @@ float Mat4::max_scale() const {
   return s;
 }
 
+BoxSphere box_centred_sphere(std::span<const Vec3> points) {
+  Box3 box;
+  for (const Vec3& p : points) box.add(p);
+  if (box.empty()) return {};
+  BoxSphere s{box.center(), 0};
+  for (const Vec3& p : points) s.radius = std::max(s.radius, double(length(p - s.center)));
+  return s;
+}
+
 }  // namespace lodforge

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 namespace lodforge {
 
@@ -101,6 +102,16 @@ struct Box3 {
   Vec3 size() const { return empty() ? Vec3{} : hi - lo; }
   float diagonal() const { return empty() ? 0.f : length(hi - lo); }
 };
+
+/// A bounding sphere about the centre of its points' box, through the
+/// farthest of them: how LOD ranges and screen coverages take an object's
+/// extent (the same sphere wherever it is computed). No points: centre 0,
+/// radius 0.
+struct BoxSphere {
+  Vec3 center;
+  double radius = 0;
+};
+BoxSphere box_centred_sphere(std::span<const Vec3> points);
 
 /// Column-vector 4x4 matrix stored row-major: m[row][col]; points transform as M * p.
 /// VRML's SFMatrix is written row by row with the translation in the last row

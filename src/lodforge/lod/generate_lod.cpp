@@ -105,11 +105,9 @@ double max_scale_of(const Mat4& m) {
 
 // Bounding sphere about the box centre.
 void bounding_sphere(const std::vector<Vec3>& pts, Vec3& center, double& radius) {
-  Box3 b;
-  for (const auto& p : pts) b.add(p);
-  center = b.empty() ? Vec3{} : b.center();
-  radius = 0;
-  for (const auto& p : pts) radius = std::max(radius, double(length(p - center)));
+  const BoxSphere s = box_centred_sphere(pts);
+  center = s.center;
+  radius = s.radius;
 }
 
 ShapeGeometry primitive_geometry(const TriangleMesh& tess, bool textured) {

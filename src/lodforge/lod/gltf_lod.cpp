@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include "lodforge/core/error.h"
@@ -67,15 +68,9 @@ class BufferAppender {
   int buffer_;
 };
 
-// Bounding sphere about the box centre, as the VRML pipeline takes it.
+// Bounding radius about the box centre, as the VRML pipeline takes it.
 double bounding_radius(const std::vector<Vec3>& points) {
-  Box3 b;
-  for (const auto& p : points) b.add(p);
-  if (b.empty()) return 0;
-  const Vec3 c = b.center();
-  double r = 0;
-  for (const auto& p : points) r = std::max(r, double(length(p - c)));
-  return r;
+  return box_centred_sphere(points).radius;
 }
 
 // One triangle primitive's levels and where they are stored.
@@ -385,24 +380,25 @@ int textured_coordinates(const Model& m, const tinygltf::Primitive& p) {
 // not given: a flat-shaded mesh splits every vertex by them, and a seam at
 // every vertex would leave nothing to simplify.
 void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleMesh& input) {
-  auto values = [&](const std::string& name, int components) -> std::vector<double> {
+  // The attribute's values when it has one element of `components` (or
+  // more) per vertex.
+  auto per_vertex = [&](const std::string& name, int components) {
     const auto a = p.attributes.find(name);
-    if (a == p.attributes.end()) return {};
-    gltf::AccessorValues v = gltf::read_accessor(m, a->second);
-    if (v.count != input.positions.size() || v.components < components) return {};
-    std::vector<double> out;
-    for (std::size_t i = 0; i < v.count; ++i)
-      for (int k = 0; k < components; ++k)
-        out.push_back(v.values[i * std::size_t(v.components) + std::size_t(k)]);
-    return out;
+    std::optional<gltf::AccessorValues> v;
+    if (a != p.attributes.end()) v = gltf::read_accessor(m, a->second);
+    if (v && (v->count != input.positions.size() || v->components < components)) v.reset();
+    return v;
   };
-  if (const int set = textured_coordinates(m, p); set >= 0)
-    if (const auto t = values(fmt::format("TEXCOORD_{}", set), 2); !t.empty())
-      for (std::size_t i = 0; i < input.positions.size(); ++i)
-        input.texcoords.push_back({float(t[2 * i]), float(t[2 * i + 1])});
-  if (const auto c = values("COLOR_0", 3); !c.empty())
-    for (std::size_t i = 0; i < input.positions.size(); ++i)
-      input.colors.push_back({float(c[3 * i]), float(c[3 * i + 1]), float(c[3 * i + 2])});
+  const int set = textured_coordinates(m, p);
+  if (const auto t = set < 0 ? std::nullopt : per_vertex(fmt::format("TEXCOORD_{}", set), 2))
+    for (std::size_t i = 0; i < t->count; ++i)
+      input.texcoords.push_back({float(t->values[i * std::size_t(t->components)]),
+                                 float(t->values[i * std::size_t(t->components) + 1])});
+  if (const auto c = per_vertex("COLOR_0", 3))
+    for (std::size_t i = 0; i < c->count; ++i) {
+      const double* rgb = &c->values[i * std::size_t(c->components)];
+      input.colors.push_back({float(rgb[0]), float(rgb[1]), float(rgb[2])});
+    }
 }
 
 // The levels of each triangle primitive, and the mesh's bounding radius.

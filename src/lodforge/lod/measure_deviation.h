@@ -13,8 +13,8 @@ namespace lodforge {
 
 struct DeviationOptions {
   /// Area samples of the reference's side (plus vertices and edges); a
-  /// level's side takes one per level triangle, at least min(20 000, this)
-  /// and at most this.
+  /// level's side in hausdorff() takes one per level triangle, at least
+  /// min(20 000, this) and at most this; distance_to_reference() this many.
   std::size_t samples = 20000;
   std::uint64_t seed = 1;
   /// The farthest samples of each direction whose neighbourhood is searched

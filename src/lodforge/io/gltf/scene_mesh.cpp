@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "lodforge/core/error.h"
@@ -123,22 +123,15 @@ TriangleMesh gather(const tinygltf::Model& model, const std::vector<NodePlacemen
   return out;
 }
 
-// The bounding sphere of a node's level-0 mesh in world space, as lodforge
-// lod takes it: about the centre of the mesh's box through its farthest
-// vertex, placed by the node's transform and scaled by its largest scale.
-std::pair<Vec3, double> world_sphere(const tinygltf::Model& model, const NodePlacement& placed,
-                                     int mesh) {
+// The bounding sphere of a mesh, as lodforge lod takes it (box_centred_sphere
+// of all its primitives' positions), in the mesh's coordinates.
+BoxSphere mesh_sphere(const tinygltf::Model& model, int mesh) {
   std::vector<Vec3> points;
   for (const auto& p : model.meshes[std::size_t(mesh)].primitives) {
     const TriangleMesh part = primitive_mesh(model, p, mesh);
     points.insert(points.end(), part.positions.begin(), part.positions.end());
   }
-  Box3 box;
-  for (const Vec3& v : points) box.add(v);
-  if (box.empty()) return {Vec3{}, 0.0};
-  double r = 0;
-  for (const Vec3& v : points) r = std::max(r, double(length(v - box.center())));
-  return {placed.world.transform_point(box.center()), r * placed.world.max_scale()};
+  return box_centred_sphere(points);
 }
 
 // The level node n shows at screen coverage c (-1: none), by its
@@ -232,12 +225,17 @@ double screen_coverage(double radius, double distance, double height_angle) {
 TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageView& view,
                                   bool colors) {
   const auto placements = node_placements(model);
+  std::vector<std::optional<BoxSphere>> spheres(model.meshes.size());  // per mesh, once
   auto mesh_of = [&](std::size_t n) {
     const tinygltf::Node& node = model.nodes[n];
     const tinygltf::Value* ids = lod_ids(node);
     if (!ids || node.mesh < 0) return mesh_at_level(model, n, 0);
-    const auto [centre, radius] = world_sphere(model, placements[n], node.mesh);
-    const double c = screen_coverage(radius, double(length(view.eye - centre)), view.height_angle);
+    auto& sphere = spheres[std::size_t(node.mesh)];
+    if (!sphere) sphere = mesh_sphere(model, node.mesh);
+    const Mat4& world = placements[n].world;
+    const double c = screen_coverage(
+        sphere->radius * world.max_scale(),
+        double(length(view.eye - world.transform_point(sphere->center))), view.height_angle);
     const int level = level_at_coverage(node, int(ids->ArrayLen()), c);
     return level < 0 ? -1 : mesh_at_level(model, n, level);
   };

@@ -287,15 +287,10 @@ double camera_angle(const SceneToGltfOptions& options, const Node* camera) {
 
 // The bounding sphere of a LOD's first child (about its box centre).
 double radius_of(const std::vector<DrawnShape>& shapes) {
-  Box3 box;
+  std::vector<Vec3> points;
   for (const auto& s : shapes)
-    for (const Vec3& p : s.surface.mesh.positions) box.add(p);
-  if (box.empty()) return 0;
-  double r = 0;
-  for (const auto& s : shapes)
-    for (const Vec3& p : s.surface.mesh.positions)
-      r = std::max(r, double(length(p - box.center())));
-  return r;
+    points.insert(points.end(), s.surface.mesh.positions.begin(), s.surface.mesh.positions.end());
+  return box_centred_sphere(points).radius;
 }
 
 // One LOD occurrence: its first child's node, MSFT_lod naming the nodes of

@@ -4,8 +4,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
@@ -67,6 +69,58 @@ TEST(WriteVrml1, FloatsAndIntsPerLine) {
   EXPECT_THAT(text, HasSubstr("\t\t\t0, 1, 2, 3, -1,\n\t\t\t0, 2, 1, -1\n"));
   std::string flat = write_vrml1(r.scene, {.no_tabs = true});
   EXPECT_THAT(flat, Not(HasSubstr("\t")));
+}
+
+// Lists long enough to be formatted in pieces on several threads: the same
+// layout as a short one (two points per line, commas between values, none
+// after the last) and the same values, in order.
+TEST(WriteVrml1, LongListsKeepTheirLayoutAndOrder) {
+  constexpr int kPoints = 50001, kFaces = 40001;
+  std::vector<float> points;
+  for (int i = 0; i < 3 * kPoints; ++i) points.push_back(float(i) * 0.001f + 0.5f);
+  std::vector<std::int32_t> index;
+  for (int f = 0; f < kFaces; ++f) index.insert(index.end(), {f, f + 1, f + 2, -1});
+  scene::Scene s;
+  auto root = make("Separator");
+  auto coords = make("Coordinate3");
+  coords->set("point", scene::make_floats(scene::FieldKind::kVec3f, true, points));
+  auto faces = make("IndexedFaceSet");
+  faces->set("coordIndex", scene::make_longs(index));
+  root->children = {coords, faces};
+  s.roots = {root};
+  for (bool minimize : {false, true}) {
+    const std::string text =
+        write_vrml1(s, {.floats_per_line = 6, .ints_per_line = 8, .minimize = minimize});
+    auto back = read_vrml1(text);
+    const auto& kids = back.scene.roots.at(0)->children;
+    ASSERT_EQ(kids.size(), 2u);
+    EXPECT_EQ(kids[0]->value("point")->floats, points);
+    EXPECT_EQ(kids[1]->value("coordIndex")->ints, index);
+    if (minimize) {
+      EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3);  // the header's and the last
+      continue;
+    }
+    // Each list line holds two points (a point has a '.') or eight indices,
+    // each value followed by a comma but the list's last.
+    std::istringstream lines(text);
+    std::vector<std::string> point_lines, index_lines;
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("\t\t\t", 0) == 0 && line.size() > 3 && line[3] != '\t')
+        (line.find('.') != std::string::npos ? point_lines : index_lines).push_back(line);
+    ASSERT_EQ(point_lines.size(), std::size_t(kPoints + 1) / 2);
+    ASSERT_EQ(index_lines.size(), std::size_t(4 * kFaces + 7) / 8);
+    auto count = [](const std::string& l, char c) { return std::count(l.begin(), l.end(), c); };
+    for (std::size_t i = 0; i + 1 < point_lines.size(); ++i) {
+      EXPECT_EQ(count(point_lines[i], ','), 2) << point_lines[i];
+      EXPECT_EQ(count(point_lines[i], ' '), 5) << point_lines[i];
+    }
+    EXPECT_EQ(count(point_lines.back(), ','), 0) << point_lines.back();
+    for (std::size_t i = 0; i + 1 < index_lines.size(); ++i) {
+      EXPECT_EQ(count(index_lines[i], ','), 8) << index_lines[i];
+      EXPECT_EQ(count(index_lines[i], ' '), 7) << index_lines[i];
+    }
+    EXPECT_EQ(count(index_lines.back(), ','), 3) << index_lines.back();
+  }
 }
 
 TEST(WriteVrml1, MinimizeWritesOneLineAfterTheHeader) {

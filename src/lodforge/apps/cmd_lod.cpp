@@ -1,6 +1,7 @@
 // `lodforge lod SCENE... -o OUT | --out-dir DIR [options]`: the main job —
 // every shape of a VRML 1.0 scene becomes an LOD node.
 #include <fmt/core.h>
+#include <tbb/global_control.h>
 
 #include <chrono>
 #include <filesystem>
@@ -292,6 +293,12 @@ std::vector<BatchItem> batch_items(const Settings& s) {
 }
 
 int run_lod(const Settings& s) {
+  // --threads bounds the whole command (reading and writing too), not only
+  // the level making.
+  std::optional<tbb::global_control> thread_limit;
+  if (s.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(s.threads));
   if (s.inputs.empty() && s.manifest.empty())
     throw CLI::ValidationError("SCENE", "give the scenes (or --manifest FILE)");
   const bool batch = s.inputs.size() > 1 || !s.manifest.empty() || s.shard.count > 1;

@@ -7,7 +7,9 @@
 
 #include <fmt/compile.h>
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <functional>
 #include <iterator>
 #include <unordered_map>
@@ -22,6 +24,28 @@ using scene::FieldKind;
 using scene::FieldValue;
 using scene::Node;
 using scene::NodePtr;
+
+// Numbers are formatted into a local buffer and appended: formatting
+// through a back_inserter of the output string costs several times more.
+void append_number(std::string& out, std::int32_t i) {
+  const fmt::format_int text(i);
+  out.append(text.data(), text.size());
+}
+void append_float(std::string& out, float f) {
+  char buffer[32];
+  out.append(buffer, fmt::format_to_n(buffer, sizeof buffer, FMT_COMPILE("{}"), f).out);
+}
+void append_hex(std::string& out, std::int32_t i) {
+  fmt::format_to(std::back_inserter(out), "{:#x}", static_cast<std::uint32_t>(i));
+}
+void append_string(std::string& out, const std::string& s) {
+  out += '"';
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  out += '"';
+}
 
 class Writer {
  public:
@@ -53,13 +77,14 @@ class Writer {
     for (const auto& c : n->children) count_refs(c);
   }
 
-  void newline(int depth) {
+  void newline(int depth) { newline(out_, depth); }
+  void newline(std::string& out, int depth) const {
     if (opt_.minimize) {
-      out_ += ' ';
+      out += ' ';
       return;
     }
-    out_ += '\n';
-    if (!opt_.no_tabs) out_.append(static_cast<std::size_t>(depth), '\t');
+    out += '\n';
+    if (!opt_.no_tabs) out.append(static_cast<std::size_t>(depth), '\t');
   }
 
   std::string unique_name(const std::string& base) {
@@ -123,7 +148,7 @@ class Writer {
         out_ += "isA [";
         for (std::size_t i = 0; i < n->is_a.size(); ++i) {
           out_ += i ? ", " : " ";
-          write_string(n->is_a[i]);
+          append_string(out_, n->is_a[i]);
         }
         out_ += " ]";
       }
@@ -153,27 +178,10 @@ class Writer {
     out_ += '}';
   }
 
-  void write_string(const std::string& s) {
-    out_ += '"';
-    for (char c : s) {
-      if (c == '"' || c == '\\') out_ += '\\';
-      out_ += c;
-    }
-    out_ += '"';
-  }
-
-  // Numbers are formatted into a local buffer and appended: formatting
-  // through a back_inserter of the output string costs several times more.
-  void write_number(std::int32_t i) {
-    const fmt::format_int text(i);
-    out_.append(text.data(), text.size());
-  }
-  void write_float(float f) {
-    char buffer[32];
-    out_.append(buffer, fmt::format_to_n(buffer, sizeof buffer, FMT_COMPILE("{}"), f).out);
-  }
-
   // Values of one kind, `per_value` numbers each, wrapped after `per_line`.
+  // A long list is formatted in pieces on all cores and appended in order
+  // (the text is the same: where a value's separator and line break go
+  // depends only on its place in the list).
   template <typename T, typename Emit>
   void write_list(const std::vector<T>& v, std::size_t per_value, int per_line, int depth,
                   Emit emit) {
@@ -181,31 +189,60 @@ class Writer {
     if (count == 1) {
       for (std::size_t k = 0; k < per_value; ++k) {
         if (k) out_ += ' ';
-        emit(v[k]);
+        emit(out_, v[k]);
       }
       return;
     }
-    std::size_t values_per_line =
-        std::max<std::size_t>(1, static_cast<std::size_t>(std::max(per_line, 1)) / per_value);
+    const ListLayout layout{.per_value = per_value,
+                            .per_line = std::max<std::size_t>(
+                                1, static_cast<std::size_t>(std::max(per_line, 1)) / per_value),
+                            .depth = depth};
     out_ += '[';
-    for (std::size_t i = 0; i < count; ++i) {
-      if (i) out_ += ',';
-      if (!opt_.minimize && i % values_per_line == 0)
-        newline(depth + 1);
-      else if (i || !opt_.minimize)
-        out_ += ' ';
-      for (std::size_t k = 0; k < per_value; ++k) {
-        if (k) out_ += ' ';
-        emit(v[i * per_value + k]);
-      }
+    if (count * per_value < kParallelNumbers) {
+      write_values(out_, v, layout, 0, count, emit);
+    } else {
+      const std::size_t pieces = (count + kPieceValues - 1) / kPieceValues;
+      std::vector<std::string> text(pieces);
+      tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
+        // Formatted into a local string: the pieces' string headers are
+        // neighbours in `text`, and appending there would share cache lines.
+        std::string piece;
+        write_values(piece, v, layout, p * kPieceValues, std::min(count, (p + 1) * kPieceValues),
+                     emit);
+        text[p] = std::move(piece);
+      });
+      for (const auto& t : text) out_ += t;
     }
-    if (!opt_.minimize && count > 0) newline(depth);
+    if (!opt_.minimize && count > 0) newline(out_, depth);
     out_ += ']';
   }
 
+  struct ListLayout {
+    std::size_t per_value;  // numbers per value
+    std::size_t per_line;   // values per line
+    int depth;
+  };
+
+  // Values [first, last) of a list, each after its separator.
+  template <typename T, typename Emit>
+  void write_values(std::string& out, const std::vector<T>& v, const ListLayout& layout,
+                    std::size_t first, std::size_t last, Emit emit) const {
+    for (std::size_t i = first; i < last; ++i) {
+      if (i) out += ',';
+      if (!opt_.minimize && i % layout.per_line == 0)
+        newline(out, layout.depth + 1);
+      else if (i || !opt_.minimize)
+        out += ' ';
+      for (std::size_t k = 0; k < layout.per_value; ++k) {
+        if (k) out += ' ';
+        emit(out, v[i * layout.per_value + k]);
+      }
+    }
+  }
+
   void write_value(const FieldValue& v, int depth) {
-    auto emit_float = [this](float f) { write_float(f); };
-    auto emit_int = [this](std::int32_t i) { write_number(i); };
+    auto emit_float = [](std::string& out, float f) { append_float(out, f); };
+    auto emit_int = [](std::string& out, std::int32_t i) { append_number(out, i); };
     switch (v.type.kind) {
       case FieldKind::kColor:
       case FieldKind::kFloat:
@@ -243,9 +280,7 @@ class Writer {
         return;
       }
       case FieldKind::kUInt32: {
-        auto emit_hex = [this](std::int32_t i) {
-          fmt::format_to(std::back_inserter(out_), "{:#x}", static_cast<std::uint32_t>(i));
-        };
+        auto emit_hex = [](std::string& out, std::int32_t i) { append_hex(out, i); };
         if (v.type.multi)
           write_list(v.ints, 1, opt_.ints_per_line, depth, emit_hex);
         else
@@ -259,17 +294,17 @@ class Writer {
           write_list(v.ints, v.ints.size(), opt_.ints_per_line, depth, emit_int);
         return;
       case FieldKind::kBool: {
-        auto emit_bool = [this](std::int32_t b) { out_ += b ? "TRUE" : "FALSE"; };
+        auto emit_bool = [](std::string& out, std::int32_t b) { out += b ? "TRUE" : "FALSE"; };
         write_list(v.ints, 1, opt_.ints_per_line, depth, emit_bool);
         return;
       }
       case FieldKind::kString: {
-        auto emit = [this](const std::string& s) { write_string(s); };
+        auto emit = [](std::string& out, const std::string& s) { append_string(out, s); };
         write_list(v.strings, 1, 1, depth, emit);
         return;
       }
       case FieldKind::kEnum: {
-        auto emit = [this](const std::string& s) { out_ += s; };
+        auto emit = [](std::string& out, const std::string& s) { out += s; };
         write_list(v.strings, 1, opt_.ints_per_line, depth, emit);
         return;
       }
@@ -294,10 +329,9 @@ class Writer {
           else if (i)
             out_ += ' ';
           if (i < 3)
-            write_number(v.ints[i]);
+            append_number(out_, v.ints[i]);
           else
-            fmt::format_to(std::back_inserter(out_), "{:#x}",
-                           static_cast<std::uint32_t>(v.ints[i]));
+            append_hex(out_, v.ints[i]);
         }
         return;
       }
@@ -307,6 +341,8 @@ class Writer {
   const WriteOptions& opt_;
   std::string& out_;
   static constexpr std::size_t kDrainBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kParallelNumbers = std::size_t{1} << 15;  // a list this long
+  static constexpr std::size_t kPieceValues = std::size_t{1} << 13;      // values per piece
   std::function<void(std::string&)> drain_;
   std::unordered_map<const Node*, std::size_t> refs_;
   std::unordered_map<const Node*, std::string> names_;    // shared nodes already written

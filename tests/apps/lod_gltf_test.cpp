@@ -15,6 +15,7 @@
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/gltf/scene_mesh.h"
 #include "lodforge/render/texture_image.h"
+#include "lodforge/render/write_png.h"
 #include "vrml97/vrml97_corpus.h"
 
 namespace lodforge::testing {
@@ -281,6 +282,77 @@ TEST_F(TempDirTest, RenderGltfTextures) {
       run_lodforge("render " + path("fox.glb") + " --levels --size 200x200 -o " + path("c.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GT(orange(path("c.png")), 1000u);
+}
+
+// `render` draws a glTF base-colour texture as glTF viewers do: the texel
+// scales the base colour (factor x texture), a texture's alpha cuts holes
+// only in alphaMode MASK, and KHR_texture_transform moves the coordinates.
+// A quad facing the camera, textured with a 2 x 1 image: a transparent white
+// texel (left half) and an opaque blue one (right half), clamped at the edges.
+TEST_F(TempDirTest, RenderGltfTextureAsGltfViewersDraw) {
+  Image texels(2, 1);
+  texels.pixels = {255, 255, 255, 0, 0, 0, 255, 255};
+  write_png(texels, path("texels.png"));
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const float uvs[] = {0, 1, 1, 1, 1, 0, 0, 0};
+  const std::uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::string bin(reinterpret_cast<const char*>(positions), sizeof positions);
+  bin.append(reinterpret_cast<const char*>(uvs), sizeof uvs);
+  bin.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  write("quad.bin", bin);
+  auto scene = [&](const std::string& name, const std::string& material,
+                   const std::string& transform) {
+    return write(name, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
+                                  "material": 0}]}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.5, 1],
+                     "baseColorTexture": {"index": 0)" +
+                           transform + R"(}})" + material + R"(}],
+      "textures": [{"source": 0, "sampler": 0}],
+      "samplers": [{"wrapS": 33071, "wrapT": 33071}],
+      "images": [{"uri": "texels.png"}],
+      "buffers": [{"uri": "quad.bin", "byteLength": 92}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                      {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                      {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+      "accessors": [
+        {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+         "min": [-1, -1, 0], "max": [1, 1, 0]},
+        {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+        {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})");
+  };
+  struct Counts {
+    std::size_t pink = 0, blue = 0;
+  };
+  auto drawn = [&](const std::string& gltf) {
+    const std::string png = gltf + ".png";
+    const CommandResult r =
+        run_lodforge("render " + gltf + " -o " + png + " --size 200x200 --view 0,0");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    Counts c;
+    const Image image = read_texture(png).image;
+    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
+      const int red = image.pixels[i], green = image.pixels[i + 1], blue = image.pixels[i + 2];
+      c.pink += red > green + 60 && red > blue + 60;  // white x (1, 0.5, 0.5)
+      c.blue += blue > red + 60;                      // blue x (1, 0.5, 0.5)
+    }
+    return c;
+  };
+  // OPAQUE (the default): the transparent texel is drawn, scaled to pink.
+  const Counts opaque = drawn(scene("opaque.gltf", "", ""));
+  EXPECT_GT(opaque.pink, 2000u);
+  EXPECT_GT(opaque.blue, 2000u);
+  // MASK: below the cutoff, a hole.
+  const Counts mask = drawn(scene("mask.gltf", R"(, "alphaMode": "MASK", "alphaCutoff": 0.5)", ""));
+  EXPECT_EQ(mask.pink, 0u);
+  EXPECT_GT(mask.blue, 2000u);
+  // The transform maps every u into the blue texel's quarter.
+  const Counts moved = drawn(scene(
+      "moved.gltf", "",
+      R"(, "extensions": {"KHR_texture_transform": {"offset": [0.75, 0], "scale": [0.25, 1]}})"));
+  EXPECT_EQ(moved.pink, 0u);
+  EXPECT_GT(moved.blue, 2 * opaque.blue * 9 / 10);
 }
 
 TEST_F(TempDirTest, LodGltfBadInputIsExitOneNamingTheFile) {

@@ -124,6 +124,8 @@ class TextureLoader {
       }
       image.repeat_s = t.repeat_s;
       image.repeat_t = t.repeat_t;
+      image.modulates = t.modulates;
+      image.alpha_cutoff = t.alpha_cutoff;
       out.push_back(std::move(image));
     }
     return out;

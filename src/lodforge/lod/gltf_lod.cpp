@@ -19,6 +19,7 @@
 #include "lodforge/io/gltf/accessor_data.h"
 #include "lodforge/io/gltf/node_matrices.h"
 #include "lodforge/io/gltf/primitive_mesh.h"
+#include "lodforge/io/gltf/texture_transform.h"
 #include "lodforge/lod/choose_levels.h"
 
 namespace lodforge {
@@ -356,19 +357,22 @@ void level0_statistics(const Model& m, MeshJob& job) {
 }
 
 // The texture coordinate set the primitive's material samples its textures
-// with (the base colour's first, then the normal, occlusion, emissive and
-// metallic-roughness textures'); -1 when it has no texture.
+// with (a KHR_texture_transform's texCoord counts; the base colour's first, then the normal,
+// occlusion, emissive and metallic-roughness textures'); -1 when it has no texture.
 int textured_coordinates(const Model& m, const tinygltf::Primitive& p) {
   if (p.material < 0 || std::size_t(p.material) >= m.materials.size()) return -1;
   const tinygltf::Material& mat = m.materials[std::size_t(p.material)];
   const auto& pbr = mat.pbrMetallicRoughness;
-  for (const auto& [index, set] :
-       {std::pair{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
-        {mat.normalTexture.index, mat.normalTexture.texCoord},
-        {mat.occlusionTexture.index, mat.occlusionTexture.texCoord},
-        {mat.emissiveTexture.index, mat.emissiveTexture.texCoord},
-        {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord}})
-    if (index >= 0) return set;
+  auto set = [](const auto& info) {
+    return gltf::texture_transform(info.texCoord, info.extensions).set;
+  };
+  for (const auto& [index, coordinates] :
+       {std::pair{pbr.baseColorTexture.index, set(pbr.baseColorTexture)},
+        {mat.normalTexture.index, set(mat.normalTexture)},
+        {mat.occlusionTexture.index, set(mat.occlusionTexture)},
+        {mat.emissiveTexture.index, set(mat.emissiveTexture)},
+        {pbr.metallicRoughnessTexture.index, set(pbr.metallicRoughnessTexture)}})
+    if (index >= 0) return coordinates;
   return -1;
 }
 

@@ -247,7 +247,7 @@ bool draw_triangle(Framebuffer& fb, const ScreenVertex& a, const ScreenVertex& b
         float alpha = 1;
         const Vec3 texel =
             sample(*look.texture, (a.uv_iz * wa + b.uv_iz * wb + c.uv_iz * wc) * z, alpha);
-        if (alpha < 0.5f) continue;
+        if (alpha < look.texture->alpha_cutoff) continue;
         color = {color.x * texel.x, color.y * texel.y, color.z * texel.z};
       }
       fb.depth[i] = z;
@@ -415,10 +415,12 @@ RenderResult render_mesh(const TriangleMesh& mesh, const RenderOptions& options)
       }
       const float lambert = std::max(0.f, dot(n * side, light));
       // An RGB texture replaces the colour it is lit with, an intensity
-      // texture scales it (the VRML lighting model).
-      const Vec3 base = tri_look.texture && !tri_look.texture->intensity ? Vec3{1, 1, 1}
-                        : colored                                        ? clamp01(mesh.colors[v])
-                                                                         : options.surface_color;
+      // texture scales it (the VRML lighting model); a glTF texture scales it.
+      const Vec3 base =
+          tri_look.texture && !tri_look.texture->intensity && !tri_look.texture->modulates
+              ? Vec3{1, 1, 1}
+          : colored ? clamp01(mesh.colors[v])
+                    : options.surface_color;
       const Vec3 lit = clamp01(base * (kAmbient + kDiffuse * lambert));
       sv[k].p = cam.project(mesh.positions[v], z[v]);
       sv[k].iz = 1.f / z[v];

@@ -59,8 +59,9 @@ struct Appearance {
   /// coordinates and that index is in range (others, and triangles of a
   /// texture with an empty image, are untextured).
   /// Bilinear, perspective-correct; the texel replaces the vertex colour
-  /// (an intensity texture scales it) and is lit like it; texels with
-  /// alpha below one half are holes.
+  /// (an intensity texture, and one that Texture::modulates, scales it) and
+  /// is lit like it; texels with alpha below the texture's alpha_cutoff are
+  /// holes.
   std::span<const Texture> textures;
   /// Empty or #V, 0..1: a surface of opacity a covers about a of the
   /// samples (an ordered dither over the supersamples), so what is behind

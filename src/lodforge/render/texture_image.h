@@ -18,6 +18,9 @@ struct Texture {
   bool intensity = false;
   bool repeat_s = true;  ///< wrap s (else clamp to the edge)
   bool repeat_t = true;  ///< wrap t (else clamp to the edge)
+  /// An RGB texel scales the surface colour instead of replacing it (glTF).
+  bool modulates = false;
+  float alpha_cutoff = 0.5f;  ///< texels of alpha below this are holes
 };
 
 /// Reads an image file (gzip-compressed too, like every reader). Throws

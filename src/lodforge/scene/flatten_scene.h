@@ -37,7 +37,13 @@ struct SceneTexture {
   std::vector<unsigned char> encoded;  ///< an image file's bytes (a glTF file's embedded image)
   bool repeat_s = true;                ///< wrapS REPEAT (else CLAMP)
   bool repeat_t = true;                ///< wrapT REPEAT (else CLAMP)
-  int line = 0;                        ///< where the Texture2 was read
+  /// The texel scales the surface colour (glTF: base colour = factor x
+  /// COLOR_0 x texture) instead of replacing it (a VRML RGB texture).
+  bool modulates = false;
+  /// Texels of alpha below this are holes (glTF alphaMode MASK: its
+  /// alphaCutoff; OPAQUE: 0, alpha ignored).
+  float alpha_cutoff = 0.5f;
+  int line = 0;  ///< where the Texture2 was read
 };
 
 /// Triangles of a flattened scene without a texture (FlatScene::mesh.materials).

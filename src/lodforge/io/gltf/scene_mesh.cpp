@@ -15,6 +15,7 @@
 #include "lodforge/io/gltf/accessor_data.h"
 #include "lodforge/io/gltf/node_matrices.h"
 #include "lodforge/io/gltf/primitive_mesh.h"
+#include "lodforge/io/gltf/texture_transform.h"
 
 namespace lodforge::gltf {
 
@@ -59,22 +60,33 @@ void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, Tria
                       base.z * float(c.values[i * std::size_t(c.components) + 2])};
 }
 
-// `part` with its base-colour texture: texture coordinates (t = 1 - v: glTF's
-// v runs down the image) and, per triangle, the texture's index in the model
-// (scene::kUntextured without one or without its coordinates).
+// The base-colour texture of material `m`, or null.
+const tinygltf::TextureInfo* base_color_texture(const tinygltf::Model& model, int m) {
+  if (m < 0 || std::size_t(m) >= model.materials.size()) return nullptr;
+  const auto& info = model.materials[std::size_t(m)].pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0 || std::size_t(info.index) >= model.textures.size()) return nullptr;
+  return &info;
+}
+
+// `part` with its base-colour texture: texture coordinates (as its
+// KHR_texture_transform maps them; t = 1 - v: glTF's v runs down the image)
+// and, per triangle, its material's index in the model (scene::kUntextured
+// without a base-colour texture or without its coordinates).
 void add_texture(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part) {
   part.texcoords.assign(part.positions.size(), Vec2{});
   part.materials.assign(part.triangles.size(), scene::kUntextured);
-  if (p.material < 0 || std::size_t(p.material) >= model.materials.size()) return;
-  const auto& info = model.materials[std::size_t(p.material)].pbrMetallicRoughness.baseColorTexture;
-  if (info.index < 0 || std::size_t(info.index) >= model.textures.size()) return;
-  const auto uv = p.attributes.find(fmt::format("TEXCOORD_{}", info.texCoord));
+  const tinygltf::TextureInfo* info = base_color_texture(model, p.material);
+  if (!info) return;
+  const TextureTransform m = texture_transform(info->texCoord, info->extensions);
+  const auto uv = p.attributes.find(fmt::format("TEXCOORD_{}", m.set));
   if (uv == p.attributes.end()) return;
   const AccessorValues t = read_accessor(model, uv->second);
   if (t.components != 2 || t.count != part.positions.size()) return;
-  for (std::size_t i = 0; i < t.count; ++i)
-    part.texcoords[i] = {float(t.values[2 * i]), 1 - float(t.values[2 * i + 1])};
-  part.materials.assign(part.triangles.size(), std::uint32_t(info.index));
+  for (std::size_t i = 0; i < t.count; ++i) {
+    const Vec2 uv = m.apply(t.values[2 * i], t.values[2 * i + 1]);
+    part.texcoords[i] = {uv.x, 1 - uv.y};
+  }
+  part.materials.assign(part.triangles.size(), std::uint32_t(p.material));
 }
 
 }  // namespace
@@ -168,9 +180,17 @@ std::string unescaped(const std::string& uri) {
   return out;
 }
 
-// Texture `t` of the model as a renderer loads it.
-scene::SceneTexture scene_texture(const tinygltf::Model& model, int t) {
+// The base-colour texture of material `m` as a renderer loads it: it scales
+// the base colour; its alpha makes holes only in alphaMode MASK (below
+// alphaCutoff) and BLEND (below one half: the renderer draws no blending).
+scene::SceneTexture scene_texture(const tinygltf::Model& model, int m) {
   scene::SceneTexture out;
+  const tinygltf::Material& material = model.materials[std::size_t(m)];
+  const int t = material.pbrMetallicRoughness.baseColorTexture.index;
+  out.modulates = true;
+  out.alpha_cutoff = material.alphaMode == "MASK"    ? float(material.alphaCutoff)
+                     : material.alphaMode == "BLEND" ? 0.5f
+                                                     : 0.0f;
   const tinygltf::Texture& texture = model.textures[std::size_t(t)];
   if (texture.sampler >= 0 && std::size_t(texture.sampler) < model.samplers.size()) {
     const tinygltf::Sampler& s = model.samplers[std::size_t(texture.sampler)];
@@ -200,7 +220,8 @@ std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, Tr
   std::vector<scene::SceneTexture> out;
   std::map<std::uint32_t, std::uint32_t> slot;
   for (std::uint32_t& m : mesh.materials) {
-    if (m == scene::kUntextured || m >= model.textures.size()) {
+    if (m == scene::kUntextured || m >= model.materials.size() ||
+        !base_color_texture(model, int(m))) {
       m = scene::kUntextured;
       continue;
     }

@@ -12,9 +12,10 @@ namespace lodforge::gltf {
 /// Positions, triangles and lines; with `colors`, also each vertex's colour:
 /// its primitive's base colour (the material's baseColorFactor, white
 /// without a material) times its COLOR_0 when it has one, RGB; and its
-/// base-colour texture: texture coordinates (#V, t = 1 - glTF's v) and per
-/// triangle the texture's index in the model (materials, scene::kUntextured
-/// without one); drawn_textures turns those into images to draw.
+/// base-colour texture: texture coordinates (#V, as the texture's
+/// KHR_texture_transform maps them, t = 1 - glTF's v) and per triangle its
+/// material's index in the model (materials, scene::kUntextured without a
+/// base-colour texture); drawn_textures turns those into images to draw.
 /// `lod_level` K > 0 draws, for a node with `MSFT_lod`, the mesh of its level
 /// K (its coarsest level when it has fewer) in the node's place. Throws
 /// DataError as primitive_mesh, or for an MSFT_lod id that is not a node with
@@ -45,8 +46,11 @@ TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageVi
                                   bool colors = false);
 
 /// The base-colour textures of a scene_mesh(..., colors = true) mesh, as a
-/// renderer loads them: one per texture the mesh uses, its triangles'
-/// `materials` renumbered into this list. An embedded image (a buffer view or
+/// renderer loads them: one per material the mesh uses, its triangles'
+/// `materials` renumbered into this list. Each scales the base colour
+/// (SceneTexture::modulates); its alpha cuts holes as the material's
+/// alphaMode says (MASK: below alphaCutoff; BLEND: below one half; OPAQUE:
+/// never). An embedded image (a buffer view or
 /// a data URI) comes as its bytes, an external one as its URI (percent-escapes
 /// decoded; relative to the glTF file); wrap modes from the sampler (mirrored
 /// repeat drawn as repeat).

@@ -192,7 +192,7 @@ section() {
         "python3 scripts/make_bunny_scene.py $D/meshes/bun_zipper.ply $W/bunnies.wrl && ls -l $W/bunnies.wrl"
         "$B/lodforge info $W/bunnies.wrl"
         "/usr/bin/time $time_fmt $B/lodforge lod $W/bunnies.wrl -o $W/bunnies_lod.wrl -q && ls -l $W/bunnies_lod.wrl"
-        "$B/bench/simplify_bench --no-quality --benchmark_filter='meshopt_simplify_bun_zipper.ply_50' --benchmark_repetitions=3"
+        "bench/lod_scale.sh -r 6 $B $W/bunnies.wrl"
       ) ;;
     out_of_core)  # simplify streaming a 20 M-triangle PLY under ulimit -v 1 GiB; the peer: the in-memory path
       targets=(lodforge_cli make_big_ply test_simplify)

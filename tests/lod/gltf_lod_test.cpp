@@ -134,11 +134,12 @@ TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttribute
   const auto& attributes = first.primitives[0].attributes;
   const auto uv = gltf::read_accessor(m, attributes.at("TEXCOORD_0")).values;
   const auto normals = gltf::read_accessor(m, attributes.at("NORMAL")).values;
-  ASSERT_GT(uv.size(), in_uv.size());  // the simplifier moved vertices
-  // The input's vertices first, unchanged; every added one carries the
-  // texture coordinates of an input vertex and the input's normal.
-  EXPECT_TRUE(std::equal(in_uv.begin(), in_uv.end(), uv.begin()));
-  for (std::size_t v = n; v < uv.size() / 2; ++v) {
+  // Only the vertices the levels draw (the input's are not copied): fewer
+  // than the input's; every one carries the texture coordinates of an input
+  // vertex and the input's normal.
+  ASSERT_GT(uv.size(), 0u);
+  EXPECT_LT(uv.size() / 2, n);
+  for (std::size_t v = 0; v < uv.size() / 2; ++v) {
     const double u = uv[2 * v], w = uv[2 * v + 1];
     EXPECT_NEAR(u * 40, std::round(u * 40), 1e-4) << v;
     EXPECT_NEAR(w * 40, std::round(w * 40), 1e-4) << v;

@@ -146,9 +146,11 @@ std::string full_detail_reason(const Model& m, const MeshJob& job) {
   return "";
 }
 
-// The input vertex and new position (if moved) of each level vertex, over
-// all levels of a primitive: vertices the simplifier moved are appended to
-// the input's, once per distinct (source, position).
+// The vertices the levels of a primitive draw, over all its levels: each
+// distinct (input vertex, position) once, numbered from 0 in the order the
+// levels meet them, with the input vertex it stands for (its other
+// attributes) and where it is (moved by the simplifier or not). A set in
+// which nothing moved is drawn through the input's own accessors instead.
 class VertexSet {
  public:
   VertexSet(const TriangleMesh& input, bool positions_float)
@@ -157,26 +159,31 @@ class VertexSet {
     const std::uint32_t src = v < level.vertex_map.size() ? level.vertex_map[v] : kNone;
     if (src >= input_.positions.size())
       throw DataError("a simplified vertex without a source vertex");
-    const Vec3 p = level.mesh.positions[v];
     const Vec3 q = input_.positions[src];
-    if (!float_ || std::memcmp(&p, &q, sizeof p) == 0) return src;
+    // Positions that are not floats stay the source's (no moved position
+    // could be stored in them).
+    const Vec3 p = float_ ? level.mesh.positions[v] : q;
+    const bool moved = std::memcmp(&p, &q, sizeof p) != 0;
     Key key{src, 0, 0, 0};
     std::memcpy(&key[1], &p, sizeof p);
-    auto [it, added] =
-        index_.try_emplace(key, std::uint32_t(input_.positions.size() + sources_.size()));
+    auto [it, added] = index_.try_emplace(key, std::uint32_t(sources_.size()));
     if (added) {
       sources_.push_back(src);
-      moved_.push_back(p);
+      positions_.push_back(p);
+      any_moved_ = any_moved_ || moved;
     }
     return it->second;
   }
-  std::size_t size() const { return input_.positions.size() + sources_.size(); }
+  std::size_t size() const { return sources_.size(); }
+  /// Per vertex of the set: the input vertex it stands for, its position.
   const std::vector<std::uint32_t>& sources() const { return sources_; }
-  const std::vector<Vec3>& moved() const { return moved_; }
+  const std::vector<Vec3>& positions() const { return positions_; }
+  bool any_moved() const { return any_moved_; }
 
  private:
   const TriangleMesh& input_;
   bool float_;
+  bool any_moved_ = false;
   using Key = std::array<std::uint32_t, 4>;
   struct KeyHash {
     std::size_t operator()(const Key& k) const {
@@ -187,7 +194,7 @@ class VertexSet {
   };
   std::unordered_map<Key, std::uint32_t, KeyHash> index_;
   std::vector<std::uint32_t> sources_;
-  std::vector<Vec3> moved_;
+  std::vector<Vec3> positions_;
 };
 
 // What an extended accessor holds: a vertex attribute, POSITION (moved
@@ -195,15 +202,15 @@ class VertexSet {
 // displacement (min and max).
 enum class Extended { kAttribute, kPosition, kTargetPosition };
 
-// Accessor `index` extended by the vertices `set` appended: the input's
-// elements, then each appended vertex's source element (its position, for
-// POSITION, where it moved). Raw bytes where the accessor has a buffer view,
-// else decoded as floats.
+// Accessor `index` taken over the vertices of `set`: each vertex's source
+// element (its position, for POSITION). Raw bytes where the accessor has a
+// buffer view, else decoded as floats.
 int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet& set,
                       Extended what) {
   const bool position = what == Extended::kPosition;
   const tinygltf::Accessor a = m.accessors[std::size_t(index)];
-  const std::size_t n = a.count, total = set.size();
+  const std::size_t total = set.size();
+  const auto& sources = set.sources();
   const auto components = std::size_t(tinygltf::GetNumComponentsInType(std::uint32_t(a.type)));
   tinygltf::Accessor e;
   e.type = a.type;
@@ -211,6 +218,7 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
   std::vector<unsigned char> bytes;
   std::size_t stride = 0;
   const bool raw = a.bufferView >= 0 && !a.sparse.isSparse;
+  const bool float_positions = position && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
   if (raw) {
     const auto& view = m.bufferViews[std::size_t(a.bufferView)];
     const std::size_t in_stride = std::size_t(a.ByteStride(view));
@@ -221,10 +229,10 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
     stride = round4(element);
     bytes.assign(stride * total, 0);
     for (std::size_t i = 0; i < total; ++i) {
-      const std::size_t src = i < n ? i : set.sources()[i - n];
-      std::memcpy(bytes.data() + i * stride, base + src * in_stride, element);
-      if (position && i >= n && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
-        std::memcpy(bytes.data() + i * stride, &set.moved()[i - n], sizeof(Vec3));
+      if (float_positions)
+        std::memcpy(bytes.data() + i * stride, &set.positions()[i], sizeof(Vec3));
+      else
+        std::memcpy(bytes.data() + i * stride, base + sources[i] * in_stride, element);
     }
     e.componentType = a.componentType;
     e.normalized = a.normalized;
@@ -232,14 +240,12 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
     const gltf::AccessorValues v = gltf::read_accessor(m, index);
     stride = components * 4;
     bytes.assign(stride * total, 0);
-    for (std::size_t i = 0; i < total; ++i) {
-      const std::size_t src = i < n ? i : set.sources()[i - n];
+    for (std::size_t i = 0; i < total; ++i)
       for (std::size_t c = 0; c < components; ++c) {
-        float f = float(v.values[src * components + c]);
-        if (position && i >= n) f = (&set.moved()[i - n].x)[c];
+        const float f =
+            position ? (&set.positions()[i].x)[c] : float(v.values[sources[i] * components + c]);
         std::memcpy(bytes.data() + i * stride + c * 4, &f, 4);
       }
-    }
     e.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   }
   if (what != Extended::kAttribute) {
@@ -248,9 +254,8 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
     e.maxValues.assign(components, -INFINITY);
     for (std::size_t i = 0; i < total; ++i)
       for (std::size_t c = 0; c < components; ++c) {
-        const std::size_t src = i < n ? i : set.sources()[i - n];
         const double x =
-            position && i >= n ? (&set.moved()[i - n].x)[c] : v.values[src * components + c];
+            position ? (&set.positions()[i].x)[c] : v.values[sources[i] * components + c];
         e.minValues[c] = std::min(e.minValues[c], x);
         e.maxValues[c] = std::max(e.maxValues[c], x);
       }
@@ -301,9 +306,18 @@ void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
       for (std::uint32_t v : t) indices[k].push_back(set.add(level, v));
   }
   pl.index_accessors.assign(pl.levels.size(), -1);
+  if (!set.any_moved()) {
+    // No vertex moved: the levels draw the input's vertices through its
+    // own accessors.
+    for (std::size_t k = 0; k < pl.levels.size(); ++k) {
+      if (!used[k + 1]) continue;
+      for (std::uint32_t& v : indices[k]) v = set.sources()[v];
+      pl.index_accessors[k] = index_accessor(out, m, indices[k], pl.input.positions.size());
+    }
+    return;
+  }
   for (std::size_t k = 0; k < pl.levels.size(); ++k)
     if (used[k + 1]) pl.index_accessors[k] = index_accessor(out, m, indices[k], set.size());
-  if (set.sources().empty()) return;  // no vertex moved: the levels use the input's vertices
   std::map<std::string, int> extended;
   for (const auto& [name, accessor] : attributes)
     extended[name] = extended_accessor(

@@ -6,11 +6,12 @@
 /// * each primitive of mode TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN gets
 ///   the levels of choose_levels (the same levels a VRML shape gets); POINTS
 ///   and LINES primitives are kept in every level;
-/// * the levels of a primitive share one vertex set: the input's vertices
-///   followed by the vertices the simplifier moved (their other attributes
-///   copied from the input vertex they stand for, SimplifyResult::vertex_map),
-///   each level with its own index accessor; level 0 is the input primitive
-///   unchanged;
+/// * the levels of a primitive share one vertex set: the vertices they draw,
+///   each once (a vertex the simplifier moved at its new position; its other
+///   attributes copied from the input vertex it stands for,
+///   SimplifyResult::vertex_map), or the input's own accessors when no vertex
+///   moved; each level has its own index accessor; level 0 is the input
+///   primitive unchanged (its vertices are not copied);
 /// * the levels of a mesh switch where any of its primitives switches (the
 ///   switching points of its primitives, gathered within the level spacing
 ///   and moved to the latest of each group, which is always safe); a

@@ -197,17 +197,16 @@ class VertexSet {
   std::vector<Vec3> positions_;
 };
 
-// What an extended accessor holds: a vertex attribute, POSITION (moved
+// What a vertex-set accessor holds: a vertex attribute, POSITION (moved
 // vertices take their new position; min and max) or a morph target's POSITION
 // displacement (min and max).
-enum class Extended { kAttribute, kPosition, kTargetPosition };
+enum class SetElement { kAttribute, kPosition, kTargetPosition };
 
 // Accessor `index` taken over the vertices of `set`: each vertex's source
 // element (its position, for POSITION). Raw bytes where the accessor has a
 // buffer view, else decoded as floats.
-int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet& set,
-                      Extended what) {
-  const bool position = what == Extended::kPosition;
+int set_accessor(BufferAppender& out, Model& m, int index, const VertexSet& set, SetElement what) {
+  const bool position = what == SetElement::kPosition;
   const tinygltf::Accessor a = m.accessors[std::size_t(index)];
   const std::size_t total = set.size();
   const auto& sources = set.sources();
@@ -248,7 +247,7 @@ int extended_accessor(BufferAppender& out, Model& m, int index, const VertexSet&
       }
     e.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   }
-  if (what != Extended::kAttribute) {
+  if (what != SetElement::kAttribute) {
     const gltf::AccessorValues v = gltf::read_accessor(m, index);
     e.minValues.assign(components, INFINITY);
     e.maxValues.assign(components, -INFINITY);
@@ -318,16 +317,16 @@ void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
   }
   for (std::size_t k = 0; k < pl.levels.size(); ++k)
     if (used[k + 1]) pl.index_accessors[k] = index_accessor(out, m, indices[k], set.size());
-  std::map<std::string, int> extended;
+  std::map<std::string, int> over_set;
   for (const auto& [name, accessor] : attributes)
-    extended[name] = extended_accessor(
-        out, m, accessor, set, name == "POSITION" ? Extended::kPosition : Extended::kAttribute);
-  pl.attributes = std::move(extended);
+    over_set[name] = set_accessor(
+        out, m, accessor, set, name == "POSITION" ? SetElement::kPosition : SetElement::kAttribute);
+  pl.attributes = std::move(over_set);
   for (auto& target : pl.targets)
     for (auto& [name, accessor] : target)
       accessor =
-          extended_accessor(out, m, accessor, set,
-                            name == "POSITION" ? Extended::kTargetPosition : Extended::kAttribute);
+          set_accessor(out, m, accessor, set,
+                       name == "POSITION" ? SetElement::kTargetPosition : SetElement::kAttribute);
 }
 
 ChooseLevelsOptions choose_options(const LodOptions& o, const RangeOptions& range) {

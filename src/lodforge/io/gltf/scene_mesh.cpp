@@ -220,8 +220,7 @@ std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, Tr
   std::vector<scene::SceneTexture> out;
   std::map<std::uint32_t, std::uint32_t> slot;
   for (std::uint32_t& m : mesh.materials) {
-    if (m == scene::kUntextured || m >= model.materials.size() ||
-        !base_color_texture(model, int(m))) {
+    if (m == scene::kUntextured || !base_color_texture(model, int(m))) {
       m = scene::kUntextured;
       continue;
     }

@@ -162,6 +162,102 @@ TEST(GenerateLodVrml97, TheTeapotGetsAChainOfLevels) {
 namespace lodforge {
 namespace {
 
+// The grid scene with its texCoord node replaced by `tex`.
+std::string grid_scene_with_tex(const std::string& header, const std::string& tex) {
+  std::string s = grid_scene(header, 12);
+  const std::size_t b = s.find("texCoord DEF T");
+  const std::size_t e = s.find("] }", b) + 3;
+  return s.replace(b, e - b, "texCoord " + tex);
+}
+
+// Every simplified level's IndexedFaceSet (an X3D scene's LOD: children).
+std::vector<NodePtr> level_face_sets(const LodResult& r) {
+  std::vector<NodePtr> out;
+  const NodePtr& lod = r.scene.roots.at(2);
+  const auto& levels = lod->value("children")->nodes;
+  for (std::size_t i = 1; i + 1 < levels.size(); ++i)
+    out.push_back(levels[i]->value("geometry")->nodes.at(0));
+  return out;
+}
+
+TEST(GenerateLodVrml97, ComputedTextureCoordinatesAreTheLevelsToo) {
+  // A TextureCoordinateGenerator computes coordinates for any geometry: every
+  // level uses the input's node, with no index and no warning (the levels
+  // were drawn with the default mapping instead, and a warning said an index
+  // was out of range).
+  auto read = vrml97::read_vrml97(grid_scene_with_tex(
+      "#X3D V3.2 utf8\nPROFILE Immersive", "DEF G TextureCoordinateGenerator { mode \"SPHERE\" }"));
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  EXPECT_TRUE(r.log.entries().empty()) << r.log.entries().at(0).text;
+  const auto sets = level_face_sets(r);
+  ASSERT_GE(sets.size(), 2u);
+  for (const NodePtr& ifs : sets) {
+    const NodePtr tex = ifs->value("texCoord")->nodes.at(0);
+    EXPECT_EQ(tex->type, "TextureCoordinateGenerator");
+    EXPECT_EQ(tex->name, "G");
+    EXPECT_EQ(ifs->value("texCoordIndex"), nullptr);
+  }
+}
+
+TEST(GenerateLodVrml97, MultiTextureCoordinatesAreIndexedLikeOneList) {
+  // Two coordinate lists and a generator: one texCoordIndex indexes the lists
+  // alike, so the levels index the MultiTextureCoordinate exactly as they
+  // index the grid's own TextureCoordinate when it stands alone (the first
+  // list is that one; the levels were left without coordinates, with a
+  // warning).
+  const std::string header = "#X3D V3.2 utf8\nPROFILE Immersive";
+  std::string own, other;
+  for (int y = 0; y <= 12; ++y)
+    for (int x = 0; x <= 12; ++x) {
+      own += fmt::format("{} {}, ", x / 12.0, y / 12.0);
+      other += fmt::format("{} 0.5, ", (13 * y + x) / 168.0);
+    }
+  auto read = vrml97::read_vrml97(grid_scene_with_tex(
+      header, "DEF M MultiTextureCoordinate { texCoord [ TextureCoordinate { point [" + own +
+                  "] } TextureCoordinateGenerator {} TextureCoordinate { point [" + other +
+                  "] } ] }"));
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  EXPECT_TRUE(r.log.entries().empty()) << r.log.entries().at(0).text;
+  LodResult alone = generate_lod_vrml97(vrml97::read_vrml97(grid_scene(header, 12)).scene);
+  const auto sets = level_face_sets(r);
+  const auto alone_sets = level_face_sets(alone);
+  ASSERT_GE(sets.size(), 2u);
+  ASSERT_EQ(sets.size(), alone_sets.size());
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    EXPECT_EQ(sets[i]->value("texCoord")->nodes.at(0)->name, "M");
+    ASSERT_NE(sets[i]->value("texCoordIndex"), nullptr);
+    EXPECT_EQ(sets[i]->value("texCoordIndex")->ints, alone_sets[i]->value("texCoordIndex")->ints);
+    EXPECT_EQ(sets[i]->value("coordIndex")->ints, alone_sets[i]->value("coordIndex")->ints);
+  }
+}
+
+TEST(GenerateLodVrml97, ExtractPutsOneLevelInPlaceOfEachShape) {
+  // --extract K: level K's Shape where the shape was (both places of the
+  // shared one), no LOD; 0 leaves the shape; beyond the last simplified
+  // level, the empty one.
+  const std::string text = grid_scene("#VRML V2.0 utf8", 30);
+  const LodResult full = generate_lod_vrml97(vrml97::read_vrml97(text).scene);
+  const auto& levels = full.scene.roots.at(1)->value("level")->nodes;
+  ASSERT_GE(levels.size(), 4u);
+  for (int k : {0, 1, 2, 50}) {
+    const LodResult r = generate_lod_vrml97(vrml97::read_vrml97(text).scene, {.extract = k});
+    const NodePtr& at = r.scene.roots.at(1);
+    EXPECT_EQ(r.scene.roots.at(2)->value("children")->nodes.at(0), at) << k;
+    if (k == 0) {
+      EXPECT_EQ(at->name, "S");
+      EXPECT_EQ(at->type, "Shape");
+      continue;
+    }
+    const std::size_t level = std::min(std::size_t(k), levels.size() - 1);
+    EXPECT_EQ(at->type, levels[level]->type) << k;
+    if (level + 1 == levels.size()) continue;  // the empty Group
+    EXPECT_EQ(at->value("geometry")->nodes.at(0)->value("coordIndex")->ints,
+              levels[level]->value("geometry")->nodes.at(0)->value("coordIndex")->ints)
+        << k;
+    EXPECT_EQ(vrml97::write_vrml97(r.scene).find("LOD"), std::string::npos);
+  }
+}
+
 TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoordinates) {
   std::string heights;
   for (int z = 0; z < 20; ++z)

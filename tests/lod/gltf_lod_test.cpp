@@ -113,6 +113,39 @@ TEST(GltfLod, SharedMeshGetsOneSetOfLevelMeshesAndEachNodeItsLevelNodes) {
   }
 }
 
+TEST(GltfLod, ExtractDrawsOneLevelInPlaceOfEachMesh) {
+  // --extract K: every node draws level K's mesh (the one MSFT_lod names as
+  // level K), no MSFT_lod; 0 leaves the model as it is; beyond the last
+  // level, the last.
+  gltf::GltfScene full = shared_and_morphed();
+  gltf_lod(full, {.threads = 1});
+  const auto& ids = ids_of(full.model.nodes[0]);
+  ASSERT_GE(ids.size(), 2u);
+  auto level_mesh = [&](std::size_t k) {
+    return full.model.nodes[std::size_t(ids[k - 1].GetNumberAsInt())].mesh;
+  };
+  for (int k : {0, 1, 2, 50}) {
+    gltf::GltfScene s = shared_and_morphed();
+    const tinygltf::Model input = s.model;
+    gltf_lod(s, {.extract = k, .threads = 1});
+    const auto& m = s.model;
+    EXPECT_TRUE(m.extensionsUsed.empty()) << k;
+    ASSERT_EQ(m.nodes.size(), 3u) << k;  // no level nodes
+    for (const auto& node : m.nodes) EXPECT_EQ(node.extensions.count("MSFT_lod"), 0u);
+    if (k == 0) {
+      EXPECT_EQ(m.meshes, input.meshes);
+      EXPECT_EQ(m.nodes, input.nodes);
+      continue;
+    }
+    const std::size_t level = std::min<std::size_t>(std::size_t(k), ids.size());
+    EXPECT_EQ(m.nodes[0].mesh, m.nodes[1].mesh);  // the shared mesh's one level
+    ASSERT_GE(m.nodes[0].mesh, 0);
+    EXPECT_EQ(m.meshes[std::size_t(m.nodes[0].mesh)],
+              full.model.meshes[std::size_t(level_mesh(level))])
+        << k;
+  }
+}
+
 TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttributes) {
   gltf::GltfScene s = shared_and_morphed();
   gltf_lod(s, {.threads = 1});

@@ -249,10 +249,14 @@ class Flattener {
         from.stride = c->type == "ColorRGBA" ? 4 : 3;
         if (!reader.color().per_vertex) piece = unshared_by_face(piece, polygons.face_color);
       }
-      if (const NodePtr& t = reader.tex().node) {
-        from.texcoord_node = t;
-        from.texcoords = t->value("point");
-      }
+      // The first 2D coordinate list (of a MultiTextureCoordinate: its
+      // first texture's); computed ones get VRML97's default mapping.
+      for (const NodePtr& t : vrml97_geometry::texture_coordinate_lists(reader.tex().node))
+        if (t->type == "TextureCoordinate") {
+          from.texcoord_node = t;
+          from.texcoords = t->value("point");
+          break;
+        }
     } else {
       ++out_.skipped[geometry.type];
       return;

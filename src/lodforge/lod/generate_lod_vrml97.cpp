@@ -54,6 +54,7 @@ class LevelBuilder {
     std::vector<float>& points = coord_->find("point")->value.floats;
     const Attribute& normal = reader_.normal();
     const Attribute& color = reader_.color();
+    const bool indexed_tex = reader_.tex().node && !reader_.tex().generated;
     for (std::size_t t = 0; t < r.mesh.triangles.size(); ++t) {
       const Triangle& tri = r.mesh.triangles[t];
       std::array<std::int32_t, 3> idx{};
@@ -63,7 +64,7 @@ class LevelBuilder {
         const Corner& c = j_.shape_mesh.vertex_corner[r.vertex_map[tri[k]]];
         coord_index.push_back(idx[k]);
         if (normal.node && normal.per_vertex) normal_index.push_back(std::int32_t(c[1]));
-        if (reader_.tex().node) tex_index.push_back(std::int32_t(c[2]));
+        if (indexed_tex) tex_index.push_back(std::int32_t(c[2]));
         if (color.node && color.per_vertex) color_index.push_back(std::int32_t(c[3]));
       }
       const std::uint32_t polygon = j_.shape_mesh.triangle_polygon[r.face_map[t]];
@@ -73,7 +74,7 @@ class LevelBuilder {
         color_index.push_back(std::int32_t(j_.polygons.face_color[polygon]));
       coord_index.push_back(-1);
       if (normal.node && normal.per_vertex) normal_index.push_back(-1);
-      if (reader_.tex().node) tex_index.push_back(-1);
+      if (indexed_tex) tex_index.push_back(-1);
       if (color.node && color.per_vertex) color_index.push_back(-1);
     }
     auto ifs = scene::make_node("IndexedFaceSet");
@@ -85,7 +86,7 @@ class LevelBuilder {
     }
     if (reader_.tex().node) {
       ifs->set("texCoord", node_value(reader_.tex().node));
-      ifs->set("texCoordIndex", scene::make_longs(std::move(tex_index)));
+      if (indexed_tex) ifs->set("texCoordIndex", scene::make_longs(std::move(tex_index)));
     }
     if (color.node) {
       ifs->set("color", node_value(color.node));
@@ -188,6 +189,8 @@ class Pipeline {
     if (!reader.read(j.polygons)) return;
     build_mesh(j.polygons, reader, opt_.triangulation, j.shape_mesh);
     if (j.shape_mesh.mesh.triangles.empty()) return;
+    // --extract 0 (level 0) and -1 (the scene cleaned): the shape as it is.
+    if (opt_.extract && *opt_.extract <= 0) return;
     Box3 box = j.shape_mesh.mesh.bounds();
     const Vec3 center = (box.lo + box.hi) * 0.5f;
     double radius = 0;
@@ -229,12 +232,19 @@ class Pipeline {
     RangeOptions range = opt_.range;
     range.camera_angle = float(camera_angle_);
     stats.ranges = switching_ranges(errors, std::max(j.scale, 1e-12), radius, range);
+    result_.shapes.push_back(std::move(stats));
+    // --extract K: level K alone in the shape's place (beyond the last
+    // simplified level, the empty one).
+    if (opt_.extract) {
+      j.lod = levels.nodes[std::min(std::size_t(*opt_.extract), levels.nodes.size() - 1)];
+      return;
+    }
+    const ShapeStatistics& st = result_.shapes.back();
     j.lod = scene::make_node("LOD");
-    j.lod->set("range", scene::make_floats(FieldKind::kFloat, true, stats.ranges));
+    j.lod->set("range", scene::make_floats(FieldKind::kFloat, true, st.ranges));
     j.lod->set("center",
                scene::make_floats(FieldKind::kVec3f, false, {center.x, center.y, center.z}));
     j.lod->set(x3d_ ? "children" : "level", std::move(levels));
-    result_.shapes.push_back(std::move(stats));
   }
 
   // Puts each shape's LOD where the shape was a child (children, level,

@@ -554,6 +554,14 @@ void animate_weights_of_levels(Model& m, int n, const Value::Array& level_nodes)
   }
 }
 
+// --extract K (>= 1): every node drawing the mesh draws its level K instead
+// (beyond the last simplified level, the last: a node keeps a mesh, which
+// its skin and morph-weight animations need).
+void extract_level(Model& m, const MeshJob& job, std::size_t k) {
+  for (int n : job.nodes)
+    m.nodes[std::size_t(n)].mesh = job.level_meshes[std::min(k, job.level_meshes.size()) - 1];
+}
+
 // MSFT_lod with new level nodes on every node drawing the mesh, and the
 // coverages and level table in its extras.
 void attach_lod(Model& m, const MeshJob& job, const std::vector<gltf::NodePlacement>& placed,
@@ -682,8 +690,10 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
     if (!why.empty()) {
       result.log.warn(LogCategory::kGeneral, fmt::format("{}: kept at full detail because {}",
                                                          mesh_label(m, job.mesh), why));
-    } else if (choose.quality == 0 || choose.quality == 1) {
-      // Manual mode without simplified levels: the mesh stays as it is.
+    } else if (choose.quality == 0 || choose.quality == 1 ||
+               (options.extract && *options.extract <= 0)) {
+      // Manual mode without simplified levels, --extract 0 (level 0) or -1
+      // (the scene cleaned): the mesh stays as it is.
     } else {
       try {
         simplify_primitives(m, job, choose);
@@ -693,8 +703,12 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
       plan_levels(job, m, options, range);
       if (!job.levels.empty()) {
         write_level_meshes(out, m, job);
-        attach_lod(m, job, placed, angle, result.log);
-        any = true;
+        if (options.extract) {
+          extract_level(m, job, std::size_t(*options.extract));
+        } else {
+          attach_lod(m, job, placed, angle, result.log);
+          any = true;
+        }
       }
     }
     finish_statistics(m, job, placed);

@@ -41,6 +41,35 @@ std::size_t attribute_count(const NodePtr& n, std::string_view field) {
   return v ? v->count() : 0;
 }
 
+std::vector<NodePtr> texture_coordinate_lists(const NodePtr& tex) {
+  std::vector<NodePtr> lists{tex};
+  if (tex && tex->type == "MultiTextureCoordinate") {
+    const scene::FieldValue* v = tex->value("texCoord");
+    lists = v && v->type.kind == FieldKind::kNode ? v->nodes : std::vector<NodePtr>{};
+  }
+  std::erase_if(lists, [](const NodePtr& n) {
+    return !n || !n->type.starts_with("TextureCoordinate") ||
+           n->type == "TextureCoordinateGenerator";
+  });
+  return lists;
+}
+
+namespace {
+
+// How many texture coordinates a texCoord node holds (the fewest among its
+// lists, which one texCoordIndex indexes alike), or that it computes them.
+void count_texture_coordinates(Attribute& a) {
+  if (!a.node) return;
+  const std::vector<NodePtr> lists = texture_coordinate_lists(a.node);
+  a.generated = lists.empty();
+  for (std::size_t k = 0; k < lists.size(); ++k) {
+    const std::size_t count = attribute_count(lists[k], "point");
+    a.count = k == 0 ? count : std::min(a.count, count);
+  }
+}
+
+}  // namespace
+
 GeometryReader::GeometryReader(const Node& g, Log& log, const std::string& where)
     : g_(g), log_(log) {
   where_ = where;
@@ -51,7 +80,7 @@ GeometryReader::GeometryReader(const Node& g, Log& log, const std::string& where
              ints_of(g, "normalIndex"), "normalIndex"};
   normal_.count = attribute_count(normal_.node, "vector");
   tex_ = {node_of(g, "texCoord"), 0, true, ints_of(g, "texCoordIndex"), "texCoordIndex"};
-  tex_.count = attribute_count(tex_.node, "point");
+  count_texture_coordinates(tex_);
   color_ = {node_of(g, "color"), 0, bool_of(g, "colorPerVertex", true), ints_of(g, "colorIndex"),
             "colorIndex"};
   color_.count = attribute_count(color_.node, "color");
@@ -174,7 +203,7 @@ void GeometryReader::add_face(Polygons& out, const std::vector<std::int32_t>& ci
 std::uint32_t GeometryReader::value(Attribute& a, bool per_vertex,
                                     const std::vector<std::int32_t>& ci, std::size_t face,
                                     std::size_t pos) {
-  if (!a.node || a.per_vertex != per_vertex) return kNone;
+  if (!a.node || a.generated || a.per_vertex != per_vertex) return kNone;
   const scene::FaceSetAttribute rule{
       {scene::vrml97_binding(a.per_vertex, a.index != nullptr), a.index, &ci},
       a.count,

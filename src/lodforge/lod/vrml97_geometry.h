@@ -30,6 +30,13 @@ const std::vector<std::int32_t>* ints_of(const Node& n, std::string_view field);
 // The values of an attribute node's array field, and how many there are.
 std::size_t attribute_count(const NodePtr& n, std::string_view field);
 
+/// The coordinate lists of a texCoord node: the node itself when it is a
+/// TextureCoordinate, TextureCoordinate3D or TextureCoordinate4D; a
+/// MultiTextureCoordinate's such children (one texCoordIndex indexes them
+/// all); none for a node that computes its coordinates
+/// (TextureCoordinateGenerator, Castle's ProjectedTextureCoordinate, ...).
+std::vector<NodePtr> texture_coordinate_lists(const NodePtr& tex);
+
 // One corner's indices into the coordinate, normal, texture coordinate and
 // colour nodes (kNone: the attribute is absent or bound per face).
 using Corner = std::array<std::uint32_t, 4>;
@@ -58,6 +65,11 @@ struct Attribute {
   const std::vector<std::int32_t>* index = nullptr;
   std::string_view index_field;
   std::string error;  ///< the first bad index found (the attribute is dropped)
+  /// Texture coordinates the node computes for whatever geometry uses it
+  /// (TextureCoordinateGenerator; Castle's ProjectedTextureCoordinate and
+  /// MultiGeneratedTextureCoordinate; a MultiTextureCoordinate of those):
+  /// nothing to index, every level uses the node as it is.
+  bool generated = false;
 };
 
 /// Corners a face of an IndexedTriangleSet / TriangleSet (3) or an

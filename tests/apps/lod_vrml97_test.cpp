@@ -251,6 +251,45 @@ TEST_F(LodVrml97Corpus, BadInputExitsOneWithTheLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(out + ".ply"));
 }
 
+// Options only the VRML 1.0 / Inventor pipeline uses are named when given
+// for a VRML97 or glTF scene (they were ignored silently); manual mode and
+// --extract apply to VRML97.
+TEST_F(LodVrml97Corpus, OptionsThatDoNotApplyAreNamed) {
+  const std::string in = (dir_ / "grid.wrl").string();
+  {
+    std::ofstream f(in);
+    f << "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { coord Coordinate { point [";
+    for (int y = 0; y <= 20; ++y)
+      for (int x = 0; x <= 20; ++x) f << x << " " << y << " " << (x * y % 7) * 0.1 << ", ";
+    f << "] } coordIndex [";
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x)
+        f << y * 21 + x << " " << y * 21 + x + 1 << " " << y * 21 + x + 22 << " " << y * 21 + x + 21
+          << " -1 ";
+    f << "] } }\n";
+  }
+  const std::string out = (dir_ / "out.wrl").string();
+  auto r = run_lodforge("lod '" + in + "' -o " + out + " --join --export reducer");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --join, --export are not used for a VRML97 / X3D scene"),
+            std::string::npos)
+      << r.err;
+  r = run_lodforge("lod '" + in + "' -o " + out + " --quality polygon=3 --ranges polygon=7");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  std::ifstream written(out);
+  const std::string text{std::istreambuf_iterator<char>(written), {}};
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(range \[\s*7,)"))) << text.substr(0, 400);
+  const std::string glb = (dir_ / "out.glb").string();
+  r = run_lodforge("lod '" + in + "' -o " + out + ".glb --format glb");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_lodforge("lod '" + out + ".glb' -o " + glb + " --ranges 1,2 --no-lines");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --no-lines, --ranges are not used for a glTF scene"),
+            std::string::npos)
+      << r.err;
+}
+
 // The encoding is told by the content where it tells: an X3D XML document
 // named .wrl, classic X3D named .x3d, and a bad XML file's line and column.
 TEST_F(LodVrml97Corpus, TheContentTellsTheEncoding) {

@@ -258,6 +258,36 @@ TEST(GenerateLodVrml97, ExtractPutsOneLevelInPlaceOfEachShape) {
   }
 }
 
+TEST(GenerateLodVrml97, ManualModeSetsTheLevelsAndRanges) {
+  // --quality polygon=4: two simplified levels, each with at most half the
+  // triangles of the one before; --ranges polygon=1,2: the first two ranges
+  // given, the third computed (and above them); polygon=1: no LOD; 0: an
+  // empty node in the shape's place.
+  const std::string text = grid_scene("#VRML V2.0 utf8", 30);
+  LodOptions o;
+  o.manual["polygon"] = {.quality = 4, .ranges = {1.f, 2.f}};
+  const LodResult r = generate_lod_vrml97(vrml97::read_vrml97(text).scene, o);
+  ASSERT_EQ(r.shapes.size(), 1u);
+  const auto& s = r.shapes[0];
+  ASSERT_EQ(s.levels.size(), 4u);  // level 0, two simplified, the empty one
+  EXPECT_LE(s.levels[1].triangles, s.levels[0].triangles / 2);
+  EXPECT_LE(s.levels[2].triangles, s.levels[1].triangles / 2);
+  const auto& range = r.scene.roots.at(1)->value("range")->floats;
+  ASSERT_EQ(range.size(), 3u);
+  EXPECT_EQ(range[0], 1.f);
+  EXPECT_EQ(range[1], 2.f);
+  EXPECT_GT(range[2], 2.f);
+  EXPECT_EQ(r.scene.roots.at(1)->value("level")->nodes.size(), 4u);
+  for (int q : {0, 1}) {
+    o.manual["polygon"] = {.quality = q};
+    const LodResult m = generate_lod_vrml97(vrml97::read_vrml97(text).scene, o);
+    const NodePtr& at = m.scene.roots.at(1);
+    EXPECT_EQ(at->type, q == 0 ? "Group" : "Shape") << q;
+    if (q == 0) EXPECT_TRUE(at->fields.empty());
+    EXPECT_EQ(m.scene.roots.at(2)->value("children")->nodes.at(0), at) << q;
+  }
+}
+
 TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoordinates) {
   std::string heights;
   for (int z = 0; z < 20; ++z)

@@ -1,6 +1,7 @@
 // `lodforge lod SCENE... -o OUT | --out-dir DIR [options]`: the main job —
 // every shape of a VRML 1.0 scene becomes an LOD node.
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <tbb/global_control.h>
 
 #include <chrono>
@@ -202,6 +203,23 @@ std::size_t file_size_or_zero(const std::string& path) {
   return ec ? 0 : static_cast<std::size_t>(size);
 }
 
+// A warning naming the options given that only the VRML 1.0 / Inventor
+// pipeline uses, for a VRML97 / X3D or (`gltf`) glTF scene.
+void warn_unused_options(const Settings& s, const LodOptions& o, bool gltf, Log& log) {
+  std::vector<std::string> unused;
+  if (s.join) unused.push_back("--join");
+  if (s.no_lines) unused.push_back("--no-lines");
+  if (s.by_size) unused.push_back("--differentiate-by-size");
+  if (s.export_flavour != "spec") unused.push_back("--export");
+  if (gltf && std::any_of(o.manual.begin(), o.manual.end(),
+                          [](const auto& m) { return !m.second.ranges.empty(); }))
+    unused.push_back("--ranges");
+  if (unused.empty()) return;
+  log.warn(LogCategory::kGeneral,
+           fmt::format("{} {} not used for a {} scene", fmt::join(unused, ", "),
+                       unused.size() == 1 ? "is" : "are", gltf ? "glTF" : "VRML97 / X3D"));
+}
+
 // Reads one scene, makes its LODs and writes them; a DataError is the
 // outcome's error. `progress` receives the library's progress, drawn on
 // `bar`, which is cleared before anything is printed; `stats` gets the
@@ -228,6 +246,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
                        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet)
                                 : LodResult{};
+    if (vrml97 || gltf) warn_unused_options(s, options, gltf, result.log);
     if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
       read.quiet = true;  // the reader's warnings are printed here, off the bar

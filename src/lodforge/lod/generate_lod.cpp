@@ -517,12 +517,7 @@ class Pipeline {
     ro.camera_angle = float(camera_angle_);
     std::vector<float> ranges = switching_ranges(errors, o.scale, j.radius * o.scale, ro);
     auto manual = opt_.manual.find(type_key(j.shape->type));
-    if (manual != opt_.manual.end()) {
-      const auto& given = manual->second.ranges;
-      for (std::size_t i = 0; i < given.size() && i < ranges.size(); ++i) ranges[i] = given[i];
-      for (std::size_t i = 1; i < ranges.size(); ++i)
-        if (ranges[i] <= ranges[i - 1]) ranges[i] = std::nextafter(ranges[i - 1], INFINITY);
-    }
+    if (manual != opt_.manual.end()) apply_given_ranges(ranges, manual->second.ranges);
     // A range is a VRML number: infinity (a shape too large for float
     // distances) cannot be written.
     for (float r : ranges)

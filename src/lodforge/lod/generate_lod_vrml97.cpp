@@ -183,14 +183,40 @@ class Pipeline {
       for (const auto& c : f.value.nodes) collect(c, scale, f.name);
   }
 
+  // The settings of manual mode for this pipeline's shapes (all polygons),
+  // or none.
+  const ShapeTypeSettings* manual() const {
+    const auto it = opt_.manual.find("polygon");
+    return it == opt_.manual.end() ? nullptr : &it->second;
+  }
+
+  ChooseLevelsOptions choose_options() const {
+    ChooseLevelsOptions c{.method = opt_.method,
+                          .min_diff = opt_.min_diff,
+                          .spacing = {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio},
+                          .range = opt_.range,
+                          .max_simplified = opt_.max_levels > 2 ? opt_.max_levels - 2 : 0,
+                          .measure_samples = opt_.measure_samples,
+                          .threads = opt_.threads};
+    c.range.camera_angle = float(camera_angle_);
+    if (const ShapeTypeSettings* m = manual()) c.quality = m->quality;
+    return c;
+  }
+
   void make_lod(Job& j) {
     const std::string where = fmt::format("line {}", j.shape->first_line);
     GeometryReader reader(*j.geometry, result_.log, where);
     if (!reader.read(j.polygons)) return;
     build_mesh(j.polygons, reader, opt_.triangulation, j.shape_mesh);
     if (j.shape_mesh.mesh.triangles.empty()) return;
-    // --extract 0 (level 0) and -1 (the scene cleaned): the shape as it is.
-    if (opt_.extract && *opt_.extract <= 0) return;
+    // The shape as it is: --extract 0 (level 0) or -1 (the scene cleaned),
+    // --quality polygon=1 (no LOD).
+    const int quality = manual() ? manual()->quality : -1;
+    if ((opt_.extract && *opt_.extract <= 0) || quality == 1) return;
+    if (quality == 0) {  // --quality polygon=0: an empty node in its place
+      j.lod = scene::make_node("Group");
+      return;
+    }
     Box3 box = j.shape_mesh.mesh.bounds();
     const Vec3 center = (box.lo + box.hi) * 0.5f;
     double radius = 0;
@@ -204,15 +230,7 @@ class Pipeline {
                           .scale = j.scale};
     stats.levels.push_back(
         {j.shape_mesh.mesh.triangle_count(), j.shape_mesh.mesh.vertex_count(), 0});
-    ChooseLevelsOptions c{.method = opt_.method,
-                          .min_diff = opt_.min_diff,
-                          .spacing = {.spacing = opt_.level_spacing, .max_ratio = opt_.level_ratio},
-                          .range = opt_.range,
-                          .max_simplified = opt_.max_levels > 2 ? opt_.max_levels - 2 : 0,
-                          .measure_samples = opt_.measure_samples,
-                          .threads = opt_.threads};
-    c.range.camera_angle = float(camera_angle_);
-    ChosenLevels chosen = choose_levels(j.shape_mesh.mesh, radius, c);
+    ChosenLevels chosen = choose_levels(j.shape_mesh.mesh, radius, choose_options());
     stats.method = chosen.method;
     stats.stop_reason = chosen.stop_reason;
     LevelBuilder builder(j, reader);
@@ -232,19 +250,26 @@ class Pipeline {
     RangeOptions range = opt_.range;
     range.camera_angle = float(camera_angle_);
     stats.ranges = switching_ranges(errors, std::max(j.scale, 1e-12), radius, range);
-    result_.shapes.push_back(std::move(stats));
+    if (manual()) apply_given_ranges(stats.ranges, manual()->ranges);
     // --extract K: level K alone in the shape's place (beyond the last
     // simplified level, the empty one).
     if (opt_.extract) {
       j.lod = levels.nodes[std::min(std::size_t(*opt_.extract), levels.nodes.size() - 1)];
-      return;
+      stats.ranges.clear();  // no LOD node
+    } else {
+      j.lod = lod_node(stats.ranges, center, std::move(levels));
     }
-    const ShapeStatistics& st = result_.shapes.back();
-    j.lod = scene::make_node("LOD");
-    j.lod->set("range", scene::make_floats(FieldKind::kFloat, true, st.ranges));
-    j.lod->set("center",
-               scene::make_floats(FieldKind::kVec3f, false, {center.x, center.y, center.z}));
-    j.lod->set(x3d_ ? "children" : "level", std::move(levels));
+    result_.shapes.push_back(std::move(stats));
+  }
+
+  NodePtr lod_node(const std::vector<float>& ranges, const Vec3& center,
+                   scene::FieldValue levels) const {
+    NodePtr lod = scene::make_node("LOD");
+    lod->set("range", scene::make_floats(FieldKind::kFloat, true, ranges));
+    lod->set("center",
+             scene::make_floats(FieldKind::kVec3f, false, {center.x, center.y, center.z}));
+    lod->set(x3d_ ? "children" : "level", std::move(levels));
+    return lod;
   }
 
   // Puts each shape's LOD where the shape was a child (children, level,

@@ -31,6 +31,12 @@ std::vector<float> switching_ranges(std::span<const double> level_errors, double
   return ranges;
 }
 
+void apply_given_ranges(std::vector<float>& ranges, std::span<const float> given) {
+  for (std::size_t i = 0; i < given.size() && i < ranges.size(); ++i) ranges[i] = given[i];
+  for (std::size_t i = 1; i < ranges.size(); ++i)
+    if (ranges[i] <= ranges[i - 1]) ranges[i] = std::nextafter(ranges[i - 1], INFINITY);
+}
+
 // The choice of switching distances as a shortest path. Distances from the
 // first candidate's to the vanishing one are a geometric grid (kGridSteps
 // steps per spacing factor). A level starting at grid point g is the coarsest

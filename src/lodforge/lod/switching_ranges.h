@@ -38,6 +38,12 @@ inline double vanishing_error(double radius) {
 std::vector<float> switching_ranges(std::span<const double> level_errors, double scale,
                                     double radius, const RangeOptions& options);
 
+/// The user's explicit ranges (`--ranges`) in place of the first computed
+/// ones, in order (missing ones stay computed); then strictly increasing as
+/// VRML requires (a range not above the one before it is nudged up by one
+/// float step).
+void apply_given_ranges(std::vector<float>& ranges, std::span<const float> given);
+
 /// Default of SpacingOptions::spacing: a kept level is shown over at least a
 /// 1.25x distance interval (from d to 1.25 d or farther).
 inline constexpr double kDefaultLevelSpacing = 1.25;

@@ -46,6 +46,9 @@ if [ "${1:-}" = "--sanitize" ]; then
         studio_browser)
   exclude=(-E "^($(IFS='|'; echo "${slow[*]}" | sed 's/\./\\./g'))\$")
 fi
-cmake -S . -B "$build" -G Ninja "${args[@]}" >/dev/null
+# Ninja for a new build folder; one made before keeps its own generator.
+generator=(-G Ninja)
+[ -f "$build/CMakeCache.txt" ] && generator=()
+cmake -S . -B "$build" "${generator[@]}" "${args[@]}" >/dev/null
 cmake --build "$build" -j2
 ctest --test-dir "$build" --output-on-failure -j2 "${exclude[@]}"

@@ -146,6 +146,25 @@ TEST(GltfLod, ExtractDrawsOneLevelInPlaceOfEachMesh) {
   }
 }
 
+TEST(GltfLod, GivenRangesAreTheSwitchDistances) {
+  // --ranges 0.5,0.75: the first two switch distances (mesh units; a node
+  // scaled 2x switches at twice them), the rest computed and above them.
+  gltf::GltfScene s = shared_and_morphed();
+  LodOptions o{.threads = 1};
+  o.manual["polygon"].ranges = {0.5f, 0.75f};
+  gltf_lod(s, o);
+  const auto& a = s.model.nodes[0].extras.Get("lodforge_lod").Get("levels");
+  const auto& b = s.model.nodes[1].extras.Get("lodforge_lod").Get("levels");
+  ASSERT_GE(a.ArrayLen(), 4u);
+  EXPECT_DOUBLE_EQ(a.Get(1).Get("switch_distance").GetNumberAsDouble(), 0.5);
+  EXPECT_DOUBLE_EQ(a.Get(2).Get("switch_distance").GetNumberAsDouble(), 0.75);
+  EXPECT_DOUBLE_EQ(b.Get(1).Get("switch_distance").GetNumberAsDouble(), 1.0);
+  EXPECT_GT(a.Get(3).Get("switch_distance").GetNumberAsDouble(), 0.75);
+  // Screen coverages follow: radius / (distance tan(angle / 2)).
+  const auto& c = s.model.nodes[0].extras.Get("MSFT_screencoverage");
+  EXPECT_NEAR(c.Get(0).GetNumberAsDouble() * 0.5, c.Get(1).GetNumberAsDouble() * 0.75, 1e-9);
+}
+
 TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttributes) {
   gltf::GltfScene s = shared_and_morphed();
   gltf_lod(s, {.threads = 1});

@@ -205,15 +205,12 @@ std::size_t file_size_or_zero(const std::string& path) {
 
 // A warning naming the options given that only the VRML 1.0 / Inventor
 // pipeline uses, for a VRML97 / X3D or (`gltf`) glTF scene.
-void warn_unused_options(const Settings& s, const LodOptions& o, bool gltf, Log& log) {
+void warn_unused_options(const Settings& s, bool gltf, Log& log) {
   std::vector<std::string> unused;
   if (s.join) unused.push_back("--join");
   if (s.no_lines) unused.push_back("--no-lines");
   if (s.by_size) unused.push_back("--differentiate-by-size");
   if (s.export_flavour != "spec") unused.push_back("--export");
-  if (gltf && std::any_of(o.manual.begin(), o.manual.end(),
-                          [](const auto& m) { return !m.second.ranges.empty(); }))
-    unused.push_back("--ranges");
   if (unused.empty()) return;
   log.warn(LogCategory::kGeneral,
            fmt::format("{} {} not used for a {} scene", fmt::join(unused, ", "),
@@ -246,7 +243,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
                        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet)
                                 : LodResult{};
-    if (vrml97 || gltf) warn_unused_options(s, options, gltf, result.log);
+    if (vrml97 || gltf) warn_unused_options(s, gltf, result.log);
     if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
       read.quiet = true;  // the reader's warnings are printed here, off the bar

@@ -449,6 +449,19 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
 // The levels of the mesh: its primitives' switching points (and the points
 // where small primitives vanish), gathered within the level spacing, each
 // group switching at its latest point.
+// --ranges [polygon=]a,b,...: the first switch distances (mesh units, as a
+// VRML LOD's range) are the given ones, the vanishing one too when given.
+void apply_manual_ranges(MeshJob& job, const LodOptions& o) {
+  const auto manual = o.manual.find("polygon");
+  if (manual == o.manual.end() || manual->second.ranges.empty() || job.levels.empty()) return;
+  std::vector<float> ranges;
+  for (const MeshLevel& l : job.levels) ranges.push_back(float(l.distance));
+  ranges.push_back(float(job.vanish));
+  apply_given_ranges(ranges, manual->second.ranges);
+  for (std::size_t k = 0; k < job.levels.size(); ++k) job.levels[k].distance = ranges[k];
+  job.vanish = ranges.back();
+}
+
 void plan_levels(MeshJob& job, const Model& m, const LodOptions& o, const RangeOptions& range) {
   const double r = job.radius;
   if (!(r > 0) || !std::isfinite(r)) return;
@@ -494,6 +507,7 @@ void plan_levels(MeshJob& job, const Model& m, const LodOptions& o, const RangeO
   }
   if (o.max_levels >= 2 && job.levels.size() > o.max_levels - 2)
     job.levels.resize(o.max_levels - 2);
+  apply_manual_ranges(job, o);
 }
 
 // The level meshes, after the vertex sets and index accessors they use.

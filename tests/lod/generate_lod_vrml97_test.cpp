@@ -288,6 +288,57 @@ TEST(GenerateLodVrml97, ManualModeSetsTheLevelsAndRanges) {
   }
 }
 
+TEST(GenerateLodVrml97, ShapesInParallelGiveTheOneThreadScene) {
+  // Six distinct shapes (one with a bad index: its warning keeps its place)
+  // made on all cores and on one: the same text, messages and statistics.
+  std::string text = "#VRML V2.0 utf8\n";
+  for (int k = 0; k < 6; ++k) {
+    std::string shape = grid_scene("", 10 + 3 * k);
+    shape = shape.substr(shape.find("DEF S"));
+    shape = shape.substr(0, shape.find("Transform"));
+    text +=
+        "Transform { translation " + std::to_string(2 * k) + " 0 0 children [ " + shape + " ] }\n";
+  }
+  text +=
+      "Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] }\n"
+      "  coordIndex [0 1 7 -1] } }\n";
+  const LodResult one = generate_lod_vrml97(vrml97::read_vrml97(text).scene, {.threads = 1});
+  const LodResult all = generate_lod_vrml97(vrml97::read_vrml97(text).scene, {.threads = 0});
+  ASSERT_EQ(all.shapes.size(), 6u);
+  EXPECT_EQ(vrml97::write_vrml97(all.scene), vrml97::write_vrml97(one.scene));
+  ASSERT_EQ(all.log.entries().size(), one.log.entries().size());
+  for (std::size_t i = 0; i < all.log.entries().size(); ++i)
+    EXPECT_EQ(all.log.entries()[i].text, one.log.entries()[i].text);
+  for (std::size_t i = 0; i < all.shapes.size(); ++i) {
+    EXPECT_EQ(all.shapes[i].line, one.shapes[i].line);
+    EXPECT_EQ(all.shapes[i].ranges, one.shapes[i].ranges);
+  }
+  for (std::size_t i = 1; i < all.shapes.size(); ++i)
+    EXPECT_GT(all.shapes[i].line, all.shapes[i - 1].line);  // the scene's order
+}
+
+TEST(GenerateLodVrml97, SmallerShapesGetFewerLevelsWhenDifferentiatedBySize) {
+  // Two grids, the second under a quarter scale: --quality polygon=5
+  // --differentiate-by-size gives the large one 3 simplified levels and the
+  // small one, two halvings smaller, 5 - 2 = 3 levels (1 simplified).
+  std::string text = "#VRML V2.0 utf8\n";
+  for (const char* scale : {"1 1 1", "0.25 0.25 0.25"}) {
+    std::string shape = grid_scene("", 24);
+    shape = shape.substr(shape.find("DEF S"));
+    shape = shape.substr(0, shape.find("Transform"));
+    text += std::string("Transform { scale ") + scale + " children [ " + shape + " ] }\n";
+  }
+  LodOptions o{.differentiate_by_size = true};
+  o.manual["polygon"] = {.quality = 5};
+  const LodResult r = generate_lod_vrml97(vrml97::read_vrml97(text).scene, o);
+  ASSERT_EQ(r.shapes.size(), 2u);
+  EXPECT_EQ(r.shapes[0].levels.size(), 5u);  // level 0, 3 simplified, the empty one
+  EXPECT_EQ(r.shapes[1].levels.size(), 3u);
+  o.differentiate_by_size = false;
+  const LodResult same = generate_lod_vrml97(vrml97::read_vrml97(text).scene, o);
+  EXPECT_EQ(same.shapes[1].levels.size(), 5u);
+}
+
 TEST(GenerateLodVrml97, AnElevationGridGetsIndexedFaceSetLevelsWithItsTextureCoordinates) {
   std::string heights;
   for (int z = 0; z < 20; ++z)

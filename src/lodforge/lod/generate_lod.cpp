@@ -280,12 +280,8 @@ class Pipeline {
   int quality_for(const Job& j, double radius, double scale) const {
     auto it = opt_.manual.find(type_key(j.shape->type));
     if (it == opt_.manual.end() || it->second.quality < 0) return -1;
-    int q = it->second.quality;
-    if (opt_.differentiate_by_size && q >= 2 && largest_radius_ > 0 && radius > 0) {
-      double halvings = std::floor(std::log2(largest_radius_ / (radius * scale)));
-      q = std::max(2, q - int(std::max(0.0, halvings)));
-    }
-    return q;
+    const int q = it->second.quality;
+    return opt_.differentiate_by_size ? sized_quality(q, radius, scale, largest_radius_) : q;
   }
 
   void make_levels(Job& j) {
@@ -608,6 +604,12 @@ class Pipeline {
 };
 
 }  // namespace
+
+int sized_quality(int quality, double radius, double scale, double largest) {
+  if (quality < 2 || !(largest > 0) || !(radius > 0)) return quality;
+  const double halvings = std::floor(std::log2(largest / (radius * scale)));
+  return std::max(2, quality - int(std::max(0.0, halvings)));
+}
 
 LodResult generate_lod(const scene::Scene& scene, const LodOptions& options) {
   return Pipeline(scene, options).run();

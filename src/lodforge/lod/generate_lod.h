@@ -83,6 +83,12 @@ struct LodOptions {
   ProgressCallback progress;
 };
 
+/// Manual mode's level count for a shape of bounding radius `radius` x
+/// `scale` with --differentiate-by-size: one level fewer per halving of size
+/// below the scene's largest shape (`largest`, radius x scale), never below
+/// 2; `quality` itself otherwise (or when below 2 or a size is unknown).
+int sized_quality(int quality, double radius, double scale, double largest);
+
 struct LevelStatistics {
   std::size_t triangles = 0;
   std::size_t vertices = 0;

@@ -8,10 +8,14 @@
 #include "lodforge/lod/generate_lod_vrml97.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -38,7 +42,12 @@ struct Job {
   std::size_t occurrences = 0;
   ShapeMesh shape_mesh;
   Polygons polygons;
+  std::unique_ptr<GeometryReader> reader;  ///< set when the shape was read
+  Vec3 center;
+  double radius = 0;
   NodePtr lod;
+  Log log;                               ///< the shape's messages, merged in order
+  std::optional<ShapeStatistics> stats;  ///< set when it got levels
 };
 
 // The simplified levels of one shape as Shape nodes sharing one Coordinate.
@@ -136,7 +145,28 @@ class Pipeline {
     if (const auto fov = viewpoint_field_of_view(s); fov && !opt_.camera_angle_given)
       camera_angle_ = *fov;
     result_.camera_angle = camera_angle_;
-    for (Job& j : jobs_) make_lod(j);
+    // Shapes in parallel (nested loops of the simplifiers and the
+    // measurement too), within an arena of the requested size; messages and
+    // statistics in the scene's order, so the result is the same for any
+    // number of threads.
+    // Every shape is read first: --differentiate-by-size needs the largest.
+    tbb::task_arena arena(opt_.threads > 0 ? opt_.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) { read(jobs_[i]); });
+      for (const Job& j : jobs_)
+        if (j.reader) largest_radius_ = std::max(largest_radius_, j.radius * j.scale);
+      tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) {
+        if (jobs_[i].reader) make_lod(jobs_[i]);
+        // The level nodes are made: the working geometry is not needed.
+        jobs_[i].shape_mesh = {};
+        jobs_[i].polygons = {};
+        jobs_[i].reader.reset();
+      });
+    });
+    for (Job& j : jobs_) {
+      result_.log.merge(j.log);
+      if (j.stats) result_.shapes.push_back(std::move(*j.stats));
+    }
     std::unordered_map<const Node*, NodePtr> lods;
     for (const Job& j : jobs_)
       if (j.lod) lods[j.shape.get()] = j.lod;
@@ -199,29 +229,38 @@ class Pipeline {
                           .measure_samples = opt_.measure_samples,
                           .threads = opt_.threads};
     c.range.camera_angle = float(camera_angle_);
-    if (const ShapeTypeSettings* m = manual()) c.quality = m->quality;
     return c;
   }
 
-  void make_lod(Job& j) {
+  // The shape's mesh and bounding sphere; j.reader stays unset when it
+  // cannot be read or has no triangles.
+  void read(Job& j) {
     const std::string where = fmt::format("line {}", j.shape->first_line);
-    GeometryReader reader(*j.geometry, result_.log, where);
-    if (!reader.read(j.polygons)) return;
-    build_mesh(j.polygons, reader, opt_.triangulation, j.shape_mesh);
+    auto reader = std::make_unique<GeometryReader>(*j.geometry, j.log, where);
+    if (!reader->read(j.polygons)) return;
+    build_mesh(j.polygons, *reader, opt_.triangulation, j.shape_mesh);
     if (j.shape_mesh.mesh.triangles.empty()) return;
+    const Box3 box = j.shape_mesh.mesh.bounds();
+    j.center = (box.lo + box.hi) * 0.5f;
+    for (const Vec3& p : j.shape_mesh.mesh.positions)
+      j.radius = std::max(j.radius, double(length(p - j.center)));
+    j.reader = std::move(reader);
+  }
+
+  void make_lod(Job& j) {
     // The shape as it is: --extract 0 (level 0) or -1 (the scene cleaned),
     // --quality polygon=1 (no LOD).
-    const int quality = manual() ? manual()->quality : -1;
+    int quality = manual() ? manual()->quality : -1;
+    if (opt_.differentiate_by_size)
+      quality = sized_quality(quality, j.radius, j.scale, largest_radius_);
     if ((opt_.extract && *opt_.extract <= 0) || quality == 1) return;
     if (quality == 0) {  // --quality polygon=0: an empty node in its place
       j.lod = scene::make_node("Group");
       return;
     }
-    Box3 box = j.shape_mesh.mesh.bounds();
-    const Vec3 center = (box.lo + box.hi) * 0.5f;
-    double radius = 0;
-    for (const Vec3& p : j.shape_mesh.mesh.positions)
-      radius = std::max(radius, double(length(p - center)));
+    const GeometryReader& reader = *j.reader;
+    const Vec3 center = j.center;
+    const double radius = j.radius;
     ShapeStatistics stats{.type = j.geometry->type,
                           .name = j.shape->name,
                           .line = j.shape->first_line,
@@ -230,7 +269,9 @@ class Pipeline {
                           .scale = j.scale};
     stats.levels.push_back(
         {j.shape_mesh.mesh.triangle_count(), j.shape_mesh.mesh.vertex_count(), 0});
-    ChosenLevels chosen = choose_levels(j.shape_mesh.mesh, radius, choose_options());
+    ChooseLevelsOptions options = choose_options();
+    options.quality = quality;
+    ChosenLevels chosen = choose_levels(j.shape_mesh.mesh, radius, options);
     stats.method = chosen.method;
     stats.stop_reason = chosen.stop_reason;
     LevelBuilder builder(j, reader);
@@ -259,7 +300,7 @@ class Pipeline {
     } else {
       j.lod = lod_node(stats.ranges, center, std::move(levels));
     }
-    result_.shapes.push_back(std::move(stats));
+    j.stats = std::move(stats);
   }
 
   NodePtr lod_node(const std::vector<float>& ranges, const Vec3& center,
@@ -295,6 +336,7 @@ class Pipeline {
   LodResult& result_;
   bool x3d_ = false;
   double camera_angle_ = kDefaultFieldOfView;
+  double largest_radius_ = 0;  ///< of the shapes read, radius x scale
   std::vector<Job> jobs_;
   std::unordered_map<const Node*, std::size_t> job_of_;
   std::unordered_map<const Node*, double> seen_scale_;

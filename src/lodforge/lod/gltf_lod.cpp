@@ -6,9 +6,12 @@
 #include "lodforge/lod/gltf_lod.h"
 
 #include <fmt/core.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -695,38 +698,51 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
   const ChooseLevelsOptions choose = choose_options(options, range);
   const auto placed = gltf::node_placements(m);
   std::vector<MeshJob> jobs = collect_jobs(m, placed);
+  const bool no_levels =
+      choose.quality == 0 || choose.quality == 1 || (options.extract && *options.extract <= 0);
+  // Every mesh's levels, in parallel (the model is only read here); what
+  // they add to the model after, in the model's order, so the file is the
+  // same for any number of threads.
+  std::vector<std::string> kept(jobs.size()), failed(jobs.size());
+  std::atomic<std::size_t> done{0};
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t i) {
+      MeshJob& job = jobs[i];
+      level0_statistics(m, job);
+      kept[i] = full_detail_reason(m, job);
+      // Manual mode without simplified levels, --extract 0 (level 0) or -1
+      // (the scene cleaned): the mesh stays as it is.
+      if (kept[i].empty() && !no_levels) {
+        try {
+          simplify_primitives(m, job, choose);
+          plan_levels(job, m, options, range);
+        } catch (const DataError& e) {
+          failed[i] = fmt::format("{}: {}", mesh_label(m, job.mesh), e.what());
+        }
+      }
+      if (options.progress) options.progress("shapes", ++done, jobs.size());
+    });
+  });
+  for (const std::string& f : failed)
+    if (!f.empty()) throw DataError(f);
   BufferAppender out(m);
   bool any = false;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     MeshJob& job = jobs[i];
-    level0_statistics(m, job);
-    const std::string why = full_detail_reason(m, job);
-    if (!why.empty()) {
+    if (!kept[i].empty())
       result.log.warn(LogCategory::kGeneral, fmt::format("{}: kept at full detail because {}",
-                                                         mesh_label(m, job.mesh), why));
-    } else if (choose.quality == 0 || choose.quality == 1 ||
-               (options.extract && *options.extract <= 0)) {
-      // Manual mode without simplified levels, --extract 0 (level 0) or -1
-      // (the scene cleaned): the mesh stays as it is.
-    } else {
-      try {
-        simplify_primitives(m, job, choose);
-      } catch (const DataError& e) {
-        throw DataError(fmt::format("{}: {}", mesh_label(m, job.mesh), e.what()));
-      }
-      plan_levels(job, m, options, range);
-      if (!job.levels.empty()) {
-        write_level_meshes(out, m, job);
-        if (options.extract) {
-          extract_level(m, job, std::size_t(*options.extract));
-        } else {
-          attach_lod(m, job, placed, angle, result.log);
-          any = true;
-        }
+                                                         mesh_label(m, job.mesh), kept[i]));
+    if (!job.levels.empty()) {
+      write_level_meshes(out, m, job);
+      if (options.extract) {
+        extract_level(m, job, std::size_t(*options.extract));
+      } else {
+        attach_lod(m, job, placed, angle, result.log);
+        any = true;
       }
     }
     finish_statistics(m, job, placed);
-    if (options.progress) options.progress("shapes", i + 1, jobs.size());
   }
   out.finish();
   if (any && std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "MSFT_lod") ==

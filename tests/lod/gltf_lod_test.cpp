@@ -165,6 +165,16 @@ TEST(GltfLod, GivenRangesAreTheSwitchDistances) {
   EXPECT_NEAR(c.Get(0).GetNumberAsDouble() * 0.5, c.Get(1).GetNumberAsDouble() * 0.75, 1e-9);
 }
 
+TEST(GltfLod, MeshesInParallelGiveTheOneThreadModel) {
+  gltf::GltfScene one = shared_and_morphed(), all = shared_and_morphed();
+  const LodResult r1 = gltf_lod(one, {.threads = 1});
+  const LodResult r0 = gltf_lod(all, {.threads = 0});
+  EXPECT_EQ(all.model, one.model);
+  ASSERT_EQ(r0.shapes.size(), r1.shapes.size());
+  for (std::size_t i = 0; i < r0.shapes.size(); ++i)
+    EXPECT_EQ(r0.shapes[i].ranges, r1.shapes[i].ranges);
+}
+
 TEST(GltfLod, LevelsShareOneVertexSetWhoseAddedVerticesCopyTheirSourcesAttributes) {
   gltf::GltfScene s = shared_and_morphed();
   gltf_lod(s, {.threads = 1});

@@ -148,8 +148,8 @@ class Pipeline {
     // Shapes in parallel (nested loops of the simplifiers and the
     // measurement too), within an arena of the requested size; messages and
     // statistics in the scene's order, so the result is the same for any
-    // number of threads.
-    // Every shape is read first: --differentiate-by-size needs the largest.
+    // number of threads. Every shape is read before any is simplified:
+    // --differentiate-by-size needs the largest.
     tbb::task_arena arena(opt_.threads > 0 ? opt_.threads : tbb::task_arena::automatic);
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), jobs_.size(), [&](std::size_t i) { read(jobs_[i]); });
@@ -288,9 +288,7 @@ class Pipeline {
     levels.nodes.push_back(scene::make_node("Group"));
     errors.push_back(vanishing_error(radius));
     stats.levels.push_back({0, 0, vanishing_error(radius)});
-    RangeOptions range = opt_.range;
-    range.camera_angle = float(camera_angle_);
-    stats.ranges = switching_ranges(errors, std::max(j.scale, 1e-12), radius, range);
+    stats.ranges = switching_ranges(errors, std::max(j.scale, 1e-12), radius, options.range);
     if (manual()) apply_given_ranges(stats.ranges, manual()->ranges);
     // --extract K: level K alone in the shape's place (beyond the last
     // simplified level, the empty one).

@@ -449,9 +449,6 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
   job.radius = bounding_radius(all);
 }
 
-// The levels of the mesh: its primitives' switching points (and the points
-// where small primitives vanish), gathered within the level spacing, each
-// group switching at its latest point.
 // --ranges [polygon=]a,b,...: the first switch distances (mesh units, as a
 // VRML LOD's range) are the given ones, the vanishing one too when given.
 void apply_manual_ranges(MeshJob& job, const LodOptions& o) {
@@ -465,6 +462,9 @@ void apply_manual_ranges(MeshJob& job, const LodOptions& o) {
   job.vanish = ranges.back();
 }
 
+// The levels of the mesh: its primitives' switching points (and the points
+// where small primitives vanish), gathered within the level spacing, each
+// group switching at its latest point.
 void plan_levels(MeshJob& job, const Model& m, const LodOptions& o, const RangeOptions& range) {
   const double r = job.radius;
   if (!(r > 0) || !std::isfinite(r)) return;

@@ -5,6 +5,9 @@
 // meshopt_simplify (quadric collapse when meshoptimizer is not installed) to
 // the same count, twice: of the input itself, and of the model's own
 // full-resolution mesh (the same starting point as the octree's levels).
+// Then models built at a half and a quarter of the resolution (uniform
+// lattices of marching cubes at 100 %) beside the octree's cut and the peer at
+// their counts: what the cells' surface costs apart from the cut's order.
 // Then the colours: the input coloured by a smooth function of position, its
 // model at 20 %, and the mean colour error both ways.
 //
@@ -135,6 +138,34 @@ McBuildOptions build_options(const Settings& s) {
   return o;
 }
 
+// What the cells' geometry costs apart from the order of the cut: models built
+// at a half and a quarter of the resolution, whose full-resolution meshes are
+// uniform lattices of marching cubes, beside the octree's cut and the peer of
+// the octree's 100 % mesh at the same count.
+void uniform_lattices(const TriangleMesh& input, const Settings& s, int resolution,
+                      const McOctree& tree, const TriangleMesh& full) {
+  fmt::print(
+      "\n| resolution | triangles | uniform lattice H / mean | octree cut H / mean | {0} of octree "
+      "100 % H / mean | uniform / {0} | octree / {0} |\n|---|---|---|---|---|---|---|\n",
+      kPeer);
+  for (int divisor : {2, 4}) {
+    McBuildOptions o = build_options(s);
+    o.resolution = resolution / divisor;
+    TriangleMesh uniform = extract_mc_mesh(build_mc_octree(input, o).tree, {.percent = 100}).mesh;
+    const std::size_t n = uniform.triangle_count();
+    Measure u = measure(input, uniform, s.samples);
+    Measure cut = measure(
+        input, extract_mc_mesh(tree, {.triangles = static_cast<std::int64_t>(n)}).mesh, s.samples);
+    Measure q = measure(input, peer(full, n), s.samples);
+    fmt::print(
+        "| {} | {} | {:.3f} / {:.4f} | {:.3f} / {:.4f} | {:.3f} / {:.4f} | {:.2f} / {:.2f} | "
+        "{:.2f} / {:.2f} |\n",
+        o.resolution, n, u.hausdorff, u.mean, cut.hausdorff, cut.mean, q.hausdorff, q.mean,
+        u.hausdorff / q.hausdorff, u.mean / q.mean, cut.hausdorff / q.hausdorff, cut.mean / q.mean);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -142,7 +173,8 @@ int main(int argc, char** argv) try {
   TriangleMesh input = read_mesh(s.mesh);
   input.colors.clear();
   auto t0 = std::chrono::steady_clock::now();
-  McOctree tree = build_mc_octree(input, build_options(s)).tree;
+  McBuildResult built = build_mc_octree(input, build_options(s));
+  McOctree tree = std::move(built.tree);
   double build_s = seconds_since(t0);
   TriangleMesh full = extract_mc_mesh(tree, {.percent = 100}).mesh;
   fmt::print("## {} ({} triangles), octree depth {}, {} metric, built in {:.2f} s\n\n", s.mesh,
@@ -170,6 +202,8 @@ int main(int argc, char** argv) try {
     std::fflush(stdout);
     shown.push_back(std::move(m));
   }
+
+  uniform_lattices(input, s, built.stats.resolution, tree, full);
 
   TriangleMesh paint = colored(input);
   McOctree ctree = build_mc_octree(paint, build_options(s)).tree;

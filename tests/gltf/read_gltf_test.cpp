@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstring>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "gltf/gltf_corpus.h"
@@ -125,6 +127,21 @@ TEST_P(RoundTrip, WriteThenReadGivesTheSameScene) {
     // Writing is deterministic.
     EXPECT_EQ(bytes, write_gltf(second.scene, {.binary = binary}));
   }
+}
+
+// The file is written piece by piece from the model's own buffer (a GLB's BIN
+// chunk is not copied into a string first): the same bytes as write_gltf.
+TEST_P(RoundTrip, FileHoldsTheBytesOfTheWriter) {
+  const GltfReadResult first = read_gltf_file(GetParam());
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("lodforge_write_gltf_" + std::to_string(getpid())))
+          .string();
+  for (bool binary : {true, false}) {
+    const GltfWriteOptions o{.binary = binary, .output_dir = "."};
+    write_gltf_file(first.scene, out, o);
+    EXPECT_EQ(read_file(out), write_gltf(first.scene, o)) << GetParam();
+  }
+  std::filesystem::remove(out);
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, RoundTrip,

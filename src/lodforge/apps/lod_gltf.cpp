@@ -42,7 +42,7 @@ LodResult lod_gltf_file(const std::string& input, const std::string& output,
   LodResult result = gltf_lod(read.scene, options);
   log.merge(result.log);
   result.log = std::move(log);
-  gltf::write_gltf_file(read.scene, output, {.binary = binary});
+  gltf::write_gltf_file(std::move(read.scene), output, {.binary = binary});
   return result;
 }
 

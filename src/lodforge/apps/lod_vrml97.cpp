@@ -303,13 +303,13 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
     if (camera_angle <= 0)
       camera_angle = viewpoint_field_of_view(scene).value_or(kDefaultFieldOfView);
     const std::filesystem::path in(input), out(output);
-    const gltf::GltfScene g = gltf::lod_shapes_to_gltf(
+    gltf::GltfScene g = gltf::lod_shapes_to_gltf(
         shapes.shapes,
         {.camera_angle = camera_angle,
          .base_dir = input == "-" || !in.has_parent_path() ? "." : in.parent_path().string()},
         log);
     gltf::write_gltf_file(
-        g, output,
+        std::move(g), output,
         {.binary = format.empty() ? !output.ends_with(".gltf") && !output.ends_with(".gltf.gz")
                                   : format == "glb",
          .output_dir = output == "-" || !out.has_parent_path() ? "." : out.parent_path().string()});

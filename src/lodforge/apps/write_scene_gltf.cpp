@@ -15,11 +15,11 @@ void write_scene_gltf(const scene::Scene& scene, const std::string& target,
   Log log;
   const std::string from = base_dir.empty() ? "." : base_dir;
   const std::filesystem::path folder = std::filesystem::path(target).parent_path();
-  const gltf::GltfScene g =
+  gltf::GltfScene g =
       gltf::scene_to_gltf(scene, {.camera_angle = camera_angle, .base_dir = from}, log);
   if (!quiet) print_diagnostics(log.entries());
   gltf::write_gltf_file(
-      g, target,
+      std::move(g), target,
       {.binary = binary,
        .output_dir = target == "-" || folder.empty() ? std::string(".") : folder.string()});
 }

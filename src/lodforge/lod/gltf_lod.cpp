@@ -80,7 +80,7 @@ double bounding_radius(const std::vector<Vec3>& points) {
 // One triangle primitive's levels and where they are stored.
 struct PrimitiveLevels {
   int primitive = -1;
-  TriangleMesh input;
+  std::vector<Vec3> positions;  ///< the input's (what else it held is not needed once simplified)
   double radius = 0;
   std::size_t triangles = 0;              ///< level 0
   std::vector<ChosenLevel> levels;        ///< levels 1..n
@@ -156,13 +156,12 @@ std::string full_detail_reason(const Model& m, const MeshJob& job) {
 // which nothing moved is drawn through the input's own accessors instead.
 class VertexSet {
  public:
-  VertexSet(const TriangleMesh& input, bool positions_float)
+  VertexSet(const std::vector<Vec3>& input, bool positions_float)
       : input_(input), float_(positions_float) {}
   std::uint32_t add(const SimplifyResult& level, std::uint32_t v) {
     const std::uint32_t src = v < level.vertex_map.size() ? level.vertex_map[v] : kNone;
-    if (src >= input_.positions.size())
-      throw DataError("a simplified vertex without a source vertex");
-    const Vec3 q = input_.positions[src];
+    if (src >= input_.size()) throw DataError("a simplified vertex without a source vertex");
+    const Vec3 q = input_[src];
     // Positions that are not floats stay the source's (no moved position
     // could be stored in them).
     const Vec3 p = float_ ? level.mesh.positions[v] : q;
@@ -184,7 +183,7 @@ class VertexSet {
   bool any_moved() const { return any_moved_; }
 
  private:
-  const TriangleMesh& input_;
+  const std::vector<Vec3>& input_;
   bool float_;
   bool any_moved_ = false;
   using Key = std::array<std::uint32_t, 4>;
@@ -299,7 +298,7 @@ void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
   const auto position = attributes.find("POSITION");
   const bool positions_float =
       m.accessors[std::size_t(position->second)].componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  VertexSet set(pl.input, positions_float);
+  VertexSet set(pl.positions, positions_float);
   std::vector<std::vector<std::uint32_t>> indices(pl.levels.size());
   for (std::size_t k = 0; k < pl.levels.size(); ++k) {
     if (!used[k + 1]) continue;
@@ -314,7 +313,7 @@ void store_levels(BufferAppender& out, Model& m, PrimitiveLevels& pl,
     for (std::size_t k = 0; k < pl.levels.size(); ++k) {
       if (!used[k + 1]) continue;
       for (std::uint32_t& v : indices[k]) v = set.sources()[v];
-      pl.index_accessors[k] = index_accessor(out, m, indices[k], pl.input.positions.size());
+      pl.index_accessors[k] = index_accessor(out, m, indices[k], pl.positions.size());
     }
     return;
   }
@@ -443,7 +442,7 @@ void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions
       job.stats.method = chosen.method;
       job.stats.stop_reason = chosen.stop_reason;
     }
-    pl.input = std::move(input);
+    pl.positions = std::move(input.positions);
     job.primitives.push_back(std::move(pl));
   }
   job.radius = bounding_radius(all);
@@ -497,7 +496,7 @@ void plan_levels(MeshJob& job, const Model& m, const LodOptions& o, const RangeO
               pl.distances.begin());
       const auto& l = c > 0 ? pl.levels[std::size_t(c - 1)].measured : MeasuredLevel{};
       level.triangles += c > 0 ? l.level.mesh.triangle_count() : pl.triangles;
-      level.vertices += c > 0 ? l.level.mesh.vertex_count() : pl.input.vertex_count();
+      level.vertices += c > 0 ? l.level.mesh.vertex_count() : pl.positions.size();
       level.error = std::max(level.error, c > 0 ? l.error : 0.0);
     }
     if (level.choice == previous) continue;
@@ -546,6 +545,12 @@ void write_level_meshes(BufferAppender& out, Model& m, MeshJob& job) {
     }
     m.meshes.push_back(std::move(level));
     job.level_meshes.push_back(int(m.meshes.size() - 1));
+  }
+  // Written: the geometry is freed as the buffer grows (every mesh's levels
+  // held until the end made the peak).
+  for (PrimitiveLevels& pl : job.primitives) {
+    pl.positions = {};
+    pl.levels = {};
   }
 }
 

@@ -127,9 +127,9 @@ void write_lod_scene(const scene::Scene& scene, const fs::path& out, const std::
                      const vrml1::WriteOptions& write, double camera_angle, Log& log) {
   if (format == "gltf" || format == "glb") {
     const std::string folder = out.parent_path().string();
-    const gltf::GltfScene g =
-        gltf::scene_to_gltf(scene, {.camera_angle = camera_angle, .base_dir = folder}, log);
-    gltf::write_gltf_file(g, out.string(), {.binary = format == "glb", .output_dir = folder});
+    gltf::write_gltf_file(
+        gltf::scene_to_gltf(scene, {.camera_angle = camera_angle, .base_dir = folder}, log),
+        out.string(), {.binary = format == "glb", .output_dir = folder});
   } else if (format == "x3d") {
     vrml97::write_x3d_xml_file(vrml97::vrml1_to_vrml97(scene, {.x3d = true}, log), out.string());
   } else if (format == "vrml97" || format == "x3dv") {

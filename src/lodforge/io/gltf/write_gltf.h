@@ -24,13 +24,14 @@ struct GltfWriteOptions {
 };
 
 /// The file's bytes. Throws DataError if the model cannot be serialized
-/// (a merged buffer of 4 GiB or more in a `.glb`).
-std::string write_gltf(const GltfScene& scene, const GltfWriteOptions& options = {});
+/// (a merged buffer of 4 GiB or more in a `.glb`). The scene is taken by
+/// value: a caller done with it moves it in, and its bytes are not copied.
+std::string write_gltf(GltfScene scene, const GltfWriteOptions& options = {});
 
 /// Writes the file atomically (core/file_io.h: "-" is standard output, a
 /// ".gz" name is written gzip-compressed); sets output_dir from the path
-/// when it is empty. Throws DataError.
-void write_gltf_file(const GltfScene& scene, const std::string& path,
-                     GltfWriteOptions options = {});
+/// when it is empty. Throws DataError. A `.glb`'s buffer goes to the file
+/// from the model's own bytes (no copy of them is made; move the scene in).
+void write_gltf_file(GltfScene scene, const std::string& path, GltfWriteOptions options = {});
 
 }  // namespace lodforge::gltf

@@ -165,6 +165,37 @@ TEST(GltfLod, GivenRangesAreTheSwitchDistances) {
   EXPECT_NEAR(c.Get(0).GetNumberAsDouble() * 0.5, c.Get(1).GetNumberAsDouble() * 0.75, 1e-9);
 }
 
+TEST(GltfLod, SmallerMeshesGetFewerLevelsWhenDifferentiatedBySize) {
+  // The grid drawn at full size and a copy of it at a quarter (node scale):
+  // --quality polygon=5 --differentiate-by-size asks 3 halvings of the large
+  // one (those the spacing rule keeps are written) and of the small one, two
+  // halvings smaller, 1.
+  gltf::GltfScene s;
+  auto& m = s.model;
+  m.materials.emplace_back();
+  const int grid = add_wavy_grid(m);
+  m.meshes.push_back(m.meshes[std::size_t(grid)]);
+  tinygltf::Node a, b;
+  a.mesh = grid;
+  b.mesh = grid + 1;
+  b.scale = {0.25, 0.25, 0.25};
+  m.nodes = {a, b};
+  tinygltf::Scene scene;
+  scene.nodes = {0, 1};
+  m.scenes.push_back(scene);
+  LodOptions o{.differentiate_by_size = true, .threads = 1};
+  o.manual["polygon"] = {.quality = 5};
+  gltf::GltfScene sized = s;
+  const LodResult r = gltf_lod(sized, o);
+  ASSERT_EQ(r.shapes.size(), 2u);
+  EXPECT_EQ(r.shapes[1].levels.size(), 2u);  // level 0 and one halving
+  EXPECT_EQ(ids_of(sized.model.nodes[1]).size(), 1u);
+  EXPECT_GT(r.shapes[0].levels.size(), 2u);
+  o.differentiate_by_size = false;
+  const LodResult same = gltf_lod(s, o);
+  EXPECT_EQ(same.shapes[1].levels.size(), r.shapes[0].levels.size());
+}
+
 TEST(GltfLod, MeshesInParallelGiveTheOneThreadModel) {
   gltf::GltfScene one = shared_and_morphed(), all = shared_and_morphed();
   const LodResult r1 = gltf_lod(one, {.threads = 1});

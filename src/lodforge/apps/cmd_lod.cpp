@@ -209,7 +209,6 @@ void warn_unused_options(const Settings& s, bool gltf, Log& log) {
   std::vector<std::string> unused;
   if (s.join) unused.push_back("--join");
   if (s.no_lines) unused.push_back("--no-lines");
-  if (s.by_size && gltf) unused.push_back("--differentiate-by-size");
   if (s.export_flavour != "spec") unused.push_back("--export");
   if (unused.empty()) return;
   log.warn(LogCategory::kGeneral,

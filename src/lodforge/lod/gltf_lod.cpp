@@ -77,6 +77,11 @@ double bounding_radius(const std::vector<Vec3>& points) {
   return box_centred_sphere(points).radius;
 }
 
+double node_scale(const gltf::NodePlacement& p) {
+  const double s = p.world.max_scale();
+  return s > 0 && std::isfinite(s) ? s : 1.0;
+}
+
 // One triangle primitive's levels and where they are stored.
 struct PrimitiveLevels {
   int primitive = -1;
@@ -421,6 +426,37 @@ void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleM
 }
 
 // The levels of each triangle primitive, and the mesh's bounding radius.
+// The largest scale a job's mesh is drawn at (its statistics' scale).
+double job_scale(const MeshJob& job, const std::vector<gltf::NodePlacement>& placed) {
+  double scale = 0;
+  for (int n : job.nodes) scale = std::max(scale, node_scale(placed[std::size_t(n)]));
+  return scale;
+}
+
+// --differentiate-by-size: each job's manual level count from its size
+// (bounding radius of all its primitives, as simplify_primitives takes it,
+// times its largest scale) against the largest mesh's; read before any mesh
+// is simplified. Empty: every job takes `quality` as it is.
+std::vector<int> sized_qualities(const Model& m, const std::vector<MeshJob>& jobs,
+                                 const std::vector<gltf::NodePlacement>& placed, int quality) {
+  std::vector<double> radius(jobs.size(), 0);
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t i) {
+    std::vector<Vec3> all;
+    for (const auto& p : m.meshes[std::size_t(jobs[i].mesh)].primitives) {
+      const TriangleMesh mesh = gltf::primitive_mesh(m, p, jobs[i].mesh);
+      all.insert(all.end(), mesh.positions.begin(), mesh.positions.end());
+    }
+    radius[i] = bounding_radius(all);
+  });
+  double largest = 0;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    largest = std::max(largest, radius[i] * job_scale(jobs[i], placed));
+  std::vector<int> out(jobs.size());
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    out[i] = sized_quality(quality, radius[i], job_scale(jobs[i], placed), largest);
+  return out;
+}
+
 void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions& c) {
   std::vector<Vec3> all;
   const auto& primitives = m.meshes[std::size_t(job.mesh)].primitives;
@@ -554,11 +590,6 @@ void write_level_meshes(BufferAppender& out, Model& m, MeshJob& job) {
   }
 }
 
-double node_scale(const gltf::NodePlacement& p) {
-  const double s = p.world.max_scale();
-  return s > 0 && std::isfinite(s) ? s : 1.0;
-}
-
 // The animation channels of node `n`'s morph weights, given to its level
 // nodes too (the same samplers), so a level shown in its place moves as it.
 void animate_weights_of_levels(Model& m, int n, const Value::Array& level_nodes) {
@@ -680,8 +711,7 @@ void finish_statistics(const Model& m, MeshJob& job,
   job.stats.name = name.empty() ? fmt::format("mesh {}", job.mesh) : name;
   job.stats.occurrences = job.nodes.size();
   job.stats.radius = job.radius;
-  for (int n : job.nodes)
-    job.stats.scale = std::max(job.stats.scale, node_scale(placed[std::size_t(n)]));
+  job.stats.scale = job_scale(job, placed);
   if (job.stats.method.empty()) job.stats.method = "none";
   if (job.levels.empty()) return;
   for (const auto& l : job.levels) {
@@ -712,6 +742,9 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
   std::atomic<std::size_t> done{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
+    std::vector<int> quality;
+    if (options.differentiate_by_size && !no_levels)
+      quality = sized_qualities(m, jobs, placed, choose.quality);
     tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t i) {
       MeshJob& job = jobs[i];
       level0_statistics(m, job);
@@ -720,7 +753,9 @@ LodResult gltf_lod(gltf::GltfScene& scene, const LodOptions& options) {
       // (the scene cleaned): the mesh stays as it is.
       if (kept[i].empty() && !no_levels) {
         try {
-          simplify_primitives(m, job, choose);
+          ChooseLevelsOptions c = choose;
+          if (!quality.empty()) c.quality = quality[i];
+          simplify_primitives(m, job, c);
           plan_levels(job, m, options, range);
         } catch (const DataError& e) {
           failed[i] = fmt::format("{}: {}", mesh_label(m, job.mesh), e.what());

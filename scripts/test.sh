@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds lodforge and runs the whole test suite (installing what it needs).
 #   scripts/test.sh              Release build in build/
-#   scripts/test.sh --sanitize   AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
+#   scripts/test.sh --sanitize   AddressSanitizer + UndefinedBehaviorSanitizer build (clang) in
+#                                build-sanitize/, shared with the fuzzers (scripts/sanitized-build.sh)
 #                                (all tests but the bunny-scale quality runs, which take 4-10x
 #                                longer under the sanitizers; their code paths run there on
 #                                smaller inputs, and the Release run has them all; the two
@@ -21,11 +22,8 @@ build=build
 args=(-DCMAKE_BUILD_TYPE=Release)
 exclude=()
 if [ "${1:-}" = "--sanitize" ]; then
-  build=build-asan
-  # -O1 -g1: the sanitizers' own advice (usable speed, line numbers in reports); it compiles
-  # about 2.4x faster than -O2 -g, which keeps CI short.
-  args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
-        -DLODFORGE_SANITIZE=address,undefined -DLODFORGE_BENCH=OFF)
+  source scripts/sanitized-build.sh
+  build=$sanitized_build
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   slow=(ExtractMcMesh.BunnyCrackFreeBudgetsAndQuality
@@ -46,9 +44,13 @@ if [ "${1:-}" = "--sanitize" ]; then
         studio_browser)
   exclude=(-E "^($(IFS='|'; echo "${slow[*]}" | sed 's/\./\\./g'))\$")
 fi
-# Ninja for a new build folder; one made before keeps its own generator.
-generator=(-G Ninja)
-[ -f "$build/CMakeCache.txt" ] && generator=()
-cmake -S . -B "$build" "${generator[@]}" "${args[@]}" >/dev/null
+if [ "$build" = "${sanitized_build:-}" ]; then
+  configure_sanitized_build
+else
+  # Ninja for a new build folder; one made before keeps its own generator.
+  generator=(-G Ninja)
+  [ -f "$build/CMakeCache.txt" ] && generator=()
+  cmake -S . -B "$build" "${generator[@]}" "${args[@]}" >/dev/null
+fi
 cmake --build "$build" -j2
 ctest --test-dir "$build" --output-on-failure -j2 "${exclude[@]}"

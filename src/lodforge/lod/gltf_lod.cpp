@@ -425,7 +425,6 @@ void add_seam_attributes(const Model& m, const tinygltf::Primitive& p, TriangleM
     }
 }
 
-// The levels of each triangle primitive, and the mesh's bounding radius.
 // The largest scale a job's mesh is drawn at (its statistics' scale).
 double job_scale(const MeshJob& job, const std::vector<gltf::NodePlacement>& placed) {
   double scale = 0;
@@ -436,15 +435,20 @@ double job_scale(const MeshJob& job, const std::vector<gltf::NodePlacement>& pla
 // --differentiate-by-size: each job's manual level count from its size
 // (bounding radius of all its primitives, as simplify_primitives takes it,
 // times its largest scale) against the largest mesh's; read before any mesh
-// is simplified. Empty: every job takes `quality` as it is.
+// is simplified. A mesh that cannot be read keeps `quality` here (its error
+// is the simplification's, which names the first such mesh in order).
 std::vector<int> sized_qualities(const Model& m, const std::vector<MeshJob>& jobs,
                                  const std::vector<gltf::NodePlacement>& placed, int quality) {
   std::vector<double> radius(jobs.size(), 0);
   tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t i) {
     std::vector<Vec3> all;
-    for (const auto& p : m.meshes[std::size_t(jobs[i].mesh)].primitives) {
-      const TriangleMesh mesh = gltf::primitive_mesh(m, p, jobs[i].mesh);
-      all.insert(all.end(), mesh.positions.begin(), mesh.positions.end());
+    try {
+      for (const auto& p : m.meshes[std::size_t(jobs[i].mesh)].primitives) {
+        const TriangleMesh mesh = gltf::primitive_mesh(m, p, jobs[i].mesh);
+        all.insert(all.end(), mesh.positions.begin(), mesh.positions.end());
+      }
+    } catch (const DataError&) {
+      return;
     }
     radius[i] = bounding_radius(all);
   });
@@ -457,6 +461,7 @@ std::vector<int> sized_qualities(const Model& m, const std::vector<MeshJob>& job
   return out;
 }
 
+// The levels of each triangle primitive, and the mesh's bounding radius.
 void simplify_primitives(const Model& m, MeshJob& job, const ChooseLevelsOptions& c) {
   std::vector<Vec3> all;
   const auto& primitives = m.meshes[std::size_t(job.mesh)].primitives;

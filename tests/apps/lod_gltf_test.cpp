@@ -175,6 +175,36 @@ TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
   EXPECT_FALSE(fs::exists(path("d.wrl")));
 }
 
+// `format` of every corpus glTF file as GLB and as glTF JSON: valid, the
+// same triangles as the input (`info`), and a VRML name refused, nothing
+// written. A VRML 1.0 scene goes to a glTF stream by --format.
+using FormatGltf = LodGltf;
+TEST_F(FormatGltf, CorpusScenesAreWrittenBackAsGlbAndJson) {
+  const auto files = gltf_corpus_files();
+  if (files.empty()) GTEST_SKIP() << "no glTF corpus";
+  for (const std::string& input : files) {
+    const auto in = nlohmann::json::parse(run_lodforge("info --json '" + input + "'").out);
+    for (const char* name : {"f.glb", "f.gltf"}) {
+      const std::string output = path(name);
+      const CommandResult r = run_lodforge("format -q '" + input + "' -o " + output);
+      ASSERT_EQ(r.exit_code, 0) << input << ": " << r.err;
+      EXPECT_EQ(read_text(output).starts_with("glTF"), std::string(name) == "f.glb") << input;
+      EXPECT_EQ(validate(output)["errors"], 0) << input << " -> " << name;
+      const auto out = nlohmann::json::parse(run_lodforge("info --json " + output).out);
+      EXPECT_EQ(in["triangles"], out["triangles"]) << input << " -> " << name;
+      fs::remove(output);
+    }
+  }
+  const CommandResult bad = run_lodforge("format '" + files.front() + "' -o " + path("f.wrl"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("written as .gltf or .glb"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("f.wrl")));
+  const CommandResult piped = run_lodforge(
+      "format -q " + (kRepository / "examples/scene.wrl").string() + " -o - --format glb");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_TRUE(piped.out.starts_with("glTF"));
+}
+
 // The corpus torus through `lod` to t.glb.
 class TorusLod : public TempDirTest {
  protected:

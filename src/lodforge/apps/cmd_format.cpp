@@ -1,7 +1,7 @@
 // `lodforge format SCENE -o OUT`: read a VRML 1.0 scene and write it back
 // cleanly formatted with the writer options, or as VRML97 / X3D classic or
 // glTF (OUT.glb / .gltf); a VRML97 or X3D classic scene is written back as
-// VRML97 or X3D classic.
+// VRML97, X3D classic or glTF; a glTF scene as GLB or glTF JSON.
 #include <fmt/core.h>
 
 #include <array>
@@ -9,6 +9,7 @@
 
 #include "lodforge/apps/commands.h"
 #include "lodforge/apps/common_options.h"
+#include "lodforge/apps/lod_gltf.h"
 #include "lodforge/apps/lod_vrml97.h"
 #include "lodforge/apps/write_scene_gltf.h"
 #include "lodforge/apps/write_scene_vrml97.h"
@@ -33,10 +34,10 @@ void add_format_command(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand(
       "format",
       "Read a VRML 1.0 or Inventor scene and write it back formatted, or as VRML97, X3D classic "
-      "or glTF; a VRML97 or X3D classic scene as VRML97 or X3D classic");
+      "or glTF; a VRML97 or X3D scene as VRML97, X3D or glTF; a glTF scene as GLB or glTF JSON");
   cmd->add_option("SCENE", s->input,
-                  "VRML 1.0, Inventor, VRML97 or X3D file (.wrl, .iv, .x3dv, .x3d, optionally "
-                  ".gz; - = stdin for VRML 1.0 / Inventor)")
+                  "VRML 1.0, Inventor, VRML97, X3D or glTF file (.wrl, .iv, .x3dv, .x3d, .gltf, "
+                  ".glb, optionally .gz; - = stdin for VRML 1.0 / Inventor)")
       ->required();
   cmd->add_option("-o,--output", s->output,
                   "Output file (- = stdout; .gz: gzip-compressed; .glb / .gltf: converted to glTF; "
@@ -44,9 +45,10 @@ void add_format_command(CLI::App& app, Runner& run) {
       ->required();
   cmd->add_option(
          "--format", s->format,
-         "Convert to vrml97 (VRML97), x3dv (X3D classic) or x3d (X3D XML) (default: from the "
-         "output name, else VRML 1.0 / Inventor as read)")
-      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d"}));
+         "Convert to vrml97 (VRML97), x3dv (X3D classic), x3d (X3D XML), glb (glTF binary) or "
+         "gltf (glTF JSON); a glTF scene to glb or gltf (default: from the output name, else as "
+         "read)")
+      ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "glb", "gltf"}));
   add_scene_read_options(*cmd, s->read);
   add_writer_options(*cmd, s->write);
   cmd->callback([s, &run] {
@@ -54,6 +56,12 @@ void add_format_command(CLI::App& app, Runner& run) {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
       make_output_folder(s->output);
+      if (is_gltf_input(s->input)) {
+        Log log;
+        format_gltf_file(s->input, s->output, s->format, log);
+        if (!s->read.quiet) print_diagnostics(log.entries());
+        return 0;
+      }
       if (is_vrml97_input(s->input)) {
         vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
         // A glTF output takes its images from the input's folder instead.
@@ -64,16 +72,18 @@ void add_format_command(CLI::App& app, Runner& run) {
         return 0;
       }
       vrml1::ReadResult r = read_scene(s->input, s->read);
+      const bool as_gltf = writes_gltf(s->output, s->format);
       const std::string as_vrml97 = vrml97_format_of(s->format, s->output);
-      if (!as_vrml97.empty() || !gltf::is_gltf_path(s->output))
-        relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
+      // A glTF output takes its images from the input's folder instead.
+      if (!as_gltf) relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
       if (!as_vrml97.empty()) {
         write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet);
-      } else if (gltf::is_gltf_path(s->output)) {
+      } else if (as_gltf) {
         const std::filesystem::path in(s->input);
         write_scene_gltf(r.scene, s->output,
                          s->input == "-" || !in.has_parent_path() ? "." : in.parent_path().string(),
-                         0, gltf_binary_name(s->output), s->read.quiet);
+                         0, s->format.empty() ? gltf_binary_name(s->output) : s->format == "glb",
+                         s->read.quiet);
       } else {
         vrml1::write_vrml1_file(r.scene, s->output, s->write);
       }

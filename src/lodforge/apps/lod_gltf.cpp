@@ -16,6 +16,20 @@ bool ends_with_lower(std::string path, std::string_view suffix) {
   return path.ends_with(suffix);
 }
 
+// The output's encoding (lod_gltf_file's rule): true for GLB.
+bool binary_output(const std::string& input, const std::string& output, const std::string& format) {
+  if (format == "glb" || format == "gltf") return format == "glb";
+  if (!format.empty())
+    throw DataError(
+        fmt::format("a glTF scene is written as glTF (--format gltf or glb), not {}", format));
+  if (ends_with_lower(output, ".glb") || ends_with_lower(output, ".gltf"))
+    return ends_with_lower(output, ".glb");
+  if (output != "-")
+    throw DataError(
+        fmt::format("{}: a glTF scene is written as .gltf or .glb (or give --format)", output));
+  return ends_with_lower(input, ".glb");
+}
+
 }  // namespace
 
 bool is_gltf_input(const std::string& input) {
@@ -24,18 +38,7 @@ bool is_gltf_input(const std::string& input) {
 
 LodResult lod_gltf_file(const std::string& input, const std::string& output,
                         const std::string& format, const LodOptions& options) {
-  bool binary = ends_with_lower(input, ".glb");
-  if (format == "glb" || format == "gltf") {
-    binary = format == "glb";
-  } else if (!format.empty()) {
-    throw DataError(
-        fmt::format("a glTF scene is written as glTF (--format gltf or glb), not {}", format));
-  } else if (ends_with_lower(output, ".glb") || ends_with_lower(output, ".gltf")) {
-    binary = ends_with_lower(output, ".glb");
-  } else if (output != "-") {
-    throw DataError(
-        fmt::format("{}: a glTF scene is written as .gltf or .glb (or give --format)", output));
-  }
+  const bool binary = binary_output(input, output, format);
   gltf::GltfReadResult read = gltf::read_gltf_file(input);
   Log log;
   for (const auto& w : read.warnings) log.warn(LogCategory::kParse, input + ": " + w);
@@ -44,6 +47,14 @@ LodResult lod_gltf_file(const std::string& input, const std::string& output,
   result.log = std::move(log);
   gltf::write_gltf_file(std::move(read.scene), output, {.binary = binary});
   return result;
+}
+
+void format_gltf_file(const std::string& input, const std::string& output,
+                      const std::string& format, Log& log) {
+  const bool binary = binary_output(input, output, format);
+  gltf::GltfReadResult read = gltf::read_gltf_file(input);
+  for (const auto& w : read.warnings) log.warn(LogCategory::kParse, input + ": " + w);
+  gltf::write_gltf_file(std::move(read.scene), output, {.binary = binary});
 }
 
 }  // namespace lodforge::apps

@@ -1,8 +1,9 @@
 #pragma once
-/// `lodforge lod` for glTF scenes: read a `.gltf`/`.glb`, run gltf_lod, write
-/// `.gltf` or `.glb` (lod/gltf_lod.h).
+/// `lodforge lod` and `format` for glTF scenes: read a `.gltf`/`.glb`, run
+/// gltf_lod (lod/gltf_lod.h) or not, write `.gltf` or `.glb`.
 #include <string>
 
+#include "lodforge/core/log.h"
 #include "lodforge/lod/generate_lod.h"
 
 namespace lodforge::apps {
@@ -17,5 +18,12 @@ bool is_gltf_input(const std::string& input);
 /// DataError for a bad input or an output format that is not glTF.
 LodResult lod_gltf_file(const std::string& input, const std::string& output,
                         const std::string& format, const LodOptions& options);
+
+/// `format` of a glTF scene: `input` read and written back to `output`, in the
+/// encoding chosen as by lod_gltf_file (a `.gltf` gets its buffer embedded;
+/// external images keep their files, their URIs rewritten from the output's
+/// folder). Reader warnings go to `log`. Throws DataError as lod_gltf_file.
+void format_gltf_file(const std::string& input, const std::string& output,
+                      const std::string& format, Log& log);
 
 }  // namespace lodforge::apps

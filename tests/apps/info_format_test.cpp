@@ -150,6 +150,35 @@ TEST_F(Cli, InlinesAreReadOnlyWhenAskedAndNeverOutsideTheFolder) {
 // `format` on VRML97 and X3D classic scenes: written back in their own
 // encoding, the same scene read again; VRML97 to X3D classic by the output
 // name; an X3D scene as VRML97 on request.
+// The writer options lay out VRML97 as they do VRML 1.0 (its writer is the
+// same); for an X3D XML or glTF output they are named in a warning.
+TEST_F(Cli, WriterOptionsLayOutVrml97AndAreNamedWhereUnused) {
+  const std::string& in = kExample;
+  ASSERT_EQ(run_lodforge("format -q " + in + " --format vrml97 -o " + path("a.wrl")).exit_code, 0);
+  auto r = run_lodforge("format " + in + " --format vrml97 --minimize -o " + path("b.wrl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("--minimize"), std::string::npos) << r.err;
+  EXPECT_LT(read_text(path("b.wrl")).size(), read_text(path("a.wrl")).size());
+  // The same scene (SFImage values are kept as read, so compared by what
+  // they draw).
+  auto info = [&](const std::string& f) {
+    auto j = nlohmann::json::parse(run_lodforge("info --json " + f).out);
+    return std::make_pair(j["shapes"], j["triangles"]);
+  };
+  EXPECT_EQ(info(path("a.wrl")), info(path("b.wrl")));
+  EXPECT_GT(info(path("b.wrl")).second.get<std::size_t>(), 0u);
+  r = run_lodforge("format " + in + " --minimize -o " + path("c.x3d"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --minimize is not used for an X3D XML output"), std::string::npos)
+      << r.err;
+  r = run_lodforge("format " + path("a.wrl") + " --floats-per-line 2 --no-tabs -o " +
+                   path("d.glb"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --floats-per-line, --no-tabs are not used for a glTF output"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST_F(Cli, FormatWritesVrml97AndX3dClassicScenesBackAsTheSameScene) {
   std::vector<std::string> files;
   for (const char* dir : {"/vrml2", "/x3d"}) {

@@ -58,6 +58,7 @@ void add_format_command(CLI::App& app, Runner& run) {
       make_output_folder(s->output);
       if (is_gltf_input(s->input)) {
         Log log;
+        warn_unused_writer_options(s->write, "a glTF output", log);
         format_gltf_file(s->input, s->output, s->format, log);
         if (!s->read.quiet) print_diagnostics(log.entries());
         return 0;
@@ -67,7 +68,7 @@ void add_format_command(CLI::App& app, Runner& run) {
         // A glTF output takes its images from the input's folder instead.
         if (!writes_gltf(s->output, s->format))
           relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
-        write_vrml97_as(r.scene, s->input, s->output, s->format, 0, r.log);
+        write_vrml97_as(r.scene, s->input, s->output, s->format, 0, r.log, s->write);
         if (!s->read.quiet) print_diagnostics(r.log.entries());
         return 0;
       }
@@ -77,8 +78,11 @@ void add_format_command(CLI::App& app, Runner& run) {
       // A glTF output takes its images from the input's folder instead.
       if (!as_gltf) relocate_to_output(r.scene, s->input, s->output, s->read.quiet);
       if (!as_vrml97.empty()) {
-        write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet);
+        write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet, s->write);
       } else if (as_gltf) {
+        Log log;
+        warn_unused_writer_options(s->write, "a glTF output", log);
+        if (!s->read.quiet) print_diagnostics(log.entries());
         const std::filesystem::path in(s->input);
         write_scene_gltf(r.scene, s->output,
                          s->input == "-" || !in.has_parent_path() ? "." : in.parent_path().string(),

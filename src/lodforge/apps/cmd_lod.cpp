@@ -239,10 +239,12 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
     const std::string as_vrml97 =
         !vrml97 && !gltf && !as_gltf ? vrml97_format_of(s.format, out.output) : "";
     if (gltf || vrml97) make_output_folder(out.output);
-    LodResult result = gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
-                       : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet)
-                                : LodResult{};
+    LodResult result =
+        gltf     ? lod_gltf_file(input, out.output, s.format, drawn)
+        : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet, s.write)
+                 : LodResult{};
     if (vrml97 || gltf) warn_unused_options(s, gltf, result.log);
+    if (gltf) warn_unused_writer_options(s.write, "a glTF output", result.log);
     if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
       read.quiet = true;  // the reader's warnings are printed here, off the bar
@@ -252,6 +254,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
         print_diagnostics(r.log.entries());
       }
       result = generate_lod(std::move(r.scene), drawn);
+      if (as_gltf) warn_unused_writer_options(s.write, "a glTF output", result.log);
     }
     bar.clear();
     if (!s.read.quiet) {
@@ -274,7 +277,7 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
                          s.format.empty() ? gltf_binary_name(target) : s.format == "glb",
                          s.read.quiet);
       else if (!as_vrml97.empty())
-        write_scene_vrml97(result.scene, target, as_vrml97, s.read.quiet);
+        write_scene_vrml97(result.scene, target, as_vrml97, s.read.quiet, s.write);
       else
         vrml1::write_vrml1_file(result.scene, target, s.write);
     }

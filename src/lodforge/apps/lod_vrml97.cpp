@@ -291,8 +291,10 @@ bool writes_gltf(const std::string& output, const std::string& format) {
 }
 
 void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
-                     const std::string& format, double camera_angle, Log& log) {
+                     const std::string& format, double camera_angle, Log& log,
+                     const vrml1::WriteOptions& write) {
   if (writes_gltf(output, format)) {
+    warn_unused_writer_options(write, "a glTF output", log);
     const Vrml97LodShapes shapes = vrml97_lod_shapes(scene, log);
     if (!shapes.skipped.empty()) {
       std::string list;
@@ -314,20 +316,22 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
                                   : format == "glb",
          .output_dir = output == "-" || !out.has_parent_path() ? "." : out.parent_path().string()});
   } else if (writes_x3d_xml(output, format)) {
+    warn_unused_writer_options(write, "an X3D XML output", log);
     vrml97::write_x3d_xml_file(scene, output);
   } else {
-    vrml97::write_vrml97_file(scene, output);
+    vrml97::write_vrml97_file(scene, output, write);
   }
 }
 
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
-                          const std::string& format, const LodOptions& options, bool quiet) {
+                          const std::string& format, const LodOptions& options, bool quiet,
+                          const vrml1::WriteOptions& write) {
   vrml97::ReadResult r = read_vrml97_as(input, output, format);
   LodResult result = generate_lod_vrml97(std::move(r.scene), options);
   result.log.merge(r.log);
   // A glTF output takes its images from the input's folder instead.
   if (!writes_gltf(output, format)) relocate_to_output(result.scene, input, output, quiet);
-  write_vrml97_as(result.scene, input, output, format, result.camera_angle, result.log);
+  write_vrml97_as(result.scene, input, output, format, result.camera_angle, result.log, write);
   return result;
 }
 

@@ -3,6 +3,7 @@
 /// encoding (from --format or the output name), and the run from file to file.
 #include <string>
 
+#include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/lod/generate_lod.h"
 
@@ -35,9 +36,11 @@ bool writes_gltf(const std::string& output, const std::string& format);
 /// `camera_angle`, or the first Viewpoint's fieldOfView when it is <= 0;
 /// ImageTexture files resolved from the input's folder; what is not drawn
 /// named in a warning in `log`), in X3D XML when writes_x3d_xml, else in the
-/// classic encoding its header names. Throws DataError.
+/// classic encoding its header names, laid out by `write` (a warning in `log`
+/// when it is given for X3D XML or glTF). Throws DataError.
 void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
-                     const std::string& format, double camera_angle, Log& log);
+                     const std::string& format, double camera_angle, Log& log,
+                     const vrml1::WriteOptions& write = {});
 
 /// Reads `input` and sets the output encoding as read_vrml97_as, runs
 /// generate_lod_vrml97 and writes `output` atomically (write_vrml97_as), its
@@ -46,6 +49,7 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
 /// (nothing written) for a parse error or a scene the output encoding
 /// cannot hold.
 LodResult lod_vrml97_file(const std::string& input, const std::string& output,
-                          const std::string& format, const LodOptions& options, bool quiet = false);
+                          const std::string& format, const LodOptions& options, bool quiet = false,
+                          const vrml1::WriteOptions& write = {});
 
 }  // namespace lodforge::apps

@@ -19,14 +19,15 @@ std::string vrml97_format_of(const std::string& format, const std::string& targe
 }
 
 void write_scene_vrml97(const scene::Scene& scene, const std::string& target,
-                        const std::string& encoding, bool quiet) {
+                        const std::string& encoding, bool quiet, const vrml1::WriteOptions& write) {
   Log log;
   const scene::Scene out = vrml97::vrml1_to_vrml97(scene, {.x3d = encoding != "vrml97"}, log);
+  if (encoding == "x3d") warn_unused_writer_options(write, "an X3D XML output", log);
   if (!quiet) print_diagnostics(log.entries());
   if (encoding == "x3d")
     vrml97::write_x3d_xml_file(out, target);
   else
-    vrml97::write_vrml97_file(out, target);
+    vrml97::write_vrml97_file(out, target, write);
 }
 
 }  // namespace lodforge::apps

@@ -22,9 +22,10 @@ std::string write_vrml97(const scene::Scene& scene) {
   return vrml1::write_vrml1(scene);
 }
 
-void write_vrml97_file(const scene::Scene& scene, const std::string& path) {
+void write_vrml97_file(const scene::Scene& scene, const std::string& path,
+                       const vrml1::WriteOptions& options) {
   check_header(scene);
-  vrml1::write_vrml1_file(scene, path);
+  vrml1::write_vrml1_file(scene, path, options);
 }
 
 }  // namespace lodforge::vrml97

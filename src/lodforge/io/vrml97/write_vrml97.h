@@ -6,6 +6,7 @@
 /// their shortest round-trip form, shared nodes without a name given one.
 #include <string>
 
+#include "lodforge/io/vrml1/write_vrml1.h"
 #include "lodforge/scene/node.h"
 
 namespace lodforge::vrml97 {
@@ -15,7 +16,9 @@ namespace lodforge::vrml97 {
 std::string write_vrml97(const scene::Scene& scene);
 
 /// Writes the scene to `path` ("-" = standard output) through a temporary
-/// file renamed into place (".gz": gzip-compressed). Throws DataError.
-void write_vrml97_file(const scene::Scene& scene, const std::string& path);
+/// file renamed into place (".gz": gzip-compressed), laid out by `options`
+/// (the VRML 1.0 writer's). Throws DataError.
+void write_vrml97_file(const scene::Scene& scene, const std::string& path,
+                       const vrml1::WriteOptions& options = {});
 
 }  // namespace lodforge::vrml97

@@ -56,9 +56,11 @@ void add_format_command(CLI::App& app, Runner& run) {
       check_output_paths(std::array{OutputPath{s->output, "the formatted scene"}},
                          std::array{s->input});
       make_output_folder(s->output);
+      Log unused;
+      warn_unused_writer_options(s->write, s->input, s->output, s->format, unused);
+      if (!s->read.quiet) print_diagnostics(unused.entries());
       if (is_gltf_input(s->input)) {
         Log log;
-        warn_unused_writer_options(s->write, "a glTF output", log);
         format_gltf_file(s->input, s->output, s->format, log);
         if (!s->read.quiet) print_diagnostics(log.entries());
         return 0;
@@ -80,9 +82,6 @@ void add_format_command(CLI::App& app, Runner& run) {
       if (!as_vrml97.empty()) {
         write_scene_vrml97(r.scene, s->output, as_vrml97, s->read.quiet, s->write);
       } else if (as_gltf) {
-        Log log;
-        warn_unused_writer_options(s->write, "a glTF output", log);
-        if (!s->read.quiet) print_diagnostics(log.entries());
         const std::filesystem::path in(s->input);
         write_scene_gltf(r.scene, s->output,
                          s->input == "-" || !in.has_parent_path() ? "." : in.parent_path().string(),

@@ -244,7 +244,6 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
         : vrml97 ? lod_vrml97_file(input, out.output, s.format, drawn, s.read.quiet, s.write)
                  : LodResult{};
     if (vrml97 || gltf) warn_unused_options(s, gltf, result.log);
-    if (gltf) warn_unused_writer_options(s.write, "a glTF output", result.log);
     if (!vrml97 && !gltf) {
       SceneReadSettings read = s.read;
       read.quiet = true;  // the reader's warnings are printed here, off the bar
@@ -254,8 +253,8 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
         print_diagnostics(r.log.entries());
       }
       result = generate_lod(std::move(r.scene), drawn);
-      if (as_gltf) warn_unused_writer_options(s.write, "a glTF output", result.log);
     }
+    warn_unused_writer_options(s.write, input, out.output, s.format, result.log);
     bar.clear();
     if (!s.read.quiet) {
       std::vector<Diagnostic> show;

@@ -1,7 +1,6 @@
 #include "lodforge/apps/common_options.h"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cctype>
@@ -75,18 +74,6 @@ void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w) {
       ->check(CLI::Range(1, 1000000));
   cmd.add_flag("--no-tabs", w.no_tabs, "No indentation");
   cmd.add_flag("--minimize", w.minimize, "Smallest output: no indentation, no line breaks");
-}
-
-void warn_unused_writer_options(const vrml1::WriteOptions& w, const std::string& what, Log& log) {
-  const vrml1::WriteOptions d;
-  std::vector<std::string> given;
-  if (w.floats_per_line != d.floats_per_line) given.push_back("--floats-per-line");
-  if (w.ints_per_line != d.ints_per_line) given.push_back("--ints-per-line");
-  if (w.no_tabs) given.push_back("--no-tabs");
-  if (w.minimize) given.push_back("--minimize");
-  if (given.empty()) return;
-  log.warn(LogCategory::kGeneral, fmt::format("{} {} not used for {}", fmt::join(given, ", "),
-                                              given.size() == 1 ? "is" : "are", what));
 }
 
 void print_diagnostic(const Diagnostic& d) {

@@ -35,11 +35,6 @@ extern const CLI::Validator kFiniteNumber;
 /// --floats-per-line, --ints-per-line, --no-tabs, --minimize.
 void add_writer_options(CLI::App& cmd, vrml1::WriteOptions& w);
 
-/// A warning in `log` naming the writer options given (those of `w` not at
-/// their defaults) when the output, `what` ("an X3D XML output", "a glTF
-/// output"), is not laid out by them.
-void warn_unused_writer_options(const vrml1::WriteOptions& w, const std::string& what, Log& log);
-
 /// Prints a diagnostic on stderr as "warning: text".
 void print_diagnostic(const Diagnostic& d);
 /// Prints diagnostics on stderr, the same message repeated at several places

@@ -3,6 +3,7 @@
 #include "lodforge/apps/common_options.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cctype>
@@ -290,11 +291,26 @@ bool writes_gltf(const std::string& output, const std::string& format) {
   return format == "gltf" || format == "glb" || (format.empty() && gltf::is_gltf_path(output));
 }
 
+void warn_unused_writer_options(const vrml1::WriteOptions& write, const std::string& input,
+                                const std::string& output, const std::string& format, Log& log) {
+  const bool gltf = gltf::is_gltf_path(input) || writes_gltf(output, format);
+  if (!gltf && !writes_x3d_xml(output, format)) return;
+  const vrml1::WriteOptions d;
+  std::vector<std::string> given;
+  if (write.floats_per_line != d.floats_per_line) given.push_back("--floats-per-line");
+  if (write.ints_per_line != d.ints_per_line) given.push_back("--ints-per-line");
+  if (write.no_tabs) given.push_back("--no-tabs");
+  if (write.minimize) given.push_back("--minimize");
+  if (given.empty()) return;
+  log.warn(LogCategory::kGeneral, fmt::format("{} {} not used for {}", fmt::join(given, ", "),
+                                              given.size() == 1 ? "is" : "are",
+                                              gltf ? "a glTF output" : "an X3D XML output"));
+}
+
 void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
                      const std::string& format, double camera_angle, Log& log,
                      const vrml1::WriteOptions& write) {
   if (writes_gltf(output, format)) {
-    warn_unused_writer_options(write, "a glTF output", log);
     const Vrml97LodShapes shapes = vrml97_lod_shapes(scene, log);
     if (!shapes.skipped.empty()) {
       std::string list;
@@ -316,7 +332,6 @@ void write_vrml97_as(const scene::Scene& scene, const std::string& input, const 
                                   : format == "glb",
          .output_dir = output == "-" || !out.has_parent_path() ? "." : out.parent_path().string()});
   } else if (writes_x3d_xml(output, format)) {
-    warn_unused_writer_options(write, "an X3D XML output", log);
     vrml97::write_x3d_xml_file(scene, output);
   } else {
     vrml97::write_vrml97_file(scene, output, write);

@@ -30,14 +30,20 @@ vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& o
 /// or it is empty and the name ends in .gltf or .glb (optionally .gz).
 bool writes_gltf(const std::string& output, const std::string& format);
 
+/// A warning in `log` naming the writer options given (those of `write` not
+/// at their defaults) when the scene read from `input` is written to
+/// `output` as glTF or X3D XML, which they do not lay out.
+void warn_unused_writer_options(const vrml1::WriteOptions& write, const std::string& input,
+                                const std::string& output, const std::string& format, Log& log);
+
 /// Writes a scene read by read_vrml97_as (from `input`) to `output`
 /// atomically: as glTF when writes_gltf (every Shape drawn a primitive in
 /// world space, each LOD node a node with MSFT_lod, screen coverages for
 /// `camera_angle`, or the first Viewpoint's fieldOfView when it is <= 0;
 /// ImageTexture files resolved from the input's folder; what is not drawn
 /// named in a warning in `log`), in X3D XML when writes_x3d_xml, else in the
-/// classic encoding its header names, laid out by `write` (a warning in `log`
-/// when it is given for X3D XML or glTF). Throws DataError.
+/// classic encoding its header names, laid out by `write` there. Throws
+/// DataError.
 void write_vrml97_as(const scene::Scene& scene, const std::string& input, const std::string& output,
                      const std::string& format, double camera_angle, Log& log,
                      const vrml1::WriteOptions& write = {});

@@ -22,7 +22,6 @@ void write_scene_vrml97(const scene::Scene& scene, const std::string& target,
                         const std::string& encoding, bool quiet, const vrml1::WriteOptions& write) {
   Log log;
   const scene::Scene out = vrml97::vrml1_to_vrml97(scene, {.x3d = encoding != "vrml97"}, log);
-  if (encoding == "x3d") warn_unused_writer_options(write, "an X3D XML output", log);
   if (!quiet) print_diagnostics(log.entries());
   if (encoding == "x3d")
     vrml97::write_x3d_xml_file(out, target);

@@ -15,8 +15,8 @@ std::string vrml97_format_of(const std::string& format, const std::string& targe
 
 /// Converts `scene` (vrml97::vrml1_to_vrml97) and writes it atomically to
 /// `target` in `encoding` (vrml97_format_of: "vrml97", "x3dv" or "x3d").
-/// Laid out by `write` (for X3D XML, a warning when it is given). Conversion
-/// warnings go to stderr unless `quiet`. Throws DataError.
+/// Laid out by `write` (but X3D XML). Conversion warnings go to stderr unless
+/// `quiet`. Throws DataError.
 void write_scene_vrml97(const scene::Scene& scene, const std::string& target,
                         const std::string& encoding, bool quiet,
                         const vrml1::WriteOptions& write = {});

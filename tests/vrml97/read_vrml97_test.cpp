@@ -116,6 +116,51 @@ TEST(ReadVrml97, ErrorsNameFileLineColumnAndWhatWasExpected) {
   EXPECT_NE(error_of("#VRML V2.0 utf8\nROUTE a.b FROM c.d"), "");
 }
 
+std::string with_line_ends(std::string_view text, std::string_view end) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n')
+      out.append(end);
+    else
+      out.push_back(c);
+  }
+  return out;
+}
+
+std::string linefeeds_only(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\r')
+      out.push_back(text[i]);
+    else if (i + 1 == text.size() || text[i + 1] != '\n')
+      out.push_back('\n');
+  }
+  return out;
+}
+
+// Old Mac files end their lines with a carriage return alone: the header and
+// each comment stop there, and messages count those lines.
+TEST(ReadVrml97, LinesEndAtCarriageReturnsAsWellAsLinefeeds) {
+  using namespace std::string_literals;
+  const auto files = testing::vrml97_corpus_files();
+  ASSERT_FALSE(files.empty());
+  const ReadResult lf = read_vrml97_file(files.front());
+  const std::string written = write_vrml97(lf.scene);
+  for (std::string_view end : {"\r", "\r\n"}) {
+    const ReadResult other = read_vrml97(with_line_ends(written, end), {.source_name = "cr"});
+    EXPECT_EQ(other.scene.header, lf.scene.header);
+    // Statements kept as text (PROTO bodies) keep their line ends as read.
+    EXPECT_EQ(linefeeds_only(write_vrml97(other.scene)), written) << files.front();
+  }
+  EXPECT_EQ(error_of("#VRML V2.0 utf8 # made on a Mac\r# a comment\rTransform { translation 1 2 }"),
+            "t.wrl:3:29: expected a number for SFVec3f field 'translation', got '}'");
+  // A header line holding control characters is written back as the header it was read as.
+  const ReadResult odd = read_vrml97("#VRML V2.0 utf8\0\1 x\r\rGroup {}\r"s);
+  EXPECT_EQ(odd.scene.header, "#VRML V2.0 utf8\0\1 x"s);
+  ASSERT_EQ(odd.scene.roots.size(), 1u);
+  EXPECT_EQ(read_vrml97(write_vrml97(odd.scene)).scene.header, odd.scene.header);
+}
+
 TEST(ReadVrml97, DeepNestingIsAnError) {
   std::string text = "#VRML V2.0 utf8\n";
   for (int i = 0; i < 300; ++i) text += "Group { children [ ";

@@ -21,14 +21,14 @@ void Lexer::skip_space(bool commas) {
   const char* p = cursor_;
   while (p < end_) {
     char c = *p;
-    if (c == '\n') {
+    if (ends_line(p, end_)) {
       ++line_;
       line_start_ = ++p;
     } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v' ||
                (commas && c == ',')) {
       ++p;
     } else if (c == '#') {
-      while (p < end_ && *p != '\n') ++p;
+      while (p < end_ && !ends_comment(*p)) ++p;
     } else {
       break;
     }
@@ -74,7 +74,7 @@ Token Lexer::scan() {
       const char* p = cursor_ + 1;
       while (p < end_ && *p != '"') {
         if (*p == '\\' && p + 1 < end_) ++p;
-        if (*p == '\n') {
+        if (ends_line(p, end_)) {
           ++line_;
           line_start_ = p + 1;
         }
@@ -234,17 +234,17 @@ std::string_view Lexer::skip_balanced_body(const Token& open) {
   const char* p = cursor_;
   while (p < end_) {
     char c = *p;
-    if (c == '\n') {
+    if (ends_line(p, end_)) {
       ++line_;
       line_start_ = p + 1;
     } else if (c == '#') {
-      while (p < end_ && *p != '\n') ++p;
+      while (p < end_ && !ends_comment(*p)) ++p;
       continue;
     } else if (c == '"') {
       ++p;
       while (p < end_ && *p != '"') {
         if (*p == '\\' && p + 1 < end_) ++p;
-        if (*p == '\n') {
+        if (ends_line(p, end_)) {
           ++line_;
           line_start_ = p + 1;
         }
@@ -308,8 +308,7 @@ std::string unquote(std::string_view quoted) {
 
 HeaderLine header_line(const Lexer& lex) {
   std::string_view all = lex.rest();
-  std::string_view first = all.substr(0, all.find('\n'));
-  if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
+  std::string_view first = all.substr(0, all.find_first_of("\r\n"));
   return {first, Token{TokenKind::kWord, first.substr(0, 40), 1, 1}};
 }
 

@@ -91,6 +91,17 @@ class Lexer {
   bool has_peeked_ = false;
 };
 
+/// True if the character at `p` (before `end`) ends a line: a linefeed, or a
+/// carriage return not followed by one (old Mac files end lines with it alone).
+inline bool ends_line(const char* p, const char* end) {
+  return *p == '\n' || (*p == '\r' && (p + 1 == end || p[1] != '\n'));
+}
+
+/// True if `c` ends a comment: a line terminator, linefeed or carriage return.
+inline bool ends_comment(char c) {
+  return c == '\n' || c == '\r';
+}
+
 /// True if `c` ends a word.
 inline bool is_delimiter(char c) {
   switch (c) {
@@ -117,7 +128,8 @@ inline bool is_delimiter(char c) {
   }
 }
 
-/// The header: the unread text's first line (without a trailing '\r'), and a
+/// The header: the unread text's first line (up to a linefeed or carriage
+/// return), and a
 /// token for messages at its start (its first 40 characters).
 struct HeaderLine {
   std::string_view text;

@@ -38,7 +38,7 @@ std::vector<std::string_view> classic_tokens(std::string_view text) {
     if (space(c)) {
       ++i;
     } else if (c == '#') {
-      while (i < text.size() && text[i] != '\n') ++i;
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
     } else if (c == '"') {
       std::size_t end = i + 1;
       while (end < text.size() && text[end] != '"') end += text[end] == '\\' ? 2 : 1;
@@ -69,7 +69,7 @@ std::size_t past_closing(std::string_view text, std::size_t open) {
       for (++i; i < text.size() && text[i] != '"'; ++i)
         if (text[i] == '\\') ++i;
     } else if (text[i] == '#') {
-      while (i < text.size() && text[i] != '\n') ++i;
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
     } else if (text[i] == o) {
       ++depth;
     } else if (text[i] == c && --depth == 0) {

@@ -168,16 +168,16 @@ TEST_F(TempDirTest, LodGltfWritesJsonForGltfNamesAndFormat) {
   EXPECT_EQ(read_text(path("b.out")).front(), '{');
   ASSERT_EQ(run_lodforge("lod " + input + " -o " + path("c.glb") + " -q").exit_code, 0);
   EXPECT_TRUE(read_text(path("c.glb")).starts_with("glTF"));
-  // A glTF scene is not written as VRML.
-  const CommandResult bad = run_lodforge("lod " + input + " -o " + path("d.wrl") + " -q");
+  // A name that is neither glTF nor VRML / X3D, without --format.
+  const CommandResult bad = run_lodforge("lod " + input + " -o " + path("d.txt") + " -q");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("written as .gltf or .glb"), std::string::npos) << bad.err;
-  EXPECT_FALSE(fs::exists(path("d.wrl")));
+  EXPECT_FALSE(fs::exists(path("d.txt")));
 }
 
 // `format` of every corpus glTF file as GLB and as glTF JSON: valid, the
-// same triangles as the input (`info`), and a VRML name refused, nothing
-// written. A VRML 1.0 scene goes to a glTF stream by --format.
+// same triangles as the input (`info`), and a name of no scene format
+// refused, nothing written. A VRML 1.0 scene goes to a glTF stream by --format.
 using FormatGltf = LodGltf;
 TEST_F(FormatGltf, CorpusScenesAreWrittenBackAsGlbAndJson) {
   const auto files = gltf_corpus_files();
@@ -195,10 +195,10 @@ TEST_F(FormatGltf, CorpusScenesAreWrittenBackAsGlbAndJson) {
       fs::remove(output);
     }
   }
-  const CommandResult bad = run_lodforge("format '" + files.front() + "' -o " + path("f.wrl"));
+  const CommandResult bad = run_lodforge("format '" + files.front() + "' -o " + path("f.txt"));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("written as .gltf or .glb"), std::string::npos) << bad.err;
-  EXPECT_FALSE(fs::exists(path("f.wrl")));
+  EXPECT_FALSE(fs::exists(path("f.txt")));
   const CommandResult piped = run_lodforge(
       "format -q " + (kRepository / "examples/scene.wrl").string() + " -o - --format glb");
   ASSERT_EQ(piped.exit_code, 0) << piped.err;

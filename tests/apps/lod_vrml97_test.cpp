@@ -13,6 +13,7 @@
 
 #include "apps/castle_viewer.h"
 #include "apps/run_command.h"
+#include "gltf/gltf_corpus.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/read_x3d_xml.h"
 #include "tools/coin_probe_runner.h"
@@ -111,6 +112,45 @@ TEST_F(LodVrml97Corpus, EveryFileGetsLodsThatItsReadersRead) {
   }
   EXPECT_GE(succeeded * 10, runs * 9) << succeeded << " of " << runs << " runs exit 0";
   EXPECT_GE(with_lod * 10, succeeded * 6) << "files given LODs: " << with_lod;
+}
+
+// glTF scenes written as VRML97 (`format`) and given LODs as X3D XML (`lod`):
+// exit 0, level 0 draws the input's triangles (`info`; Coin for the VRML97
+// file), and Castle (and our `render`) draws both without an error
+// (textures found, embedded images as data: URIs).
+TEST_F(LodVrml97Corpus, GltfScenesAreWrittenAsVrml97AndX3d) {
+  const auto files = gltf_corpus_files();
+  if (files.empty()) GTEST_SKIP() << "no glTF corpus";
+  const bool castle = kOutsideReaders && have_view3dscene();
+  for (const auto& in : files) {
+    const CommandResult info = run_lodforge("info --json -q '" + in + "'");
+    ASSERT_EQ(info.exit_code, 0) << in << ": " << info.err;
+    const auto triangles = nlohmann::json::parse(info.out).at("triangles").get<std::size_t>();
+    for (const std::string ext : {"wrl", "x3d"}) {
+      const std::string out = path("gltf-out." + ext);
+      const std::string command = ext == "wrl" ? "format" : "lod";
+      const CommandResult r = run_lodforge(command + " -q '" + in + "' -o " + out);
+      ASSERT_EQ(r.exit_code, 0) << command << " " << in << ": " << r.err;
+      const CommandResult written = run_lodforge("info --json -q " + out);
+      ASSERT_EQ(written.exit_code, 0) << out << ": " << written.err;
+      EXPECT_EQ(nlohmann::json::parse(written.out).at("triangles").get<std::size_t>(), triangles)
+          << in << " -> " << out;
+      if (castle)
+        for (const auto& e : castle_errors(out, dir_ / "home", ext == "wrl"))
+          ADD_FAILURE() << in << " -> " << out << ": " << e;
+      // `render` finds every texture, files and data: URIs alike.
+      if (ext == "wrl") {
+        const CommandResult picture = run_lodforge("render " + out + " -o " + path("p.png"));
+        EXPECT_EQ(picture.exit_code, 0) << picture.err;
+        EXPECT_EQ(picture.err.find("Texture"), std::string::npos) << in << ": " << picture.err;
+      }
+      if (ext == "wrl" && kOutsideReaders) {
+        const CoinResult coin = run_coin_probe(out, std::chrono::seconds(120), 0);
+        EXPECT_TRUE(coin.accepted()) << in << ": " << coin.why_rejected();
+        EXPECT_EQ(coin.triangles(), triangles) << in;
+      }
+    }
+  }
 }
 
 TEST_F(LodVrml97Corpus, TheX3dOutputDrawsLikeTheInputAtItsViewpoint) {

@@ -173,8 +173,13 @@ TEST(FlattenVrml97, LodShapesKeepEveryLevelAndLines) {
   EXPECT_EQ(lines.triangle_count(), 0u);
   EXPECT_EQ(lines.lines.size(), 3u);  // two segments, then one
   EXPECT_EQ(lines.colors.at(0), (Vec3{0, 1, 0}));
-  // The one-surface flattening does not draw lines.
-  EXPECT_EQ(flatten_vrml97(r.scene, {}, log).skipped.at("IndexedLineSet"), 1u);
+  // The one-surface flattening draws the lines too, in their colours.
+  const FlatVrml97 flat = flatten_vrml97(r.scene, {}, log);
+  EXPECT_EQ(flat.skipped.count("IndexedLineSet"), 0u);
+  EXPECT_EQ(flat.flat.mesh.lines.size(), 3u);
+  const Segment first = flat.flat.mesh.lines.front();
+  EXPECT_EQ(flat.flat.mesh.colors.at(first[0]), (Vec3{0, 1, 0}));
+  EXPECT_EQ(flat.flat.mesh.positions.size(), flat.flat.mesh.colors.size());
 }
 
 }  // namespace

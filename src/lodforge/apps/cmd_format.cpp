@@ -1,7 +1,7 @@
 // `lodforge format SCENE -o OUT`: read a VRML 1.0 scene and write it back
 // cleanly formatted with the writer options, or as VRML97 / X3D classic or
 // glTF (OUT.glb / .gltf); a VRML97 or X3D classic scene is written back as
-// VRML97, X3D classic or glTF; a glTF scene as GLB or glTF JSON.
+// VRML97, X3D classic or glTF; a glTF scene as GLB, glTF JSON, VRML97 or X3D.
 #include <fmt/core.h>
 
 #include <array>
@@ -34,7 +34,8 @@ void add_format_command(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand(
       "format",
       "Read a VRML 1.0 or Inventor scene and write it back formatted, or as VRML97, X3D classic "
-      "or glTF; a VRML97 or X3D scene as VRML97, X3D or glTF; a glTF scene as GLB or glTF JSON");
+      "or glTF; a VRML97 or X3D scene as VRML97, X3D or glTF; a glTF scene as GLB, glTF JSON, "
+      "VRML97 or X3D");
   cmd->add_option("SCENE", s->input,
                   "VRML 1.0, Inventor, VRML97, X3D or glTF file (.wrl, .iv, .x3dv, .x3d, .gltf, "
                   ".glb, optionally .gz; - = stdin for VRML 1.0 / Inventor)")
@@ -46,7 +47,7 @@ void add_format_command(CLI::App& app, Runner& run) {
   cmd->add_option(
          "--format", s->format,
          "Convert to vrml97 (VRML97), x3dv (X3D classic), x3d (X3D XML), glb (glTF binary) or "
-         "gltf (glTF JSON); a glTF scene to glb or gltf (default: from the output name, else as "
+         "gltf (glTF JSON) (default: from the output name, .wrl VRML97 for a glTF scene, else as "
          "read)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "glb", "gltf"}));
   add_scene_read_options(*cmd, s->read);
@@ -59,13 +60,14 @@ void add_format_command(CLI::App& app, Runner& run) {
       Log unused;
       warn_unused_writer_options(s->write, s->input, s->output, s->format, unused);
       if (!s->read.quiet) print_diagnostics(unused.entries());
-      if (is_gltf_input(s->input)) {
+      const bool gltf_in = is_gltf_input(s->input);
+      if (gltf_in && !writes_vrml97_family(s->output, s->format)) {
         Log log;
         format_gltf_file(s->input, s->output, s->format, log);
         if (!s->read.quiet) print_diagnostics(log.entries());
         return 0;
       }
-      if (is_vrml97_input(s->input)) {
+      if (gltf_in || is_vrml97_input(s->input)) {
         vrml97::ReadResult r = read_vrml97_as(s->input, s->output, s->format);
         // A glTF output takes its images from the input's folder instead.
         if (!writes_gltf(s->output, s->format))

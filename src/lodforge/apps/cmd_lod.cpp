@@ -231,8 +231,10 @@ BatchOutcome lod_one(const BatchItem& item, const Settings& s, const LodOptions&
   try {
     LodOptions drawn = options;
     drawn.progress = progress;
-    const bool gltf = is_gltf_input(input);
-    const bool vrml97 = !gltf && is_vrml97_input(input);
+    // A glTF scene written as VRML97 / X3D goes the VRML97 way.
+    const bool gltf_in = is_gltf_input(input);
+    const bool gltf = gltf_in && !writes_vrml97_family(out.output, s.format);
+    const bool vrml97 = gltf_in ? !gltf : is_vrml97_input(input);
     const bool as_gltf = s.format == "gltf" || s.format == "glb" ||
                          (s.format.empty() && gltf::is_gltf_path(out.output));
     // A VRML 1.0 / Inventor scene may be written as VRML97 or X3D classic.
@@ -415,8 +417,9 @@ void add_lod_command(CLI::App& app, Runner& run) {
   cmd->add_option("--format", s->format,
                   "Output encoding of a VRML97 / X3D scene: vrml97, x3dv or x3d (default: from "
                   "the output name, .x3dv X3D classic, .x3d X3D XML, else the input's), or of a "
-                  "glTF scene: gltf or glb (default: "
-                  "from the output name, else the input's); a VRML 1.0 / Inventor scene is "
+                  "glTF scene: gltf, glb, or vrml97, x3dv or x3d (made a VRML97 scene first) "
+                  "(default: from the output name, .wrl VRML97, else the input's); a VRML 1.0 / "
+                  "Inventor scene is "
                   "converted to vrml97, x3dv, x3d, gltf or glb (default: from the output name, "
                   ".x3dv, .x3d, .glb, .gltf, else VRML 1.0)")
       ->check(CLI::IsMember({"vrml97", "x3dv", "x3d", "gltf", "glb"}));

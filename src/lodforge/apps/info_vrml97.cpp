@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lodforge/core/file_io.h"
+#include "lodforge/io/gltf/gltf_to_vrml97.h"
 #include "lodforge/io/vrml97/read_vrml97.h"
 #include "lodforge/io/vrml97/read_x3d_xml.h"
 #include "lodforge/scene/traverse.h"
@@ -45,6 +46,13 @@ nlohmann::ordered_json bounds_json(const Box3& bounds) {
 }
 
 vrml97::ReadResult read_vrml97_input(const std::string& path) {
+  if (gltf::is_gltf_path(path)) {
+    gltf::GltfReadResult g = gltf::read_gltf_file(path);
+    vrml97::ReadResult r;
+    for (const auto& w : g.warnings) r.log.warn(LogCategory::kParse, path + ": " + w);
+    r.scene = gltf::gltf_to_vrml97(g.scene.model, r.log);
+    return r;
+  }
   // The encoding by the content where it tells (a `.x3d` holding the
   // classic encoding, an X3D document named otherwise), else by the name.
   std::string head = path == "-" ? std::string() : read_head(path, 256);

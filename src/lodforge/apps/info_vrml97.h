@@ -14,7 +14,8 @@ namespace lodforge::apps {
 nlohmann::ordered_json bounds_json(const Box3& bounds);
 
 /// The scene at `path` (VRML97, X3D classic, or X3D XML when the name says
-/// .x3d, .x3d.gz or .x3dz; gzip allowed). Throws
+/// .x3d, .x3d.gz or .x3dz; gzip allowed; a glTF file, by its name, as the
+/// VRML97 scene gltf::gltf_to_vrml97 makes of it). Throws
 /// ParseError / DataError.
 vrml97::ReadResult read_vrml97_input(const std::string& path);
 

@@ -35,6 +35,10 @@ bool ends_with(const std::string& s, std::string_view e) {
   return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
 }
 
+// The names of VRML97 and X3D files (after a .gz).
+constexpr std::string_view kVrml97FamilySuffixes[] = {".wrl",   ".wrz", ".x3dv",
+                                                      ".x3dvz", ".x3d", ".x3dz"};
+
 // VRML97's access keywords of interface declarations, and X3D's for them.
 constexpr std::pair<std::string_view, std::string_view> kAccessNames[] = {
     {"field", "initializeOnly"},
@@ -287,13 +291,24 @@ vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& o
   return r;
 }
 
+bool writes_vrml97_family(const std::string& output, const std::string& format) {
+  if (!format.empty()) return format == "vrml97" || format == "x3dv" || format == "x3d";
+  std::string name = output;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (name.ends_with(".gz")) name.resize(name.size() - 3);
+  return std::any_of(std::begin(kVrml97FamilySuffixes), std::end(kVrml97FamilySuffixes),
+                     [&](std::string_view e) { return name.ends_with(e); });
+}
+
 bool writes_gltf(const std::string& output, const std::string& format) {
   return format == "gltf" || format == "glb" || (format.empty() && gltf::is_gltf_path(output));
 }
 
 void warn_unused_writer_options(const vrml1::WriteOptions& write, const std::string& input,
                                 const std::string& output, const std::string& format, Log& log) {
-  const bool gltf = gltf::is_gltf_path(input) || writes_gltf(output, format);
+  const bool gltf = writes_gltf(output, format) ||
+                    (gltf::is_gltf_path(input) && !writes_vrml97_family(output, format));
   if (!gltf && !writes_x3d_xml(output, format)) return;
   const vrml1::WriteOptions d;
   std::vector<std::string> given;

@@ -26,6 +26,12 @@ bool writes_x3d_xml(const std::string& output, const std::string& format);
 vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& output,
                                   const std::string& format);
 
+/// True if a glTF scene is to be written to `output` as VRML97 or X3D:
+/// `format` is "vrml97", "x3dv" or "x3d", or it is empty and the name ends
+/// in .wrl, .wrz, .x3dv, .x3dvz, .x3d or .x3dz (optionally .gz). It is then
+/// read as read_vrml97_input makes it a VRML97 scene.
+bool writes_vrml97_family(const std::string& output, const std::string& format);
+
 /// True if `output` is to be written as glTF: `format` is "gltf" or "glb",
 /// or it is empty and the name ends in .gltf or .glb (optionally .gz).
 bool writes_gltf(const std::string& output, const std::string& format);

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "lodforge/core/data_uri.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/math.h"
 #include "lodforge/lod/vrml97_geometry.h"
@@ -220,9 +221,15 @@ class Flattener {
     const NodePtr g = vrml97_geometry::node_of(s, "geometry");
     if (!g) return;
     const Node& geometry = *g;
-    if (geometry.type == "IndexedLineSet" && collect_) {  // lines: for the glTF output only
+    if (geometry.type == "IndexedLineSet") {
       ++out_.shapes;
-      if (sink_) sink_->push_back(line_shape(s, geometry, m));
+      scene::DrawnShape lines = line_shape(s, geometry, m);
+      if (collect_) {
+        if (sink_) sink_->push_back(std::move(lines));
+      } else {
+        append_lines(lines.surface,
+                     vrml97_geometry::node_of(geometry, "color") || appearance_of(s).material);
+      }
       return;
     }
     vrml97_geometry::ShapeMesh piece;
@@ -390,8 +397,8 @@ class Flattener {
     return look;
   }
 
-  // An ImageTexture's first URL (a file relative to the scene's folder),
-  // once per node.
+  // An ImageTexture's first URL (a file relative to the scene's folder, or
+  // a data: URI), once per node.
   std::uint32_t texture(const Node& t) {
     auto [it, fresh] = texture_of_.try_emplace(&t, scene::kUntextured);
     if (!fresh) return it->second;
@@ -405,10 +412,14 @@ class Flattener {
                               : f->value.ints.empty() || f->value.ints[0]);
     };
     it->second = std::uint32_t(out_.flat.textures.size());
-    out_.flat.textures.push_back({.filename = file,
-                                  .repeat_s = repeat("repeatS"),
-                                  .repeat_t = repeat("repeatT"),
-                                  .line = t.first_line});
+    scene::SceneTexture texture{
+        .repeat_s = repeat("repeatS"), .repeat_t = repeat("repeatT"), .line = t.first_line};
+    // An image in a data: URI comes as its bytes (as a glTF file's embedded one).
+    if (auto bytes = decode_data_uri(file))
+      texture.encoded = std::move(*bytes);
+    else
+      texture.filename = file;
+    out_.flat.textures.push_back(std::move(texture));
     return it->second;
   }
 
@@ -458,6 +469,20 @@ class Flattener {
       mesh.texcoords.push_back(t);
       out_.flat.opacity.push_back(look.opacity);
     }
+  }
+
+  // Line segments (line_shape's) into the one mesh; `coloured`: by a Color
+  // node or a Material (else the scene's colours may be left out).
+  void append_lines(const scene::ShapeSurface& lines, bool coloured) {
+    auto& mesh = out_.flat.mesh;
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), lines.mesh.positions.begin(),
+                          lines.mesh.positions.end());
+    mesh.colors.insert(mesh.colors.end(), lines.mesh.colors.begin(), lines.mesh.colors.end());
+    mesh.texcoords.resize(mesh.positions.size());
+    out_.flat.opacity.insert(out_.flat.opacity.end(), lines.opacity.begin(), lines.opacity.end());
+    for (const Segment& l : lines.mesh.lines) mesh.lines.push_back({l[0] + base, l[1] + base});
+    has_color_ = has_color_ || coloured;
   }
 
   // A shape's texture coordinates: its TextureCoordinate node's, a

@@ -87,33 +87,27 @@ class LevelBuilder {
       if (color.node && color.per_vertex) color_index.push_back(-1);
     }
     auto ifs = scene::make_node("IndexedFaceSet");
-    ifs->set("coord", node_value(coord_));
+    ifs->set("coord", scene::make_node_value(coord_));
     ifs->set("coordIndex", scene::make_longs(std::move(coord_index)));
     if (normal.node) {
-      ifs->set("normal", node_value(normal.node));
+      ifs->set("normal", scene::make_node_value(normal.node));
       ifs->set("normalIndex", scene::make_longs(std::move(normal_index)));
     }
     if (reader_.tex().node) {
-      ifs->set("texCoord", node_value(reader_.tex().node));
+      ifs->set("texCoord", scene::make_node_value(reader_.tex().node));
       if (indexed_tex) ifs->set("texCoordIndex", scene::make_longs(std::move(tex_index)));
     }
     if (color.node) {
-      ifs->set("color", node_value(color.node));
+      ifs->set("color", scene::make_node_value(color.node));
       ifs->set("colorIndex", scene::make_longs(std::move(color_index)));
     }
     for (const char* f : {"ccw", "solid", "colorPerVertex", "normalPerVertex", "creaseAngle"})
       if (const scene::FieldValue* v = j_.geometry->value(f)) ifs->set(f, *v);
     auto shape = scene::make_node("Shape");
-    if (NodePtr app = node_of(*j_.shape, "appearance")) shape->set("appearance", node_value(app));
-    shape->set("geometry", node_value(ifs));
+    if (NodePtr app = node_of(*j_.shape, "appearance"))
+      shape->set("appearance", scene::make_node_value(app));
+    shape->set("geometry", scene::make_node_value(ifs));
     return shape;
-  }
-
-  static scene::FieldValue node_value(NodePtr n) {
-    scene::FieldValue v;
-    v.type = {FieldKind::kNode, false};
-    v.nodes.push_back(std::move(n));
-    return v;
   }
 
  private:

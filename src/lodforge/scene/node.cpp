@@ -232,4 +232,25 @@ FieldValue make_string(std::string v) {
   return r;
 }
 
+FieldValue make_strings(std::vector<std::string> v) {
+  FieldValue r;
+  r.type = {FieldKind::kString, true};
+  r.strings = std::move(v);
+  return r;
+}
+
+FieldValue make_node_value(NodePtr n) {
+  FieldValue r;
+  r.type = {FieldKind::kNode, false};
+  if (n) r.nodes.push_back(std::move(n));
+  return r;
+}
+
+FieldValue make_nodes_value(std::vector<NodePtr> nodes) {
+  FieldValue r;
+  r.type = {FieldKind::kNode, true};
+  r.nodes = std::move(nodes);
+  return r;
+}
+
 }  // namespace lodforge::scene

@@ -158,5 +158,10 @@ FieldValue make_bool(bool v);
 NodePtr make_node(std::string type);
 FieldValue make_enum(std::string v);
 FieldValue make_string(std::string v);
+FieldValue make_strings(std::vector<std::string> v);
+/// An SFNode holding `n` (NULL when `n` is null).
+FieldValue make_node_value(NodePtr n);
+/// An MFNode holding `nodes`.
+FieldValue make_nodes_value(std::vector<NodePtr> nodes);
 
 }  // namespace lodforge::scene

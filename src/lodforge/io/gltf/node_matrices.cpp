@@ -31,19 +31,21 @@ Mat4 local_matrix(const tinygltf::Node& node) {
   return m;
 }
 
+std::vector<int> shown_roots(const tinygltf::Model& model, int scene) {
+  if (scene < 0) scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (std::size_t(scene) < model.scenes.size()) return model.scenes[std::size_t(scene)].nodes;
+  std::vector<char> child(model.nodes.size(), 0);
+  for (const auto& n : model.nodes)
+    for (int c : n.children) child[std::size_t(c)] = 1;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (!child[i]) roots.push_back(int(i));
+  return roots;
+}
+
 std::vector<NodePlacement> node_placements(const tinygltf::Model& model, int scene) {
   std::vector<NodePlacement> out(model.nodes.size());
-  std::vector<int> roots;
-  if (scene < 0) scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-  if (std::size_t(scene) < model.scenes.size()) {
-    roots = model.scenes[std::size_t(scene)].nodes;
-  } else {
-    std::vector<char> child(model.nodes.size(), 0);
-    for (const auto& n : model.nodes)
-      for (int c : n.children) child[std::size_t(c)] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!child[i]) roots.push_back(int(i));
-  }
+  const std::vector<int> roots = shown_roots(model, scene);
   // Nodes form trees (read_gltf checks it), so an explicit stack visits each once.
   std::vector<std::pair<int, Mat4>> stack;
   for (int r : roots) stack.emplace_back(r, Mat4{});

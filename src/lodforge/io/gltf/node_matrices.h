@@ -18,9 +18,13 @@ struct NodePlacement {
 /// The node's own matrix.
 Mat4 local_matrix(const tinygltf::Node& node);
 
-/// One placement per node. The shown scene is `scene` if set, else the
+/// The root nodes of the scene a viewer shows: `scene` if set, else the
 /// default scene, else scene 0; a model without scenes shows every node
-/// without a parent. Preconditions: the model passed read_gltf's checks.
+/// without a parent.
+std::vector<int> shown_roots(const tinygltf::Model& model, int scene = -1);
+
+/// One placement per node, for the scene shown_roots shows. Preconditions: the model passed
+/// read_gltf's checks.
 std::vector<NodePlacement> node_placements(const tinygltf::Model& model, int scene = -1);
 
 }  // namespace lodforge::gltf

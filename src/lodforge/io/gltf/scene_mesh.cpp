@@ -42,7 +42,8 @@ int mesh_at_level(const tinygltf::Model& model, std::size_t n, int lod_level) {
   return model.nodes[std::size_t(id)].mesh;
 }
 
-// `part` (primitive_mesh of `p`) with its vertices' colours.
+}  // namespace
+
 void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part) {
   Vec3 base{1, 1, 1};
   if (p.material >= 0 && std::size_t(p.material) < model.materials.size()) {
@@ -60,7 +61,6 @@ void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, Tria
                       base.z * float(c.values[i * std::size_t(c.components) + 2])};
 }
 
-// The base-colour texture of material `m`, or null.
 const tinygltf::TextureInfo* base_color_texture(const tinygltf::Model& model, int m) {
   if (m < 0 || std::size_t(m) >= model.materials.size()) return nullptr;
   const auto& info = model.materials[std::size_t(m)].pbrMetallicRoughness.baseColorTexture;
@@ -68,10 +68,6 @@ const tinygltf::TextureInfo* base_color_texture(const tinygltf::Model& model, in
   return &info;
 }
 
-// `part` with its base-colour texture: texture coordinates (as its
-// KHR_texture_transform maps them; t = 1 - v: glTF's v runs down the image)
-// and, per triangle, its material's index in the model (scene::kUntextured
-// without a base-colour texture or without its coordinates).
 void add_texture(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part) {
   part.texcoords.assign(part.positions.size(), Vec2{});
   part.materials.assign(part.triangles.size(), scene::kUntextured);
@@ -88,8 +84,6 @@ void add_texture(const tinygltf::Model& model, const tinygltf::Primitive& p, Tri
   }
   part.materials.assign(part.triangles.size(), std::uint32_t(p.material));
 }
-
-}  // namespace
 
 std::size_t lod_level_count(const tinygltf::Model& model) {
   std::size_t most = 0;
@@ -180,10 +174,9 @@ std::string unescaped(const std::string& uri) {
   return out;
 }
 
-// The base-colour texture of material `m` as a renderer loads it: it scales
-// the base colour; its alpha makes holes only in alphaMode MASK (below
-// alphaCutoff) and BLEND (below one half: the renderer draws no blending).
-scene::SceneTexture scene_texture(const tinygltf::Model& model, int m) {
+}  // namespace
+
+scene::SceneTexture material_texture(const tinygltf::Model& model, int m) {
   scene::SceneTexture out;
   const tinygltf::Material& material = model.materials[std::size_t(m)];
   const int t = material.pbrMetallicRoughness.baseColorTexture.index;
@@ -214,8 +207,6 @@ scene::SceneTexture scene_texture(const tinygltf::Model& model, int m) {
   return out;
 }
 
-}  // namespace
-
 std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, TriangleMesh& mesh) {
   std::vector<scene::SceneTexture> out;
   std::map<std::uint32_t, std::uint32_t> slot;
@@ -225,7 +216,7 @@ std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, Tr
       continue;
     }
     const auto [it, added] = slot.try_emplace(m, std::uint32_t(out.size()));
-    if (added) out.push_back(scene_texture(model, int(m)));
+    if (added) out.push_back(material_texture(model, int(m)));
     m = it->second;
   }
   return out;

@@ -56,6 +56,29 @@ TriangleMesh scene_mesh_seen_from(const tinygltf::Model& model, const CoverageVi
 /// repeat drawn as repeat).
 std::vector<scene::SceneTexture> drawn_textures(const tinygltf::Model& model, TriangleMesh& mesh);
 
+/// `part` (primitive_mesh of `p`) with its vertices' colours: the
+/// primitive's base colour (baseColorFactor, white without a material)
+/// times its COLOR_0 when it has one, RGB.
+void add_colors(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part);
+
+/// The base-colour texture of material `m`, or null.
+const tinygltf::TextureInfo* base_color_texture(const tinygltf::Model& model, int m);
+
+/// `part` (primitive_mesh of `p`) with its base-colour texture: texture
+/// coordinates (as its KHR_texture_transform maps them; t = 1 - v: glTF's v
+/// runs down the image) and, per triangle, its material's index in the model
+/// (scene::kUntextured without a base-colour texture or without its
+/// coordinates).
+void add_texture(const tinygltf::Model& model, const tinygltf::Primitive& p, TriangleMesh& part);
+
+/// The base-colour texture of material `m` (which has one: base_color_texture)
+/// as a renderer loads it: it scales the base colour; its alpha makes holes
+/// only in alphaMode MASK (below alphaCutoff) and BLEND (below one half: the
+/// renderer draws no blending); an embedded image as its bytes, an external
+/// one as its file name (the URI's percent-escapes decoded); wrap modes from
+/// the sampler.
+scene::SceneTexture material_texture(const tinygltf::Model& model, int m);
+
 /// The levels scene_mesh can show: 1 + the most `MSFT_lod` ids of a node
 /// (1 when no node has any).
 std::size_t lod_level_count(const tinygltf::Model& model);

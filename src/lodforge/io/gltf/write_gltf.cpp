@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "lodforge/core/data_uri.h"
 #include "lodforge/core/error.h"
 #include "lodforge/core/file_io.h"
 
@@ -16,23 +17,6 @@ namespace lodforge::gltf {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string base64(const std::vector<unsigned char>& data) {
-  static constexpr char kDigits[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((data.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < data.size(); i += 3) {
-    const std::uint32_t b0 = data[i], b1 = i + 1 < data.size() ? data[i + 1] : 0,
-                        b2 = i + 2 < data.size() ? data[i + 2] : 0;
-    const std::uint32_t v = b0 << 16 | b1 << 8 | b2;
-    out += kDigits[v >> 18 & 63];
-    out += kDigits[v >> 12 & 63];
-    out += i + 1 < data.size() ? kDigits[v >> 6 & 63] : '=';
-    out += i + 2 < data.size() ? kDigits[v & 63] : '=';
-  }
-  return out;
-}
 
 // A URI with a scheme ("data:", "http:") or an absolute path is not relative.
 bool is_relative_uri(const std::string& uri) {
@@ -51,7 +35,7 @@ bool write_image(const std::string*, const std::string*, const tinygltf::Image* 
   const auto& context = *static_cast<const ImageContext*>(user);
   if (image->as_is && !image->image.empty()) {
     const std::string mime = image->mimeType.empty() ? "application/octet-stream" : image->mimeType;
-    *out_uri = "data:" + mime + ";base64," + base64(image->image);
+    *out_uri = data_uri(mime, image->image);
     return true;
   }
   if (context.output_dir.empty() || !is_relative_uri(image->uri)) return false;

@@ -263,8 +263,10 @@ class Parser {
       }
       // An unknown field of a known node: keep its text as it is. Its name must
       // look like a name (a number here is stray data, and would make the
-      // extent of the verbatim values ambiguous when written back).
-      if (is_number_start(word.text))
+      // extent of the verbatim values ambiguous when written back; `~` and
+      // `=` are Inventor's marks after a value, and would join the field
+      // before).
+      if (is_number_start(word.text) || word.text == "~" || word.text == "=")
         lex_.expected(word, fmt::format("a field name, a child node or '}}' in {}", node->type));
       scene::Field f;
       f.name = std::string(word.text);

@@ -60,21 +60,9 @@ std::string_view trim(std::string_view v) {
   return v;
 }
 
-bool is_number_token(std::string_view t) {
-  const char c = t.empty() ? ' ' : t[0];
-  if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') return true;
-  // What the classic reader's number parser takes too (an overflowing
-  // number is read as, and written back as, inf).
-  return t == "inf" || t == "nan" || t == "infinity";
-}
-
 // A component's level: digits only (the writer finds it after the last colon).
 bool is_level_token(std::string_view t) {
   return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-bool is_bool_token(std::string_view t) {
-  return t == "true" || t == "false" || t == "TRUE" || t == "FALSE";
 }
 
 // A plain name (DEF, USE, a field or node type): none of the characters

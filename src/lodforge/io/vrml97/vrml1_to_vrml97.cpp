@@ -26,20 +26,6 @@ using scene::NodePtr;
 // gives a shape without normals.
 constexpr float kCreaseAngle = 0.5f;
 
-FieldValue node_value(NodePtr n) {
-  FieldValue v;
-  v.type = {FieldKind::kNode, false};
-  v.nodes.push_back(std::move(n));
-  return v;
-}
-
-FieldValue nodes_value(std::vector<NodePtr> nodes) {
-  FieldValue v;
-  v.type = {FieldKind::kNode, true};
-  v.nodes = std::move(nodes);
-  return v;
-}
-
 FieldValue vec3s(const std::vector<Vec3>& values, FieldKind kind) {
   std::vector<float> flat;
   flat.reserve(3 * values.size());
@@ -144,27 +130,27 @@ class Converter {
     if (!s.mesh.has_colors() || uniform(s)) return true;
     auto c = scene::make_node("Color");
     c->set("color", vec3s(s.mesh.colors, FieldKind::kColor));
-    geometry.set("color", node_value(std::move(c)));
+    geometry.set("color", scene::make_node_value(std::move(c)));
     return false;
   }
 
   NodePtr shape(NodePtr geometry, NodePtr appearance) {
     auto shape = scene::make_node("Shape");
-    shape->set("appearance", node_value(std::move(appearance)));
-    shape->set("geometry", node_value(std::move(geometry)));
+    shape->set("appearance", scene::make_node_value(std::move(appearance)));
+    shape->set("geometry", scene::make_node_value(std::move(geometry)));
     return shape;
   }
 
   NodePtr appearance(const scene::ShapeSurface& s, bool lit, bool one_colour, NodePtr tex) {
     auto a = scene::make_node("Appearance");
-    a->set("material", node_value(material(s, lit, one_colour)));
-    if (tex) a->set("texture", node_value(std::move(tex)));
+    a->set("material", scene::make_node_value(material(s, lit, one_colour)));
+    if (tex) a->set("texture", scene::make_node_value(std::move(tex)));
     return a;
   }
 
   NodePtr faces(const scene::ShapeSurface& s) {
     auto ifs = scene::make_node("IndexedFaceSet");
-    ifs->set("coord", node_value(coordinate(s)));
+    ifs->set("coord", scene::make_node_value(coordinate(s)));
     std::vector<std::int32_t> index;
     index.reserve(4 * s.mesh.triangles.size());
     for (const auto& t : s.mesh.triangles)
@@ -174,7 +160,7 @@ class Converter {
     if (s.mesh.has_normals()) {
       auto n = scene::make_node("Normal");
       n->set("vector", vec3s(s.mesh.normals, FieldKind::kVec3f));
-      ifs->set("normal", node_value(std::move(n)));
+      ifs->set("normal", scene::make_node_value(std::move(n)));
     }
     NodePtr tex = s.mesh.has_texcoords() ? texture(s.texture) : nullptr;
     if (tex) {
@@ -182,7 +168,7 @@ class Converter {
       for (const Vec2& t : s.mesh.texcoords) flat.insert(flat.end(), {t.x, t.y});
       auto tc = scene::make_node("TextureCoordinate");
       tc->set("point", scene::make_floats(FieldKind::kVec2f, true, std::move(flat)));
-      ifs->set("texCoord", node_value(std::move(tc)));
+      ifs->set("texCoord", scene::make_node_value(std::move(tc)));
     }
     ifs->set("solid", scene::make_bool(false));
     ifs->set("creaseAngle", scene::make_float(kCreaseAngle));
@@ -191,7 +177,7 @@ class Converter {
 
   NodePtr lines(const scene::ShapeSurface& s) {
     auto ils = scene::make_node("IndexedLineSet");
-    ils->set("coord", node_value(coordinate(s)));
+    ils->set("coord", scene::make_node_value(coordinate(s)));
     std::vector<std::int32_t> index;
     for (const auto& l : s.mesh.lines)
       index.insert(index.end(), {std::int32_t(l[0]), std::int32_t(l[1]), -1});
@@ -202,7 +188,7 @@ class Converter {
 
   NodePtr points(const scene::ShapeSurface& s) {
     auto ps = scene::make_node("PointSet");
-    ps->set("coord", node_value(coordinate(s)));
+    ps->set("coord", scene::make_node_value(coordinate(s)));
     const bool one_colour = colours(*ps, s);
     return shape(ps, appearance(s, false, one_colour, nullptr));
   }
@@ -242,10 +228,10 @@ NodePtr convert_lod(Converter& c, const scene::LodGroup& g, bool x3d,
   for (const auto& child : g.levels) {
     auto group = scene::make_node("Group");
     std::vector<NodePtr> shapes = convert_all(c, child, named);
-    if (!shapes.empty()) group->set("children", nodes_value(std::move(shapes)));
+    if (!shapes.empty()) group->set("children", scene::make_nodes_value(std::move(shapes)));
     levels.push_back(std::move(group));
   }
-  lod->set(x3d ? "children" : "level", nodes_value(std::move(levels)));
+  lod->set(x3d ? "children" : "level", scene::make_nodes_value(std::move(levels)));
   return lod;
 }
 

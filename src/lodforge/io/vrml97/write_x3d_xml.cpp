@@ -79,12 +79,30 @@ std::size_t past_closing(std::string_view text, std::size_t open) {
   return std::string_view::npos;
 }
 
+// True if `s`, an attribute of no known type, is read back as the one
+// string it is: not empty, no white space the reader trims or an XML reader
+// turns into spaces, not quoted, not numbers or booleans.
+bool reads_as_one_string(std::string_view s) {
+  if (s.empty() || s.front() == '"' || s.front() == ' ' || s.back() == ' ') return false;
+  if (std::any_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; }))
+    return false;
+  const auto words = classic_tokens(s);
+  return !std::all_of(words.begin(), words.end(),
+                      [](std::string_view w) { return is_number_token(w) || is_bool_token(w); });
+}
+
 // An untyped value kept as classic text, as an XML attribute value.
 std::string xml_value(std::string_view raw, ValueShape shape) {
   std::vector<std::string_view> t = classic_tokens(raw);
   std::erase_if(t, [](std::string_view x) { return x == "[" || x == "]"; });
   const bool one_string = t.size() == 1 && t[0].starts_with('"');
-  if (one_string && shape != ValueShape::kMFString) return vrml1::detail::unquote(t[0]);
+  if (one_string && shape != ValueShape::kMFString) {
+    std::string s = vrml1::detail::unquote(t[0]);
+    // A value of no known type is read by its form: unquoted, it must read
+    // back as this one string; else it stays quoted (read as a string list).
+    if (shape != ValueShape::kUnknown || reads_as_one_string(s)) return s;
+    return std::string(t[0]);
+  }
   std::string out;
   for (const std::string_view x : t) {
     if (!out.empty()) out += ' ';

@@ -261,6 +261,18 @@ std::string default_classic_value(std::string_view type_name) {
   return "0";  // SFFloat, SFDouble, SFInt32, SFTime
 }
 
+bool is_number_token(std::string_view t) {
+  const char c = t.empty() ? ' ' : t[0];
+  if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') return true;
+  // What the classic reader's number parser takes too (an overflowing
+  // number is read as, and written back as, inf).
+  return t == "inf" || t == "nan" || t == "infinity";
+}
+
+bool is_bool_token(std::string_view t) {
+  return t == "true" || t == "false" || t == "TRUE" || t == "FALSE";
+}
+
 std::string quote_classic(std::string_view text) {
   std::string out = "\"";
   for (char c : text) {

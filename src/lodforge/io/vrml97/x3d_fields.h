@@ -39,6 +39,15 @@ std::string_view default_container_field(std::string_view node_type);
 /// SFString, [] for any MF type, NULL for SFNode).
 std::string default_classic_value(std::string_view type_name);
 
+/// True if the attribute token `t` is read as a number (as the classic
+/// reader's number parser takes it: a digit, sign or point first, or inf /
+/// nan / infinity).
+bool is_number_token(std::string_view t);
+
+/// True if the attribute token `t` is a boolean (true / false, either case
+/// of the encodings).
+bool is_bool_token(std::string_view t);
+
 /// `text` as a classic-encoding string literal: quoted, with `"` and `\` escaped.
 std::string quote_classic(std::string_view text);
 

@@ -133,6 +133,15 @@ TEST(ReadVrml1, UnknownFieldOfAKnownNodeIsKept) {
   EXPECT_THAT(r.log.entries()[0].text, HasSubstr("unknown field >mirror< of Material"));
 }
 
+// Inventor's marks after a value are no field names: `~` after a child
+// node would join the field before it when written back.
+TEST(ReadVrml1, MarksWhereAFieldNameIsExpectedAreAnError) {
+  for (const std::string mark : {"~", "="})
+    EXPECT_EQ(
+        error_of("#Inventor V2.1 ascii\nSeparator { Cube { } " + mark + " D 1 }"),
+        "t.wrl:2:22: expected a field name, a child node or '}' in Separator, got '" + mark + "'");
+}
+
 TEST(ReadVrml1, DeclarationWithAnUnknownFieldTypeIsAnError) {
   EXPECT_EQ(error_of("#VRML V1.0 ascii\nTorus { fields [ SFNode child ] }"),
             "t.wrl:2:18: expected a field type such as SFFloat or MFVec3f, or ']', got 'SFNode'");

@@ -197,6 +197,13 @@ TEST(X3dXml, ValuesAndNamesTheTablesDoNotFit) {
   EXPECT_NE(error_of(R"(<X3D><Scene><TimeSenso EXPORT="x"/></Scene></X3D>)")
                 .find("expected a name for attribute name of <TimeSenso>, got 'EXPORT'"),
             std::string::npos);
+  // A string of a field no table types stays one string: quoted when,
+  // unquoted, it would be read as another (spaces trimmed, numbers).
+  for (const char* value : {R"('"&#9;.png"')", R"('"12"')", R"('"two words"')"}) {
+    const std::string once = write_x3d_xml(
+        read_x3d_xml(std::string("<X3D><Scene><Foo rl=") + value + "/></Scene></X3D>").scene);
+    EXPECT_EQ(write_x3d_xml(read_x3d_xml(once).scene), once) << value;
+  }
   const ReadResult amp = read_vrml97("#X3D V3.2 utf8\nBox& { }\n");
   EXPECT_THROW(write_x3d_xml(amp.scene), DataError);
 }

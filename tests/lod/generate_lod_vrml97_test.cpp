@@ -231,6 +231,50 @@ TEST(GenerateLodVrml97, MultiTextureCoordinatesAreIndexedLikeOneList) {
   }
 }
 
+// A grid whose left and right halves are two texture islands (texCoordIndex
+// into two lists of coordinates, the seam's vertices in both): every level's
+// triangle takes its three texture coordinates from one island (a level
+// vertex took them from either side of the seam, smearing the texture).
+TEST(GenerateLodVrml97, LevelsKeepTextureSeams) {
+  const int n = 30, count = (n + 1) * (n + 1);
+  std::string points, tex, index, tex_index;
+  for (int island = 0; island < 2; ++island)
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) {
+        if (island == 0)
+          points += fmt::format("{} {} {}, ", x / double(n), y / double(n),
+                                0.05 * std::sin(x * 0.7) * std::cos(y * 0.5));
+        tex += fmt::format("{} {}, ", x / double(n) + 5 * island, y / double(n));
+      }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x, t = a + (2 * x < n ? 0 : count);
+      index += fmt::format("{} {} {} {} -1 ", a, a + 1, a + n + 2, a + n + 1);
+      tex_index += fmt::format("{} {} {} {} -1 ", t, t + 1, t + n + 2, t + n + 1);
+    }
+  auto read = vrml97::read_vrml97(
+      "#X3D V3.2 utf8\nPROFILE Immersive\nViewpoint { fieldOfView 0.5 }\n"
+      "Shape { appearance Appearance { texture ImageTexture { url \"t.png\" } }\n"
+      "  geometry IndexedFaceSet { coord Coordinate { point [" +
+      points +
+      "] }\n"
+      "    texCoord TextureCoordinate { point [" +
+      tex + "] } texCoordIndex [" + tex_index + "] coordIndex [" + index + "] } }\n");
+  LodResult r = generate_lod_vrml97(std::move(read.scene));
+  const auto& levels = r.scene.roots.at(2)->value("children")->nodes;
+  ASSERT_GE(levels.size(), 4u);
+  std::size_t triangles = 0;
+  for (std::size_t i = 1; i + 1 < levels.size(); ++i) {
+    const auto& t = levels[i]->value("geometry")->nodes.at(0)->value("texCoordIndex")->ints;
+    for (std::size_t k = 0; k + 3 < t.size(); k += 4, ++triangles) {
+      const bool right = t[k] >= count;
+      EXPECT_EQ(t[k + 1] >= count, right) << "level " << i << " triangle " << k / 4;
+      EXPECT_EQ(t[k + 2] >= count, right) << "level " << i << " triangle " << k / 4;
+    }
+  }
+  EXPECT_GT(triangles, 0u);
+}
+
 TEST(GenerateLodVrml97, ExtractPutsOneLevelInPlaceOfEachShape) {
   // --extract K: level K's Shape where the shape was (both places of the
   // shared one), no LOD; 0 leaves the shape; beyond the last simplified

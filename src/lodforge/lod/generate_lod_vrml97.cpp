@@ -30,6 +30,7 @@ namespace lodforge {
 namespace {
 
 using scene::FieldKind;
+using scene::FieldValue;
 using scene::Node;
 using scene::NodePtr;
 using namespace vrml97_geometry;
@@ -49,6 +50,42 @@ struct Job {
   Log log;                               ///< the shape's messages, merged in order
   std::optional<ShapeStatistics> stats;  ///< set when it got levels
 };
+
+// `shape` (build_mesh's) with each vertex's texture coordinate and colour
+// (per-vertex ones: a vertex is one corner tuple), as gltf_lod gives a
+// primitive's: the simplifier then keeps the seams where they differ between
+// coincident vertices (texture islands, colour borders), and each level
+// vertex's source corner lies on its triangle's side of them. Normals are not
+// given: a flat-shaded shape splits every vertex by them.
+void add_seam_attributes(const GeometryReader& reader, ShapeMesh& shape) {
+  const std::size_t n = shape.mesh.positions.size();
+  const FieldValue* uv = nullptr;
+  if (reader.tex().node && !reader.tex().generated)
+    for (const NodePtr& t : texture_coordinate_lists(reader.tex().node))
+      if (t->type == "TextureCoordinate") {
+        uv = t->value("point");
+        break;
+      }
+  const Attribute& color = reader.color();
+  const FieldValue* rgb = color.node && color.per_vertex ? color.node->value("color") : nullptr;
+  const std::size_t stride = color.node && color.node->type == "ColorRGBA" ? 4 : 3;
+  for (std::size_t v = 0; v < n && (uv || rgb); ++v) {
+    const Corner& c = shape.vertex_corner[v];
+    if (uv) {
+      const std::size_t at = 2 * std::size_t(c[2]);
+      shape.mesh.texcoords.push_back(c[2] != kNone && at + 1 < uv->floats.size()
+                                         ? Vec2{uv->floats[at], uv->floats[at + 1]}
+                                         : Vec2{});
+    }
+    if (rgb) {
+      const std::size_t at = stride * std::size_t(c[3]);
+      shape.mesh.colors.push_back(
+          c[3] != kNone && at + 2 < rgb->floats.size()
+              ? Vec3{rgb->floats[at], rgb->floats[at + 1], rgb->floats[at + 2]}
+              : Vec3{});
+    }
+  }
+}
 
 // The simplified levels of one shape as Shape nodes sharing one Coordinate.
 class LevelBuilder {
@@ -234,6 +271,7 @@ class Pipeline {
     if (!reader->read(j.polygons)) return;
     build_mesh(j.polygons, *reader, opt_.triangulation, j.shape_mesh);
     if (j.shape_mesh.mesh.triangles.empty()) return;
+    add_seam_attributes(*reader, j.shape_mesh);
     const Box3 box = j.shape_mesh.mesh.bounds();
     j.center = (box.lo + box.hi) * 0.5f;
     for (const Vec3& p : j.shape_mesh.mesh.positions)

@@ -166,6 +166,12 @@ Image add_deviation_bar(const Image& picture, double max) {
                                  .title = "deviation"});
 }
 
+bool name_ends_with(std::string path, std::string_view suffix) {
+  for (auto& c : path) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (path.ends_with(".gz")) path.resize(path.size() - 3);
+  return path.ends_with(suffix);
+}
+
 void make_output_folder(const std::string& target) {
   namespace fs = std::filesystem;
   const fs::path to = target == "-" ? fs::path() : fs::path(target).parent_path();

@@ -50,6 +50,10 @@ vrml1::ReadResult read_scene(const std::string& path, const SceneReadSettings& s
 /// DataError naming the folder when it cannot.
 void make_output_folder(const std::string& target);
 
+/// True if the file name `path` ends in `suffix` (lower case), in any case
+/// and with an optional ".gz" after it.
+bool name_ends_with(std::string path, std::string_view suffix);
+
 /// Makes the relative file references of `scene`, read from `input`, relative
 /// to the folder of `output` (scene::relocate_references) and says how many
 /// changed on stderr unless `quiet`. Nothing for standard input or output.

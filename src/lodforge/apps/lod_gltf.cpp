@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "lodforge/apps/common_options.h"
 #include "lodforge/core/error.h"
 #include "lodforge/io/gltf/read_gltf.h"
 #include "lodforge/io/gltf/write_gltf.h"
@@ -10,24 +11,18 @@
 namespace lodforge::apps {
 namespace {
 
-bool ends_with_lower(std::string path, std::string_view suffix) {
-  for (auto& c : path) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (path.ends_with(".gz")) path.resize(path.size() - 3);
-  return path.ends_with(suffix);
-}
-
 // The output's encoding (lod_gltf_file's rule): true for GLB.
 bool binary_output(const std::string& input, const std::string& output, const std::string& format) {
   if (format == "glb" || format == "gltf") return format == "glb";
   if (!format.empty())
     throw DataError(
         fmt::format("a glTF scene is written as glTF (--format gltf or glb), not {}", format));
-  if (ends_with_lower(output, ".glb") || ends_with_lower(output, ".gltf"))
-    return ends_with_lower(output, ".glb");
+  if (name_ends_with(output, ".glb") || name_ends_with(output, ".gltf"))
+    return name_ends_with(output, ".glb");
   if (output != "-")
     throw DataError(
         fmt::format("{}: a glTF scene is written as .gltf or .glb (or give --format)", output));
-  return ends_with_lower(input, ".glb");
+  return name_ends_with(input, ".glb");
 }
 
 }  // namespace

@@ -293,12 +293,8 @@ vrml97::ReadResult read_vrml97_as(const std::string& input, const std::string& o
 
 bool writes_vrml97_family(const std::string& output, const std::string& format) {
   if (!format.empty()) return format == "vrml97" || format == "x3dv" || format == "x3d";
-  std::string name = output;
-  std::transform(name.begin(), name.end(), name.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  if (name.ends_with(".gz")) name.resize(name.size() - 3);
   return std::any_of(std::begin(kVrml97FamilySuffixes), std::end(kVrml97FamilySuffixes),
-                     [&](std::string_view e) { return name.ends_with(e); });
+                     [&](std::string_view e) { return name_ends_with(output, e); });
 }
 
 bool writes_gltf(const std::string& output, const std::string& format) {

@@ -57,18 +57,24 @@ std::optional<std::vector<unsigned char>> decode_data_uri(std::string_view uri) 
     }
     return out;
   }
-  for (std::size_t i = 0; i < body.size(); ++i) {
-    auto hex = [&](char c) {
-      return c >= '0' && c <= '9'   ? c - '0'
-             : c >= 'a' && c <= 'f' ? c - 'a' + 10
-             : c >= 'A' && c <= 'F' ? c - 'A' + 10
-                                    : -1;
-    };
-    if (body[i] == '%' && i + 2 < body.size() && hex(body[i + 1]) >= 0 && hex(body[i + 2]) >= 0) {
-      out.push_back(static_cast<unsigned char>(hex(body[i + 1]) * 16 + hex(body[i + 2])));
+  const std::string text = percent_decoded(body);
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+std::string percent_decoded(std::string_view text) {
+  auto hex = [](char c) {
+    return c >= '0' && c <= '9'   ? c - '0'
+           : c >= 'a' && c <= 'f' ? c - 'a' + 10
+           : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                  : -1;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '%' && i + 2 < text.size() && hex(text[i + 1]) >= 0 && hex(text[i + 2]) >= 0) {
+      out.push_back(char(hex(text[i + 1]) * 16 + hex(text[i + 2])));
       i += 2;
     } else {
-      out.push_back(static_cast<unsigned char>(body[i]));
+      out.push_back(text[i]);
     }
   }
   return out;

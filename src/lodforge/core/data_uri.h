@@ -15,6 +15,10 @@ std::string data_uri(std::string_view mime, const std::vector<unsigned char>& by
 /// percent-escaped text); nullopt for another URI or a malformed one.
 std::optional<std::vector<unsigned char>> decode_data_uri(std::string_view uri);
 
+/// `text` with its URI escapes ("%20" and the like) decoded; a '%' not
+/// followed by two hexadecimal digits stays as it is.
+std::string percent_decoded(std::string_view text);
+
 /// The MIME type of an image file's bytes by their signature: image/png,
 /// image/jpeg, image/webp, image/gif, image/ktx2; else
 /// application/octet-stream.

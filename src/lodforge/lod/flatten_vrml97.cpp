@@ -227,8 +227,9 @@ class Flattener {
       if (collect_) {
         if (sink_) sink_->push_back(std::move(lines));
       } else {
-        append_lines(lines.surface,
-                     vrml97_geometry::node_of(geometry, "color") || appearance_of(s).material);
+        const NodePtr a = vrml97_geometry::node_of(s, "appearance");
+        append_lines(lines.surface, vrml97_geometry::node_of(geometry, "color") ||
+                                        (a && vrml97_geometry::node_of(*a, "material")));
       }
       return;
     }
@@ -258,12 +259,10 @@ class Flattener {
       }
       // The first 2D coordinate list (of a MultiTextureCoordinate: its
       // first texture's); computed ones get VRML97's default mapping.
-      for (const NodePtr& t : vrml97_geometry::texture_coordinate_lists(reader.tex().node))
-        if (t->type == "TextureCoordinate") {
-          from.texcoord_node = t;
-          from.texcoords = t->value("point");
-          break;
-        }
+      if (NodePtr t = vrml97_geometry::first_texture_coordinates(reader.tex().node)) {
+        from.texcoord_node = t;
+        from.texcoords = t->value("point");
+      }
     } else {
       ++out_.skipped[geometry.type];
       return;

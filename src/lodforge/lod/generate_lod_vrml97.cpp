@@ -59,13 +59,9 @@ struct Job {
 // given: a flat-shaded shape splits every vertex by them.
 void add_seam_attributes(const GeometryReader& reader, ShapeMesh& shape) {
   const std::size_t n = shape.mesh.positions.size();
-  const FieldValue* uv = nullptr;
-  if (reader.tex().node && !reader.tex().generated)
-    for (const NodePtr& t : texture_coordinate_lists(reader.tex().node))
-      if (t->type == "TextureCoordinate") {
-        uv = t->value("point");
-        break;
-      }
+  const NodePtr list =
+      reader.tex().generated ? nullptr : first_texture_coordinates(reader.tex().node);
+  const FieldValue* uv = list ? list->value("point") : nullptr;
   const Attribute& color = reader.color();
   const FieldValue* rgb = color.node && color.per_vertex ? color.node->value("color") : nullptr;
   const std::size_t stride = color.node && color.node->type == "ColorRGBA" ? 4 : 3;

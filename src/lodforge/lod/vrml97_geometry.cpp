@@ -54,6 +54,12 @@ std::vector<NodePtr> texture_coordinate_lists(const NodePtr& tex) {
   return lists;
 }
 
+NodePtr first_texture_coordinates(const NodePtr& tex) {
+  for (const NodePtr& t : texture_coordinate_lists(tex))
+    if (t->type == "TextureCoordinate") return t;
+  return nullptr;
+}
+
 namespace {
 
 // How many texture coordinates a texCoord node holds (the fewest among its

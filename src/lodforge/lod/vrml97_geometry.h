@@ -37,6 +37,10 @@ std::size_t attribute_count(const NodePtr& n, std::string_view field);
 /// (TextureCoordinateGenerator, Castle's ProjectedTextureCoordinate, ...).
 std::vector<NodePtr> texture_coordinate_lists(const NodePtr& tex);
 
+/// The first 2D coordinate list of `tex` (a TextureCoordinate; of a
+/// MultiTextureCoordinate, its first texture's), or null.
+NodePtr first_texture_coordinates(const NodePtr& tex);
+
 // One corner's indices into the coordinate, normal, texture coordinate and
 // colour nodes (kNone: the attribute is absent or bound per face).
 using Corner = std::array<std::uint32_t, 4>;

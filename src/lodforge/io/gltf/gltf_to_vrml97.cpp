@@ -145,8 +145,9 @@ class Converter {
     // Nodes form trees (read_gltf checks it): an explicit stack visits each
     // once, from the roots down.
     std::vector<NodePtr> made(model_.nodes.size());
+    const std::vector<int> roots = shown_roots(model_);
     std::vector<std::pair<int, std::size_t>> stack;  // node, depth
-    for (int r : shown_roots(model_)) stack.emplace_back(r, 1);
+    for (int r : roots) stack.emplace_back(r, 1);
     std::vector<int> order;
     while (!stack.empty()) {
       const auto [i, depth] = stack.back();
@@ -168,7 +169,7 @@ class Converter {
       if (!children.empty())
         made[std::size_t(i)]->set("children", scene::make_nodes_value(std::move(children)));
     }
-    for (int r : shown_roots(model_))
+    for (int r : roots)
       if (std::find(out.roots.begin(), out.roots.end(), made[std::size_t(r)]) == out.roots.end())
         out.roots.push_back(made[std::size_t(r)]);
     warn_left_out();

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lodforge/core/data_uri.h"
 #include "lodforge/core/error.h"
 #include "lodforge/io/gltf/accessor_data.h"
 #include "lodforge/io/gltf/node_matrices.h"
@@ -155,27 +156,6 @@ int level_at_coverage(const tinygltf::Node& node, int levels, double c) {
 
 }  // namespace
 
-namespace {
-
-// "%20" and the like decoded (a URI's escapes).
-std::string unescaped(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    const auto hex = [&](std::size_t k) {
-      return k < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[k]));
-    };
-    if (uri[i] == '%' && hex(i + 1) && hex(i + 2)) {
-      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
-      i += 2;
-    } else {
-      out.push_back(uri[i]);
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 scene::SceneTexture material_texture(const tinygltf::Model& model, int m) {
   scene::SceneTexture out;
   const tinygltf::Material& material = model.materials[std::size_t(m)];
@@ -202,7 +182,7 @@ scene::SceneTexture material_texture(const tinygltf::Model& model, int m) {
       out.encoded.assign(data.begin() + std::ptrdiff_t(view.byteOffset),
                          data.begin() + std::ptrdiff_t(view.byteOffset + view.byteLength));
   } else {
-    out.filename = unescaped(image.uri);
+    out.filename = percent_decoded(image.uri);
   }
   return out;
 }
